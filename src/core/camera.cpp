@@ -1,0 +1,71 @@
+#include "core/camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace lodline {
+
+glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
+
+glm::mat4 Camera::projection(float aspect) const {
+  if (orthographic) {
+    const float h = 0.5f * ortho_height, w = h * aspect;
+    return glm::ortho(-w, w, -h, h, near_plane, far_plane);
+  }
+  return glm::perspective(glm::radians(fov_deg), aspect, near_plane, far_plane);
+}
+
+glm::vec3 Camera::forward() const { return glm::normalize(target - eye); }
+
+Camera orbitCamera(const Bounds& bounds, const OrbitView& v, float fov_deg, float aspect) {
+  Camera cam;
+  cam.fov_deg = fov_deg;
+  cam.target = bounds.center;
+  const float r = bounds.radius > 0.0f ? bounds.radius : 1.0f;
+  float dist = v.distance * r;
+  if (v.distance <= 0.0f) {
+    // Fit the sphere in the narrower of the two fields of view, 8% margin.
+    const float half_v = glm::radians(fov_deg) * 0.5f;
+    const float half_h = std::atan(std::tan(half_v) * aspect);
+    dist = 1.08f * r / std::sin(std::min(half_v, half_h));
+  }
+  const float az = glm::radians(v.azimuth_deg), el = glm::radians(v.elevation_deg);
+  const glm::vec3 dir(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
+  cam.eye = cam.target + dist * dir;
+  cam.ortho_height = 2.0f * 1.08f * r;
+  fitClipPlanes(cam, bounds);
+  return cam;
+}
+
+void fitClipPlanes(Camera& cam, const Bounds& bounds) {
+  const float r = std::max(bounds.radius, 1e-6f);
+  const float d = glm::dot(bounds.center - cam.eye, cam.forward());
+  cam.far_plane = std::max(d + 1.05f * r, 1e-3f);
+  cam.near_plane = std::max(d - 1.05f * r, cam.far_plane * 1e-3f);
+}
+
+float pixelAreaFactor(const Camera& cam, int image_height) {
+  if (cam.orthographic) {
+    const float px_per_unit = static_cast<float>(image_height) / cam.ortho_height;
+    return px_per_unit * px_per_unit;
+  }
+  const float f = 0.5f * static_cast<float>(image_height) /
+                  std::tan(0.5f * glm::radians(cam.fov_deg));
+  return f * f;
+}
+
+glm::vec2 projectToPixels(const Camera& cam, glm::vec3 p, int width, int height, float* depth) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const glm::vec4 eye_p = cam.view() * glm::vec4(p, 1.0f);
+  if (depth) *depth = -eye_p.z;
+  const glm::vec4 clip = cam.projection(aspect) * eye_p;
+  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  return {(ndc.x * 0.5f + 0.5f) * static_cast<float>(width),
+          (0.5f - ndc.y * 0.5f) * static_cast<float>(height)};
+}
+
+}  // namespace lodline

@@ -1,0 +1,47 @@
+// The triangle mesh that flows between stages: flat arrays, 32-bit indices
+// (STYLE.md §2). OpenMesh is used by io/ to read files, never in the frame loop.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace lodline {
+
+/// An undirected edge given by its two vertex indices (any order).
+using EdgeKey = std::array<uint32_t, 2>;
+
+/// Indexed triangle mesh. Invariants (checked by validateMesh): every index <
+/// positions.size(), all coordinates finite. Faces are counter-clockwise seen
+/// from outside.
+struct TriMesh {
+  std::vector<glm::vec3> positions;           ///< one per vertex, model units
+  std::vector<std::array<uint32_t, 3>> faces;  ///< vertex indices per triangle
+  /// Edges the file marks as sharp/crease (e.g. OBJ `l` lines); may be empty.
+  std::vector<EdgeKey> marked_edges;
+
+  size_t vertexCount() const { return positions.size(); }
+  size_t faceCount() const { return faces.size(); }
+};
+
+/// Axis-aligned box and bounding sphere of a point set (centre of the box, radius
+/// = largest distance from that centre).
+struct Bounds {
+  glm::vec3 min{0.0f};
+  glm::vec3 max{0.0f};
+  glm::vec3 center{0.0f};
+  float radius = 0.0f;
+  float diagonal() const;
+};
+
+/// Bounds of `positions` (empty span: all zero).
+Bounds computeBounds(std::span<const glm::vec3> positions);
+
+/// Area-weighted face normals: `out` gets faceCount() unit vectors (zero for a
+/// degenerate face).
+void computeFaceNormals(const TriMesh& mesh, std::vector<glm::vec3>& out);
+
+}  // namespace lodline

@@ -1,0 +1,97 @@
+// Headless OpenGL through EGL on Mesa's surfaceless platform (EGL_MESA_platform_surfaceless):
+// no display, no window; rendering goes into FBOs. Sequence measured to work on Debian 12 /
+// Mesa 22.3 (DESIGN.md "OpenGL on this kind of machine").
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+
+#include <glad/gl.h>
+
+#include "gl/context.h"
+
+namespace lodline {
+namespace {
+
+#ifndef EGL_PLATFORM_SURFACELESS_MESA
+#define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
+#endif
+
+std::string eglErrorString(EGLint e) {
+  switch (e) {
+    case EGL_SUCCESS: return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    default: return "EGL error " + std::to_string(e);
+  }
+}
+
+class EglContext final : public GlContext {
+ public:
+  EglContext(EGLDisplay dpy, EGLContext ctx) : dpy_(dpy), ctx_(ctx) {}
+  ~EglContext() override {
+    eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(dpy_, ctx_);
+    eglTerminate(dpy_);
+  }
+  EglContext(const EglContext&) = delete;
+  EglContext& operator=(const EglContext&) = delete;
+  ContextBackend backend() const override { return ContextBackend::kEgl; }
+
+ private:
+  EGLDisplay dpy_;
+  EGLContext ctx_;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<GlContext>> createEglContext() {
+  const char* client_exts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  if (!client_exts || !std::string(client_exts).contains("EGL_MESA_platform_surfaceless"))
+    return Error::runtime("EGL_MESA_platform_surfaceless is not supported by this libEGL");
+  auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+      eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  if (!get_platform_display) return Error::runtime("eglGetPlatformDisplayEXT is missing");
+  EGLDisplay dpy = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  if (dpy == EGL_NO_DISPLAY) return Error::runtime("no surfaceless EGL display");
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(dpy, &major, &minor))
+    return Error::runtime("eglInitialize failed: " + eglErrorString(eglGetError()));
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    eglTerminate(dpy);
+    return Error::runtime("eglBindAPI(EGL_OPENGL_API) failed: " + eglErrorString(eglGetError()));
+  }
+  // Core profile without the forward-compatible flag, so glLineWidth > 1 works (DESIGN.md).
+  EGLContext ctx = EGL_NO_CONTEXT;
+  for (const EGLint minor_version : {5, 3}) {
+    const EGLint minor_for_major = minor_version;
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, minor_for_major == 5 ? 4 : 3,
+                              EGL_CONTEXT_MINOR_VERSION, minor_for_major,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                              EGL_NONE};
+    ctx = eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+    if (ctx != EGL_NO_CONTEXT) break;
+  }
+  if (ctx == EGL_NO_CONTEXT) {
+    const std::string err = eglErrorString(eglGetError());
+    eglTerminate(dpy);
+    return Error::runtime("eglCreateContext (OpenGL 4.5/3.3 core) failed: " + err);
+  }
+  if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
+    const std::string err = eglErrorString(eglGetError());
+    eglDestroyContext(dpy, ctx);
+    eglTerminate(dpy);
+    return Error::runtime("eglMakeCurrent failed: " + err);
+  }
+  auto context = std::make_unique<EglContext>(dpy, ctx);
+  if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(eglGetProcAddress)))
+    return Error::runtime("could not load OpenGL functions through EGL");
+  return std::unique_ptr<GlContext>(std::move(context));
+}
+
+}  // namespace lodline
