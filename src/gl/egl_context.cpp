@@ -52,7 +52,7 @@ class EglContext final : public GlContext {
 
 Result<std::unique_ptr<GlContext>> createEglContext() {
   const char* client_exts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!client_exts || !std::string(client_exts).contains("EGL_MESA_platform_surfaceless"))
+  if (!client_exts || std::string(client_exts).find("EGL_MESA_platform_surfaceless") == std::string::npos)
     return Error::runtime("EGL_MESA_platform_surfaceless is not supported by this libEGL");
   auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
       eglGetProcAddress("eglGetPlatformDisplayEXT"));

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 #include "core/mesh.h"
 #include "io/generate.h"
 
