@@ -15,7 +15,8 @@ constexpr float kPi = std::numbers::pi_v<float>;
 
 // Adds the quads of a (rows+1) × cols vertex grid wrapped around in the column direction
 // (and in the row direction when wrap_rows), vertex (i, j) at index base + i·cols + j.
-void addWrappedQuads(TriMesh& m, uint32_t base, int rows, int cols, bool wrap_rows) {
+// `flip` reverses the winding (the caller picks the one whose normals point outward).
+void addWrappedQuads(TriMesh& m, uint32_t base, int rows, int cols, bool wrap_rows, bool flip) {
   const int row_count = wrap_rows ? rows + 1 : rows;
   for (int i = 0; i < row_count - (wrap_rows ? 1 : 0); ++i) {
     const int i1 = wrap_rows ? (i + 1) % rows : i + 1;
@@ -23,8 +24,13 @@ void addWrappedQuads(TriMesh& m, uint32_t base, int rows, int cols, bool wrap_ro
       const int j1 = (j + 1) % cols;
       const uint32_t a = base + i * cols + j, b = base + i * cols + j1;
       const uint32_t c = base + i1 * cols + j1, d = base + i1 * cols + j;
-      m.faces.push_back({a, b, c});
-      m.faces.push_back({a, c, d});
+      if (flip) {
+        m.faces.push_back({a, c, b});
+        m.faces.push_back({a, d, c});
+      } else {
+        m.faces.push_back({a, b, c});
+        m.faces.push_back({a, c, d});
+      }
     }
   }
 }
@@ -83,7 +89,7 @@ TriMesh makeUvSphere(float r, int slices, int stacks) {
     const uint32_t j1 = (j + 1) % slices;
     m.faces.push_back({0, 1 + static_cast<uint32_t>(j), 1 + j1});
   }
-  addWrappedQuads(m, 1, stacks - 2, slices, false);
+  addWrappedQuads(m, 1, stacks - 2, slices, false, true);
   const uint32_t last = 1 + static_cast<uint32_t>((stacks - 2) * slices);
   for (int j = 0; j < slices; ++j) {
     const uint32_t j1 = (j + 1) % slices;
@@ -102,7 +108,7 @@ TriMesh makeTorus(float R, float r, int major, int minor) {
       m.positions.push_back({w * std::cos(u), r * std::sin(v), -w * std::sin(u)});
     }
   }
-  addWrappedQuads(m, 0, major, minor, true);
+  addWrappedQuads(m, 0, major, minor, true, true);
   return m;
 }
 
@@ -115,7 +121,7 @@ TriMesh makeCylinder(float r, float h, int slices, int stacks) {
       m.positions.push_back({r * std::sin(phi), y, r * std::cos(phi)});
     }
   }
-  addWrappedQuads(m, 0, stacks, slices, false);
+  addWrappedQuads(m, 0, stacks, slices, false, false);
   return m;
 }
 
@@ -168,8 +174,8 @@ TriMesh makeTorusKnot(int p, int q, float R, float tube, int segments, int sides
     for (int j = 0; j < sides; ++j) {
       const int j1 = (j + 1) % sides;
       const uint32_t a = i * sides + j, b = i * sides + j1, c = i1 * sides + j1, d = i1 * sides + j;
-      m.faces.push_back({a, c, b});
-      m.faces.push_back({a, d, c});
+      m.faces.push_back({a, b, c});
+      m.faces.push_back({a, c, d});
     }
   }
   return m;

@@ -1,0 +1,74 @@
+#include "core/render_params.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+
+namespace lodline {
+
+const char* lineKindName(LineKind k) {
+  switch (k) {
+    case LineKind::kContour: return "contour";
+    case LineKind::kSuggestive: return "suggestive";
+    case LineKind::kCrease: return "crease";
+    case LineKind::kBoundary: return "boundary";
+  }
+  return "?";
+}
+
+void LineStyles::scaleWidths(float s) {
+  for (auto& k : kinds) k.width_px *= s;
+}
+
+Result<Style> parseStyle(const std::string& s) {
+  if (s == "toon") return Style::kToon;
+  if (s == "lines") return Style::kLines;
+  return Error::usage("--style: unknown style '" + s + "' (expected lines or toon)");
+}
+
+const char* styleName(Style s) { return s == Style::kToon ? "toon" : "lines"; }
+
+Result<glm::vec4> parseColor(const std::string& s) {
+  std::string t = s;
+  std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (t == "white") return glm::vec4(1, 1, 1, 1);
+  if (t == "black") return glm::vec4(0, 0, 0, 1);
+  if (t == "paper") return glm::vec4(0.98f, 0.96f, 0.91f, 1);
+  if (t == "grey" || t == "gray") return glm::vec4(0.5f, 0.5f, 0.5f, 1);
+  if (t == "red") return glm::vec4(0.8f, 0.1f, 0.1f, 1);
+  if (t == "green") return glm::vec4(0.1f, 0.6f, 0.2f, 1);
+  if (t == "blue") return glm::vec4(0.1f, 0.25f, 0.8f, 1);
+  if (t == "transparent") return glm::vec4(1, 1, 1, 0);
+  const auto bad = Error::usage("invalid colour '" + s +
+                                "' (expected #rrggbb, #rrggbbaa, #rgb, transparent or a name)");
+  if (t.size() < 2 || t[0] != '#') return bad;
+  std::string hex = t.substr(1);
+  if (hex.size() == 3) hex = {hex[0], hex[0], hex[1], hex[1], hex[2], hex[2]};
+  if (hex.size() == 6) hex += "ff";
+  if (hex.size() != 8) return bad;
+  glm::vec4 c;
+  for (int i = 0; i < 4; ++i) {
+    unsigned v = 0;
+    const char* b = hex.data() + 2 * i;
+    auto [p, ec] = std::from_chars(b, b + 2, v, 16);
+    if (ec != std::errc() || p != b + 2) return bad;
+    c[i] = static_cast<float>(v) / 255.0f;
+  }
+  return c;
+}
+
+Result<std::array<int, 2>> parseSize(const std::string& s) {
+  const auto bad = Error::usage("--size: invalid size '" + s + "' (expected WxH, e.g. 1280x720, each 16..16384)");
+  const auto x = s.find_first_of("xX");
+  if (x == std::string::npos) return bad;
+  int w = 0, h = 0;
+  auto r1 = std::from_chars(s.data(), s.data() + x, w);
+  auto r2 = std::from_chars(s.data() + x + 1, s.data() + s.size(), h);
+  if (r1.ec != std::errc() || r1.ptr != s.data() + x || r2.ec != std::errc() ||
+      r2.ptr != s.data() + s.size())
+    return bad;
+  if (w < 16 || h < 16 || w > 16384 || h > 16384) return bad;
+  return std::array<int, 2>{w, h};
+}
+
+}  // namespace lodline
