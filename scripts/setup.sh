@@ -59,8 +59,9 @@ if [ $do_build -eq 1 ]; then
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
   build_type=Release
-  [ "$sanitize" = ON ] && build_type=RelWithDebInfo
+  extra=()
+  if [ "$sanitize" = ON ]; then build_type=RelWithDebInfo; extra=(-DLODLINE_BUILD_BENCH=OFF -DLODLINE_BUILD_VIEWER=OFF); fi
   cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=$build_type \
-    -DLODLINE_SANITIZE=$sanitize "${launcher[@]}" >/dev/null
+    -DLODLINE_SANITIZE=$sanitize "${launcher[@]}" "${extra[@]}" >/dev/null
   cmake --build "$build_dir" -j "$(nproc)"
 fi

@@ -1,0 +1,49 @@
+// `lodline generate SHAPE -o FILE`: writes one of the project's analytic surfaces (the
+// default model in models/ was made this way).
+#include <algorithm>
+#include <iostream>
+#include <memory>
+
+#include "app/commands.h"
+#include "io/generate.h"
+#include "io/load_mesh.h"
+
+namespace lodline {
+
+Command addGenerateCommand(CLI::App& parent) {
+  struct Opts {
+    std::string shape;
+    std::string output;
+    int resolution = 0;
+  };
+  auto o = std::make_shared<Opts>();
+  CLI::App* cmd = parent.add_subcommand(
+      "generate", "Write an analytic test surface as an OFF file (knot = the default model)");
+  cmd->add_option("shape", o->shape, "sphere, uvsphere, torus, cylinder, ellipsoid, grid or knot")
+      ->required()
+      ->check(CLI::IsMember({"sphere", "uvsphere", "torus", "cylinder", "ellipsoid", "grid", "knot"}));
+  cmd->add_option("-o,--output", o->output, "Output .off file")->required();
+  cmd->add_option("--resolution", o->resolution,
+                  "Subdivision level (sphere, ellipsoid) or segments (others); 0 = a sensible default");
+  return {cmd, [o]() -> int {
+            const int r = o->resolution;
+            const bool levels = o->shape == "sphere" || o->shape == "ellipsoid";
+            if (r < 0 || (levels && r > 9) || (!levels && r > 4096))
+              return reportError(Error::usage("--resolution: " + std::to_string(r) + " is out of range for " +
+                                              o->shape + (levels ? " (0-9)" : " (0-4096)")));
+            TriMesh m;
+            if (o->shape == "sphere") m = makeIcoSphere(1.0f, r > 0 ? r : 4);
+            else if (o->shape == "uvsphere") m = makeUvSphere(1.0f, r > 0 ? r : 64, r > 0 ? r / 2 : 32);
+            else if (o->shape == "torus") m = makeTorus(1.0f, 0.35f, r > 0 ? r : 96, r > 0 ? r / 2 : 48);
+            else if (o->shape == "cylinder") m = makeCylinder(0.5f, 2.0f, r > 0 ? r : 64, r > 0 ? r : 32);
+            else if (o->shape == "ellipsoid") m = makeEllipsoid(1.0f, 0.6f, 0.4f, r > 0 ? r : 4);
+            else if (o->shape == "grid") m = makeGrid(2.0f, r > 0 ? r : 64);
+            else m = makeTorusKnot(2, 3, 1.0f, 0.16f, r > 0 ? r : 720, r > 0 ? std::max(8, r / 15) : 48, 0.18f);
+            if (Status s = saveOff(o->output, m); !s) return reportError(s.error());
+            std::cout << "wrote " << o->output << ": " << m.vertexCount() << " vertices, "
+                      << m.faceCount() << " faces\n";
+            return 0;
+          }};
+}
+
+}  // namespace lodline

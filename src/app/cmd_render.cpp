@@ -1,0 +1,126 @@
+// `lodline render MODEL -o out.png`: one headless frame (EGL surfaceless by default, OSMesa
+// as fallback), written atomically, with optional per-stage stats as JSON (docs/stats.md).
+#include <iostream>
+#include <memory>
+
+#include <glad/gl.h>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/options.h"
+#include "core/timer.h"
+#include "frame/line_drawing.h"
+#include "gl/context.h"
+#include "gl/renderer.h"
+#include "io/atomic_file.h"
+#include "io/image.h"
+#include "io/load_mesh.h"
+
+namespace lodline {
+
+int reportError(const Error& e) {
+  std::cerr << "lodline: " << e.message << '\n';
+  return e.exitCode();
+}
+
+namespace {
+
+struct RenderOptions {
+  ViewOptions view;
+  std::string output;
+  std::string stats;
+  std::string context = "auto";
+};
+
+int runRender(const RenderOptions& o) {
+  Stopwatch total;
+  auto resolved = resolveViewOptions(o.view);
+  if (!resolved) return reportError(resolved.error());
+  auto backend = parseContextBackend(o.context);
+  if (!backend) return reportError(backend.error());
+  const std::filesystem::path out_path(o.output);
+  std::string ext = out_path.extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png") return reportError(Error::usage("-o: output must be a .png file, got '" + o.output + "'"));
+  // Fail early on unwritable outputs, before any expensive work.
+  if (Status s = checkWritable(out_path); !s) return reportError(s.error());
+  if (!o.stats.empty())
+    if (Status s = checkWritable(o.stats); !s) return reportError(s.error());
+
+  const RenderParams& rp = resolved->render;
+  Stopwatch stage;
+  auto mesh = loadMesh(resolved->model);
+  if (!mesh) return reportError(mesh.error());
+  const size_t model_vertices = mesh->vertexCount(), model_faces = mesh->faceCount();
+  const double ms_load = stage.lap();
+
+  LineDrawing drawing(std::move(mesh.value()));
+  const float aspect = static_cast<float>(rp.width) / static_cast<float>(rp.height);
+  const Camera camera = orbitCamera(drawing.bounds(), resolved->orbit, resolved->fov_deg, aspect);
+  std::array<bool, kLineKindCount> enabled{};
+  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = rp.lines.kinds[k].enabled;
+  drawing.update(camera, enabled);
+  stage.lap();
+
+  auto context = createHeadlessContext(*backend);
+  if (!context) return reportError(context.error());
+  auto renderer = Renderer::create();
+  if (!renderer) return reportError(renderer.error());
+  auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
+  if (!target) return reportError(target.error());
+  renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
+  renderer->setLines(drawing.lines());
+  glFinish();
+  const double ms_setup = stage.lap();
+
+  target->bind();
+  renderer->draw(camera, rp, rp.width, rp.height);
+  glFinish();
+  const double ms_render = stage.lap();
+  const Image image = target->readback();
+  const double ms_readback = stage.lap();
+
+  if (Status s = writePng(out_path, image); !s) return reportError(s.error());
+
+  if (!o.stats.empty()) {
+    const CpuTimings& t = drawing.timings();
+    nlohmann::json j;
+    j["model"] = {{"path", resolved->model.string()}, {"vertices", model_vertices}, {"faces", model_faces}};
+    j["image"] = {{"width", rp.width}, {"height", rp.height}};
+    j["context"] = {{"backend", backendName((*context)->backend())}, {"gl", (*context)->description()}};
+    j["faces_drawn"] = renderer->faceCount();
+    j["line_segments"] = renderer->segmentsDrawn();
+    nlohmann::json lines;
+    for (int k = 0; k < kLineKindCount; ++k)
+      lines[lineKindName(static_cast<LineKind>(k))] =
+          rp.lines.kinds[k].enabled ? drawing.lines().count[k] / 2 : 0;
+    j["lines"] = lines;
+    j["strokes"] = drawing.strokes().strokeCount();
+    j["ms"] = {{"load", ms_load},   {"shape", t.shape},   {"view", t.view},
+               {"extract", t.extract}, {"chain", t.chain}, {"setup", ms_setup},
+               {"render", ms_render}, {"readback", ms_readback}, {"total", total.elapsed()}};
+    const std::string text = j.dump(2) + "\n";
+    Status s = writeFileAtomically(o.stats, [&](std::ostream& out) -> Status {
+      out << text;
+      return {};
+    });
+    if (!s) return reportError(s.error());
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command addRenderCommand(CLI::App& parent) {
+  auto o = std::make_shared<RenderOptions>();
+  CLI::App* cmd = parent.add_subcommand("render", "Render a model headlessly to a PNG line drawing");
+  addViewOptions(*cmd, o->view);
+  cmd->add_option("-o,--output", o->output, "Output PNG file")->required();
+  cmd->add_option("--stats", o->stats, "Write per-frame statistics as JSON to this file (docs/stats.md)");
+  cmd->add_option("--context", o->context,
+                  "OpenGL context: auto (EGL surfaceless, then OSMesa), egl or osmesa")
+      ->capture_default_str();
+  return {cmd, [o] { return runRender(*o); }};
+}
+
+}  // namespace lodline

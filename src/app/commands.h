@@ -1,0 +1,25 @@
+// The subcommands of the `lodline` program. Each run returns the process exit code:
+// 0 success, 1 runtime error (bad file, no context, failed write), 2 usage error.
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+#include "core/result.h"
+
+namespace lodline {
+
+struct Command {
+  CLI::App* app = nullptr;    ///< the subcommand, owned by the parent CLI::App
+  std::function<int()> run;   ///< runs it after parsing
+};
+
+Command addRenderCommand(CLI::App& parent);
+Command addViewCommand(CLI::App& parent);
+Command addGenerateCommand(CLI::App& parent);
+
+/// Prints "lodline: <message>" to stderr and returns the error's exit code.
+int reportError(const Error& e);
+
+}  // namespace lodline

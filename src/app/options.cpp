@@ -1,0 +1,102 @@
+#include "app/options.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+namespace lodline {
+
+void addViewOptions(CLI::App& cmd, ViewOptions& o) {
+  cmd.add_option("model", o.models, "Mesh file (.off, .obj, .ply, .stl); polygons are triangulated")
+      ->required();
+  cmd.add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
+  cmd.add_option("--view", o.view,
+                 "Camera as AZ,EL,DIST: azimuth and elevation in degrees, distance in "
+                 "bounding-sphere radii (default: a 3/4 view that frames the whole model)");
+  cmd.add_option("--fov", o.fov_deg, "Vertical field of view in degrees (1-170)")->capture_default_str();
+  cmd.add_option("--style", o.style, "lines (lines on the background) or toon (toon-shaded faces + lines)")
+      ->capture_default_str();
+  cmd.add_option("--line-width", o.line_width,
+                 "Contour width in pixels; the other line kinds scale with it (default 2.5)");
+  cmd.add_option("--background", o.background,
+                 "Background colour: #rrggbb, #rrggbbaa, transparent or a name (white, paper, ...)")
+      ->capture_default_str();
+  cmd.add_option("--msaa", o.msaa, "Multisample count for antialiasing (1 = off, up to 4 on llvmpipe)")
+      ->capture_default_str();
+  cmd.add_option("--lines", o.lines,
+                 "Comma-separated line kinds to draw: contour, suggestive, crease, boundary (or none)")
+      ->capture_default_str();
+}
+
+Result<OrbitView> parseOrbitView(const std::string& s) {
+  const auto bad = Error::usage("--view: invalid value '" + s +
+                                "' (expected AZ,EL,DIST, e.g. 30,20,3; DIST in bounding radii > 1)");
+  OrbitView v;
+  float vals[3];
+  std::stringstream ss(s);
+  std::string item;
+  int n = 0;
+  while (std::getline(ss, item, ',')) {
+    if (n >= 3) return bad;
+    const char* b = item.data();
+    while (*b == ' ') ++b;
+    auto [p, ec] = std::from_chars(b, item.data() + item.size(), vals[n]);
+    if (ec != std::errc() || p != item.data() + item.size() || !std::isfinite(vals[n])) return bad;
+    ++n;
+  }
+  if (n != 3 || vals[2] <= 0.0f || vals[1] < -90.0f || vals[1] > 90.0f) return bad;
+  v.azimuth_deg = vals[0];
+  v.elevation_deg = vals[1];
+  v.distance = vals[2];
+  return v;
+}
+
+Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
+  ResolvedView r;
+  if (o.models.size() != 1)
+    return Error::usage("exactly one MODEL is supported for now (got " + std::to_string(o.models.size()) + ")");
+  r.model = o.models[0];
+  auto size = parseSize(o.size);
+  if (!size) return size.error();
+  r.render.width = (*size)[0];
+  r.render.height = (*size)[1];
+  if (!o.view.empty()) {
+    auto v = parseOrbitView(o.view);
+    if (!v) return v.error();
+    r.orbit = *v;
+  }
+  if (!(o.fov_deg >= 1.0f && o.fov_deg <= 170.0f))
+    return Error::usage("--fov: " + std::to_string(o.fov_deg) + " is out of range (1-170 degrees)");
+  r.fov_deg = o.fov_deg;
+  auto style = parseStyle(o.style);
+  if (!style) return style.error();
+  r.render.style = *style;
+  if (o.line_width != 0.0f) {
+    if (!(o.line_width > 0.0f && o.line_width <= 64.0f))
+      return Error::usage("--line-width: must be in (0, 64] pixels");
+    r.render.lines.scaleWidths(o.line_width / r.render.lines[LineKind::kContour].width_px);
+  }
+  auto bg = parseColor(o.background);
+  if (!bg) return Error::usage("--background: " + bg.error().message);
+  r.render.background = *bg;
+  if (o.msaa < 1 || o.msaa > 16) return Error::usage("--msaa: must be 1..16");
+  r.render.msaa = o.msaa;
+  for (auto& k : r.render.lines.kinds) k.enabled = false;
+  std::stringstream ss(o.lines);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item == "none" || item.empty()) continue;
+    bool found = false;
+    for (int k = 0; k < kLineKindCount; ++k)
+      if (item == lineKindName(static_cast<LineKind>(k))) {
+        r.render.lines.kinds[k].enabled = true;
+        found = true;
+      }
+    if (!found)
+      return Error::usage("--lines: unknown line kind '" + item +
+                          "' (expected contour, suggestive, crease, boundary or none)");
+  }
+  return r;
+}
+
+}  // namespace lodline

@@ -1,0 +1,47 @@
+// Command-line options shared by `render` and `view` (and later `capture`): they fill the
+// same parameter structs the viewer edits, so a headless render reproduces the viewer.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/camera.h"
+#include "core/render_params.h"
+#include "core/result.h"
+
+namespace lodline {
+
+/// Raw option strings, parsed and checked by resolve().
+struct ViewOptions {
+  std::vector<std::string> models;
+  std::string size = "1280x720";
+  std::string view;  ///< "AZ,EL,DIST"; empty = default 3/4 view framing the model
+  float fov_deg = 35.0f;
+  std::string style = "toon";
+  float line_width = 0.0f;  ///< contour width in px; 0 = default (others scale with it)
+  std::string background = "white";
+  int msaa = 4;
+  std::string lines = "contour,suggestive,crease,boundary";
+};
+
+/// Everything a frame needs that does not depend on the model.
+struct ResolvedView {
+  std::filesystem::path model;
+  RenderParams render;
+  OrbitView orbit;
+  float fov_deg = 35.0f;
+};
+
+/// Adds the shared options to a subcommand.
+void addViewOptions(CLI::App& cmd, ViewOptions& o);
+
+/// Parses and checks the option strings; errors are usage errors (exit code 2).
+Result<ResolvedView> resolveViewOptions(const ViewOptions& o);
+
+/// Parses "AZ,EL,DIST" (degrees, degrees, bounding-sphere radii > 0).
+Result<OrbitView> parseOrbitView(const std::string& s);
+
+}  // namespace lodline

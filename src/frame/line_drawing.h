@@ -1,0 +1,60 @@
+// The CPU half of a frame (DESIGN.md pipeline: io → shape → lines): for one model, the
+// surface arrays the renderer draws and, per view, the extracted lines grouped by kind.
+// Both `lodline render` and the viewer drive this same object, so they draw the same thing.
+#pragma once
+
+#include <array>
+#include <span>
+
+#include "core/camera.h"
+#include "core/line_buffer.h"
+#include "core/mesh.h"
+#include "lines/lines.h"
+#include "lines/strokes.h"
+#include "shape/shape_cache.h"
+
+namespace lodline {
+
+/// Milliseconds spent in each CPU stage by the last calls.
+struct CpuTimings {
+  double shape = 0.0;    ///< normals, curvature, derivatives (setMesh)
+  double view = 0.0;     ///< per-view quantities (n·v, kr, Dw kr)
+  double extract = 0.0;  ///< zero-set extraction
+  double chain = 0.0;    ///< chaining segments into strokes
+};
+
+class LineDrawing {
+ public:
+  /// Takes the mesh and computes its shape quantities (normals, curvature, derivatives).
+  explicit LineDrawing(TriMesh mesh, const LineParams& params = {});
+
+  /// Recomputes the lines for `camera`. Kinds disabled in `enabled` are not extracted.
+  void update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled);
+
+  void setParams(const LineParams& params) { params_ = params; }
+  const LineParams& params() const { return params_; }
+
+  const TriMesh& mesh() const { return mesh_; }
+  const Bounds& bounds() const { return bounds_; }
+  std::span<const glm::vec3> normals() const;
+  const LineBuffer& lines() const { return buffer_; }
+  const StrokeSet& strokes() const { return strokes_; }
+  /// Model length scale used for the scale-free suggestive-contour thresholds.
+  float featureSize() const { return feature_size_; }
+  const CpuTimings& timings() const { return timings_; }
+
+ private:
+  TriMesh mesh_;
+  Bounds bounds_;
+  LineParams params_;
+  ShapeCache shape_;
+  float feature_size_ = 1.0f;
+  LineExtractor extractor_;
+  LineSet segments_;
+  StrokeSet strokes_;
+  ChainScratch chain_scratch_;
+  LineBuffer buffer_;
+  CpuTimings timings_;
+};
+
+}  // namespace lodline

@@ -1,0 +1,229 @@
+#include "gl/renderer.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/shader.h"
+
+namespace lodline {
+namespace {
+
+void setMatrices(GLuint program, const Camera& camera, float aspect) {
+  glUniformMatrix4fv(glGetUniformLocation(program, "u_view"), 1, GL_FALSE,
+                     glm::value_ptr(camera.view()));
+  glUniformMatrix4fv(glGetUniformLocation(program, "u_projection"), 1, GL_FALSE,
+                     glm::value_ptr(camera.projection(aspect)));
+}
+
+template <class T>
+void uploadArray(GLenum target, const GlBuffer& buffer, std::span<const T> data) {
+  glBindBuffer(target, buffer.id());
+  glBufferData(target, static_cast<GLsizeiptr>(data.size_bytes()), data.data(), GL_DYNAMIC_DRAW);
+}
+
+}  // namespace
+
+Result<Renderer> Renderer::create() {
+  Renderer r;
+  auto toon = loadProgram("mesh.vert", "toon.frag");
+  if (!toon) return toon.error();
+  auto depth = loadProgram("mesh.vert", "depth_only.frag");
+  if (!depth) return depth.error();
+  auto line = loadProgram("line.vert", "line.frag");
+  if (!line) return line.error();
+  r.toon_ = std::move(toon.value());
+  r.depth_only_ = std::move(depth.value());
+  r.line_ = std::move(line.value());
+
+  r.mesh_vao_ = makeVertexArray();
+  r.positions_ = makeBuffer();
+  r.normals_ = makeBuffer();
+  r.indices_ = makeBuffer();
+  glBindVertexArray(r.mesh_vao_.id());
+  glBindBuffer(GL_ARRAY_BUFFER, r.positions_.id());
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, r.normals_.id());
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.indices_.id());
+
+  r.line_vao_ = makeVertexArray();
+  r.line_vertices_ = makeBuffer();
+  glBindVertexArray(r.line_vao_.id());
+  glBindBuffer(GL_ARRAY_BUFFER, r.line_vertices_.id());
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(LineVertex), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(LineVertex),
+                        reinterpret_cast<const void*>(offsetof(LineVertex, alpha)));
+  glBindVertexArray(0);
+
+  r.ramp_ = makeTexture();
+  return r;
+}
+
+void Renderer::setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                       std::span<const std::array<uint32_t, 3>> faces) {
+  glBindVertexArray(0);
+  uploadArray(GL_ARRAY_BUFFER, positions_, positions);
+  uploadArray(GL_ARRAY_BUFFER, normals_, normals);
+  glBindVertexArray(mesh_vao_.id());
+  uploadArray(GL_ELEMENT_ARRAY_BUFFER, indices_, faces);
+  glBindVertexArray(0);
+  face_count_ = faces.size();
+}
+
+void Renderer::setLines(const LineBuffer& lines) {
+  glBindVertexArray(0);
+  uploadArray(GL_ARRAY_BUFFER, line_vertices_, std::span<const LineVertex>(lines.vertices));
+  first_ = lines.first;
+  count_ = lines.count;
+}
+
+void Renderer::draw(const Camera& camera, const RenderParams& params, int width, int height) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  glViewport(0, 0, width, height);
+  glClearColor(params.background.r, params.background.g, params.background.b, params.background.a);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);  // open meshes show their inside; both sides are drawn
+  glDisable(GL_BLEND);
+
+  // 1. Faces, pushed back slightly so visible lines on them pass the depth test.
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.0f, 2.0f);
+  if (params.style == Style::kToon) {
+    const ToonParams& t = params.toon;
+    const std::array<float, 5> key{t.tones[0], t.tones[1], t.tones[2], t.thresholds[0],
+                                   t.thresholds[1]};
+    if (key != ramp_key_) {
+      // Build the ramp: 256 texels over n·l ∈ [0, 1].
+      std::vector<float> ramp(256);
+      for (int i = 0; i < 256; ++i) {
+        const float x = (static_cast<float>(i) + 0.5f) / 256.0f;
+        ramp[i] = x < t.thresholds[0] ? t.tones[0] : x < t.thresholds[1] ? t.tones[1] : t.tones[2];
+      }
+      glBindTexture(GL_TEXTURE_2D, ramp_.id());
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, 256, 1, 0, GL_RED, GL_FLOAT, ramp.data());
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+      ramp_key_ = key;
+    }
+    glUseProgram(toon_.id());
+    setMatrices(toon_.id(), camera, aspect);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, ramp_.id());
+    glUniform1i(glGetUniformLocation(toon_.id(), "u_ramp"), 0);
+    glUniform3fv(glGetUniformLocation(toon_.id(), "u_base_color"), 1, glm::value_ptr(t.base_color));
+    const glm::vec3 l = glm::normalize(t.light_dir_eye);
+    glUniform3fv(glGetUniformLocation(toon_.id(), "u_light_eye"), 1, glm::value_ptr(l));
+  } else {
+    glUseProgram(depth_only_.id());
+    setMatrices(depth_only_.id(), camera, aspect);
+    glUniform4fv(glGetUniformLocation(depth_only_.id(), "u_color"), 1,
+                 glm::value_ptr(params.background));
+  }
+  glBindVertexArray(mesh_vao_.id());
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(face_count_ * 3), GL_UNSIGNED_INT, nullptr);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+
+  // 2. Lines: depth-tested against the faces, no depth writes, blended for faded lines.
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glUseProgram(line_.id());
+  setMatrices(line_.id(), camera, aspect);
+  glBindVertexArray(line_vao_.id());
+  segments_drawn_ = 0;
+  GLfloat width_range[2] = {1.0f, 1.0f};
+  glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, width_range);
+  const GLint color_loc = glGetUniformLocation(line_.id(), "u_color");
+  for (int k = 0; k < kLineKindCount; ++k) {
+    const LineStyle& s = params.lines.kinds[k];
+    if (!s.enabled || count_[k] == 0) continue;
+    glLineWidth(std::clamp(s.width_px, width_range[0], width_range[1]));
+    glUniform4fv(color_loc, 1, glm::value_ptr(s.color));
+    glDrawArrays(GL_LINES, static_cast<GLint>(first_[k]), static_cast<GLsizei>(count_[k]));
+    segments_drawn_ += count_[k] / 2;
+  }
+  glLineWidth(1.0f);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glBindVertexArray(0);
+}
+
+Result<OffscreenTarget> OffscreenTarget::create(int width, int height, int samples) {
+  OffscreenTarget t;
+  t.width_ = width;
+  t.height_ = height;
+  GLint max_samples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  t.samples_ = std::clamp(samples, 1, std::max(1, static_cast<int>(max_samples)));
+  GLint max_size = 0;
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+  if (width > max_size || height > max_size)
+    return Error::runtime("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                          " exceeds the OpenGL limit of " + std::to_string(max_size) + " px");
+  const GLsizei ms = t.samples_ > 1 ? t.samples_ : 0;
+  t.color_ = makeRenderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, t.color_.id());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, ms, GL_RGBA8, width, height);
+  t.depth_ = makeRenderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, t.depth_.id());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, ms, GL_DEPTH_COMPONENT24, width, height);
+  t.fbo_ = makeFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo_.id());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color_.id());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth_.id());
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    return Error::runtime("offscreen framebuffer is incomplete");
+  t.resolve_color_ = makeRenderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, t.resolve_color_.id());
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  t.resolve_fbo_ = makeFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, t.resolve_fbo_.id());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                            t.resolve_color_.id());
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    return Error::runtime("resolve framebuffer is incomplete");
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return t;
+}
+
+void OffscreenTarget::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id()); }
+
+Image OffscreenTarget::readback() const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.id());
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_.id());
+  Image image(width_, height_);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+  // OpenGL's rows run bottom to top; flip in place.
+  const size_t row = static_cast<size_t>(width_) * 4;
+  std::vector<uint8_t> tmp(row);
+  for (int y = 0; y < height_ / 2; ++y) {
+    uint8_t* a = image.rgba.data() + y * row;
+    uint8_t* b = image.rgba.data() + (height_ - 1 - y) * row;
+    std::memcpy(tmp.data(), a, row);
+    std::memcpy(a, b, row);
+    std::memcpy(b, tmp.data(), row);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return image;
+}
+
+}  // namespace lodline

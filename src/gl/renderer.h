@@ -1,0 +1,72 @@
+// The OpenGL stage (DESIGN.md pipeline: gl): toon-shaded (or background-coloured) faces
+// drawn first with a polygon offset, then lines with depth test LEQUAL and depth writes off
+// so hidden parts of lines are removed and visible ones never z-fight with their faces.
+// The renderer only consumes arrays; it never computes geometry.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include <glm/vec3.hpp>
+
+#include "core/camera.h"
+#include "core/line_buffer.h"
+#include "core/render_params.h"
+#include "core/result.h"
+#include "gl/gl_objects.h"
+#include "io/image.h"
+
+namespace lodline {
+
+class Renderer {
+ public:
+  /// Compiles the shaders; needs a current context.
+  static Result<Renderer> create();
+
+  /// Uploads the surface: `positions` and `normals` hold one entry per vertex, `faces`
+  /// indexes them. Buffers are reused when the sizes fit.
+  void setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+               std::span<const std::array<uint32_t, 3>> faces);
+  /// Uploads the lines, grouped by kind.
+  void setLines(const LineBuffer& lines);
+
+  /// Draws into the currently bound framebuffer of `width`×`height` px (clears it first).
+  void draw(const Camera& camera, const RenderParams& params, int width, int height);
+
+  size_t faceCount() const { return face_count_; }
+  /// Segments drawn by the last draw() (enabled kinds only).
+  size_t segmentsDrawn() const { return segments_drawn_; }
+
+ private:
+  Renderer() = default;
+  GlProgram toon_, depth_only_, line_;
+  GlVertexArray mesh_vao_, line_vao_;
+  GlBuffer positions_, normals_, indices_, line_vertices_;
+  GlTexture ramp_;
+  size_t face_count_ = 0, segments_drawn_ = 0;
+  std::array<uint32_t, kLineKindCount> first_{}, count_{};
+  std::array<float, 5> ramp_key_{};  // tones + thresholds the ramp texture was built from
+};
+
+/// An offscreen multisampled framebuffer (colour RGBA8 + depth 24) with a resolve step and
+/// readback, for headless rendering.
+class OffscreenTarget {
+ public:
+  /// `samples` is clamped to GL_MAX_SAMPLES (1 = no multisampling).
+  static Result<OffscreenTarget> create(int width, int height, int samples);
+  void bind() const;
+  /// Resolves the multisampled image and reads it back, top row first.
+  Image readback() const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int samples() const { return samples_; }
+
+ private:
+  OffscreenTarget() = default;
+  int width_ = 0, height_ = 0, samples_ = 1;
+  GlFramebuffer fbo_, resolve_fbo_;
+  GlRenderbuffer color_, depth_, resolve_color_;
+};
+
+}  // namespace lodline

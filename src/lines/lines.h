@@ -1,0 +1,141 @@
+// Line extraction: every view-dependent line is the zero set of a per-vertex scalar, masked
+// by the sign of a per-vertex test num/den, found by one generic extractor (DESIGN.md
+// "Extraction"); creases and boundaries come from the edge list.
+//
+// Papers: DeCarlo, Finkelstein, Rusinkiewicz, Santella, "Suggestive Contours for Conveying
+// Shape" (SIGGRAPH 2003), §4 (object-space extraction on faces, threshold on the derivative);
+// DeCarlo, Finkelstein, Rusinkiewicz, "Interactive Rendering of Suggestive Contours with
+// Temporal Coherence" (NPAR 2004), §3–4 (tanθ·Dw kr test computed as num/den, fading of weak
+// lines); Jeong et al. 2005 §4 (contours and suggestive contours on the adapted mesh).
+//
+// Exact chaining: each edge's zero crossing is computed once per edge (not per face), so the
+// two faces sharing an edge emit bit-identical endpoints with the same point id.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/mesh.h"
+#include "lines/view_quantities.h"
+#include "shape/adjacency.h"
+#include "shape/shape_cache.h"
+
+namespace lodline {
+
+enum class LineType : uint8_t { kContour = 0, kSuggestive = 1, kCrease = 2, kBoundary = 3 };
+inline constexpr int kLineTypeCount = 4;
+
+/// "contour", "suggestive", "crease", "boundary".
+const char* lineTypeName(LineType type);
+
+/// Which lines to extract, and their thresholds (filled identically by CLI, scene file and
+/// viewer; DESIGN.md "Parameters").
+struct LineParams {
+  bool contours = true;  ///< occluding contours, n·v = 0. Default on
+  /// Keep contour points only where kr > 0 (trims the contour loops hidden behind the
+  /// surface; DESIGN.md "Extraction"). Default off.
+  bool contours_require_positive_kr = false;
+  bool suggestive = true;  ///< suggestive contours, kr = 0 where Dw kr > 0. Default on
+  /// Keep suggestive points where tanθ·Dw kr > suggestive_threshold / fs² (fs = feature
+  /// size). Default 0.01 (rtsc's default, with the same feature-size definition).
+  float suggestive_threshold = 0.01f;
+  /// Fade of weak suggestive lines: endpoint alpha = q/(q + fade/fs²·cosθ) with
+  /// q = sinθ·Dw kr − threshold·cosθ, i.e. alpha → 0 where the test is barely passed.
+  /// 0 disables fading (alpha 1). Default 0.03 (rtsc's "faded" style).
+  float suggestive_fade = 0.03f;
+  /// Rejection near contours: faces with any vertex with n·v below this get no suggestive
+  /// contour. 0 rejects back-facing and contour-straddling faces; larger values also drop
+  /// suggestive lines within acos(value) of grazing. Default 0.
+  float suggestive_min_ndotv = 0.0f;
+  bool creases = true;  ///< edges with a dihedral angle above crease_angle_deg. Default on
+  /// Angle between the two face normals above which an edge is a crease, degrees. Default 60.
+  float crease_angle_deg = 60.0f;
+  /// Also draw TriMesh::marked_edges (and non-manifold edges) as creases. Default on.
+  bool marked_edges = true;
+  bool boundaries = true;  ///< edges with one face. Default on
+};
+
+/// Extracted segments, flat arrays (caller-owned, reused between frames).
+struct LineSet {
+  std::vector<glm::vec3> points;    ///< 2 per segment, model units
+  std::vector<float> alpha;         ///< 1 per point, in [0, 1] (fade; 1 when not faded)
+  /// 1 per point: two points of the same type with equal id are the same point (exactly
+  /// equal positions); used by chainStrokes(). Edge crossings use the edge index, crease and
+  /// boundary endpoints the vertex index, points inside a face ids ≥ edgeCount.
+  std::vector<uint32_t> point_ids;
+  std::vector<LineType> types;      ///< 1 per segment
+  /// 1 per segment: the face it crosses (zero-set lines) or the edge it lies on (creases,
+  /// boundaries).
+  std::vector<uint32_t> sources;
+  std::array<uint32_t, kLineTypeCount> counts{};  ///< segments per LineType
+
+  size_t segmentCount() const { return types.size(); }
+  void clear();
+};
+
+/// Input of the generic zero-set extractor. Spans hold vertexCount floats (or are empty).
+struct ZeroSetInput {
+  std::span<const float> value;     ///< the line is where it changes sign (< 0 vs ≥ 0)
+  std::span<const float> test_num;  ///< optional: keep points where num/den > 0
+  std::span<const float> test_den;  ///< optional (empty: den = 1)
+  std::span<const float> gate;      ///< optional: skip faces with any vertex gate < gate_min
+  float gate_min = 0.0f;
+  float fade = 0.0f;  ///< > 0: endpoint alpha = num/(num + fade·den), clamped; 0: alpha 1
+};
+
+/// Scratch buffers of the extractors (per-edge crossings, marks); reuse between calls.
+struct LineScratch {
+  std::vector<glm::vec3> cross_point;
+  std::vector<float> cross_num, cross_den;
+  std::vector<uint8_t> crosses;
+  std::vector<uint8_t> edge_mark;
+  uint32_t next_interior_id = 0;
+};
+
+/// Appends to `out` the segments of the zero set of `in.value` over the valid faces of
+/// (positions, faces), typed `type`. `adjacency` must be built from the same faces.
+void extractZeroSet(std::span<const glm::vec3> positions,
+                    std::span<const std::array<uint32_t, 3>> faces,
+                    const MeshAdjacency& adjacency, const ZeroSetInput& in, LineType type,
+                    LineScratch& scratch, LineSet& out);
+
+/// Appends creases (dihedral angle, marked and non-manifold edges) and boundaries, as
+/// enabled in `params`. `face_normals` holds faceCount unit normals (zero: degenerate, never
+/// a crease).
+void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adjacency,
+                      std::span<const glm::vec3> face_normals, const LineParams& params,
+                      LineScratch& scratch, LineSet& out);
+
+/// Clears `out` and extracts every enabled line type from precomputed view quantities.
+/// `feature_size` (model units, > 0) scales the suggestive thresholds by 1/fs².
+void extractLines(const TriMesh& mesh, const MeshAdjacency& adjacency,
+                  std::span<const glm::vec3> face_normals, const ViewQuantities& view,
+                  const LineParams& params, float feature_size, LineScratch& scratch,
+                  LineSet& out);
+
+/// Stateful convenience: view quantities + extraction with reused buffers.
+///
+///   LineExtractor lines;
+///   lines.extract(mesh, shape, ViewSpec::fromCamera(cam), params, fs, line_set);
+class LineExtractor {
+ public:
+  /// `shape` must have been computed on `mesh`. Allocation-free after warm-up.
+  void extract(const TriMesh& mesh, const ShapeCache& shape, const ViewSpec& view,
+               const LineParams& params, float feature_size, LineSet& out);
+  /// Same, with caller-supplied per-vertex fields (e.g. temporally smoothed normals).
+  void extract(const TriMesh& mesh, const ShapeCache& shape, const SurfaceFields& fields,
+               const ViewSpec& view, const LineParams& params, float feature_size,
+               LineSet& out);
+  /// The quantities of the last extract().
+  const ViewQuantities& viewQuantities() const { return view_; }
+
+ private:
+  ViewQuantities view_;
+  LineScratch scratch_;
+};
+
+}  // namespace lodline

@@ -1,0 +1,56 @@
+// Per-view, per-vertex quantities of the line drawing: n·v, radial curvature and its
+// directional derivative, and the suggestive-contour test.
+//
+// Papers: D. DeCarlo, A. Finkelstein, S. Rusinkiewicz, A. Santella, "Suggestive Contours for
+// Conveying Shape" (SIGGRAPH 2003), §3–4 (kr, Dw kr > 0, the tanθ-scaled threshold); D.
+// DeCarlo, A. Finkelstein, S. Rusinkiewicz, "Interactive Rendering of Suggestive Contours
+// with Temporal Coherence" (NPAR 2004), §3 (Dw kr = C(w,w,w) − 2·τ²·cotθ, the term for w
+// turning as one moves along w). See DESIGN.md "Line maths".
+//
+// Notation: v̂ = unit vector from the surface point to the eye, θ = angle between n and v̂,
+// w = projection of v̂ onto the tangent plane (|w| = sinθ), ŵ = w/|w|, u = v̂·e1, v = v̂·e2
+// in the principal frame (u² + v² = sin²θ), τ = II(ŵ, ŵ⊥) = (k2 − k1)·u·v/(u² + v²).
+// The signs were checked against finite differences of the analytic torus (tests/lines).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/camera.h"
+#include "shape/shape_cache.h"
+
+namespace lodline {
+
+/// Where the view vector at a vertex points.
+struct ViewSpec {
+  bool orthographic = false;       ///< false: perspective, v̂ = normalize(eye − p)
+  glm::vec3 eye{0.0f, 0.0f, 3.0f}; ///< perspective eye position, model units
+  /// Orthographic: unit direction from the scene toward the viewer (v̂ for every vertex).
+  glm::vec3 toward_viewer{0.0f, 0.0f, 1.0f};
+
+  /// The view of `cam` (orthographic cameras look along cam.forward()).
+  static ViewSpec fromCamera(const Camera& cam);
+};
+
+/// Caller-owned outputs of computeViewQuantities(); every array gets vertexCount floats.
+/// Reused between frames (no allocation once sized).
+struct ViewQuantities {
+  std::vector<float> ndotv;   ///< n·v̂ = cosθ (> 0 front-facing)
+  std::vector<float> kr;      ///< kr·sin²θ = k1·u² + k2·v² (same zero set and sign as kr)
+  std::vector<float> dwkr;    ///< Dw kr = C(ŵ,ŵ,ŵ) − 2·τ²·cotθ, 1/units²; 0 where sinθ < 1e-6
+  /// Suggestive-contour test: keep kr = 0 points where sc_num/sc_den > 0, i.e.
+  /// tanθ·Dw kr > threshold. sc_num = sinθ·Dw kr − threshold·cosθ (no division by n·v),
+  /// sc_den = cosθ. Empty when the fields carry no derivative tensor.
+  std::vector<float> sc_num;
+  std::vector<float> sc_den;
+};
+
+/// Fills `out` for the view `view`. `sc_threshold` is the absolute threshold on tanθ·Dw kr
+/// in 1/units² (LineParams::suggestive_threshold / fs²). `fields` must hold vertexCount
+/// entries in every array (dcurv may be empty: then dwkr, sc_num, sc_den are left empty).
+void computeViewQuantities(const SurfaceFields& fields, const ViewSpec& view, float sc_threshold,
+                           ViewQuantities& out);
+
+}  // namespace lodline

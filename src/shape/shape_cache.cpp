@@ -1,0 +1,543 @@
+// Rusinkiewicz 2004, "Estimating Curvatures and Their Derivatives on Triangle Meshes",
+// §3–§4; corner areas after Meyer et al. 2002 §3.3. See shape_cache.h.
+#include "shape/shape_cache.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <glm/geometric.hpp>
+
+#include "core/result.h"
+
+namespace lodline {
+namespace {
+
+constexpr uint8_t kGeomOk = 1, kCurvOk = 2, kDcurvOk = 4;
+const glm::vec3 kFallbackNormal{0.0f, 0.0f, 1.0f};
+
+inline int nextCorner(int j) { return j == 2 ? 0 : j + 1; }
+inline int prevCorner(int j) { return j == 0 ? 2 : j - 1; }
+
+inline bool finite3(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Orthonormal (u, v) with u × v = n, a pure function of the unit normal n (Duff et al.,
+// "Building an Orthonormal Basis, Revisited", JCGT 2017).
+inline void frameFromNormal(const glm::vec3& n, glm::vec3& u, glm::vec3& v) {
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float b = n.x * n.y * a;
+  u = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  u = glm::normalize(u);
+  v = glm::cross(n, u);
+}
+
+// Mixed Voronoi corner areas of a triangle (DESIGN.md "Corner areas"); e[j] is the edge
+// opposite corner j, `area` the triangle area (> 0).
+inline void cornerAreasOf(const glm::vec3 e[3], float area, std::array<float, 3>& out) {
+  const float l2[3] = {glm::dot(e[0], e[0]), glm::dot(e[1], e[1]), glm::dot(e[2], e[2])};
+  const float ew[3] = {l2[0] * (l2[1] + l2[2] - l2[0]), l2[1] * (l2[2] + l2[0] - l2[1]),
+                       l2[2] * (l2[0] + l2[1] - l2[2])};
+  // Obtuse at corner j: the other two corners get (l/8)·tan(angle) each, j the rest.
+  for (int j = 0; j < 3; ++j) {
+    if (ew[j] <= 0.0f) {
+      const int j1 = nextCorner(j), j2 = prevCorner(j);
+      // Corner j1 lies between edges e[j] and e[j2] (the edge j–j1 is e[j2]).
+      out[j1] = -0.25f * l2[j2] * area / glm::dot(e[j], e[j2]);
+      out[j2] = -0.25f * l2[j1] * area / glm::dot(e[j], e[j1]);
+      out[j] = area - out[j1] - out[j2];
+      for (float& c : out)
+        if (!std::isfinite(c) || c < 0.0f) c = 0.0f;
+      return;
+    }
+  }
+  const float scale = 0.5f * area / (ew[0] + ew[1] + ew[2]);
+  for (int j = 0; j < 3; ++j) out[j] = scale * (ew[nextCorner(j)] + ew[prevCorner(j)]);
+}
+
+// Rotates the frame (old_u, old_v) of normal old_n about old_n × new_n so that it becomes
+// perpendicular to new_n (Rusinkiewicz 2004 §3, "rotating the coordinate system").
+inline void rotateFrame(const glm::vec3& old_u, const glm::vec3& old_v, const glm::vec3& old_n,
+                        const glm::vec3& new_n, glm::vec3& new_u, glm::vec3& new_v) {
+  new_u = old_u;
+  new_v = old_v;
+  const float ndot = glm::dot(old_n, new_n);
+  if (ndot <= -1.0f) {
+    new_u = -new_u;
+    new_v = -new_v;
+    return;
+  }
+  const glm::vec3 perp_old = new_n - ndot * old_n;
+  const glm::vec3 dperp = (1.0f / (1.0f + ndot)) * (old_n + new_n);
+  new_u -= dperp * glm::dot(new_u, perp_old);
+  new_v -= dperp * glm::dot(new_v, perp_old);
+}
+
+// Re-expresses the second fundamental form (ku, kuv, kv) given in frame (old_u, old_v, old_n)
+// in frame (new_u, new_v, new_n).
+inline glm::vec3 projectCurvature(const glm::vec3& old_u, const glm::vec3& old_v,
+                                  const glm::vec3& old_n, const glm::vec3& k,
+                                  const glm::vec3& new_u, const glm::vec3& new_v,
+                                  const glm::vec3& new_n) {
+  glm::vec3 r_u, r_v;
+  rotateFrame(new_u, new_v, new_n, old_n, r_u, r_v);
+  const float u1 = glm::dot(r_u, old_u), v1 = glm::dot(r_u, old_v);
+  const float u2 = glm::dot(r_v, old_u), v2 = glm::dot(r_v, old_v);
+  return {k[0] * u1 * u1 + k[1] * (2.0f * u1 * v1) + k[2] * v1 * v1,
+          k[0] * u1 * u2 + k[1] * (u1 * v2 + u2 * v1) + k[2] * v1 * v2,
+          k[0] * u2 * u2 + k[1] * (2.0f * u2 * v2) + k[2] * v2 * v2};
+}
+
+// Same for the cubic derivative form C = (C_uuu, C_uuv, C_uvv, C_vvv).
+inline glm::vec4 projectDerivative(const glm::vec3& old_u, const glm::vec3& old_v,
+                                   const glm::vec3& old_n, const glm::vec4& c,
+                                   const glm::vec3& new_u, const glm::vec3& new_v,
+                                   const glm::vec3& new_n) {
+  glm::vec3 r_u, r_v;
+  rotateFrame(new_u, new_v, new_n, old_n, r_u, r_v);
+  const float u1 = glm::dot(r_u, old_u), v1 = glm::dot(r_u, old_v);
+  const float u2 = glm::dot(r_v, old_u), v2 = glm::dot(r_v, old_v);
+  return {c[0] * u1 * u1 * u1 + c[1] * 3.0f * u1 * u1 * v1 + c[2] * 3.0f * u1 * v1 * v1 +
+              c[3] * v1 * v1 * v1,
+          c[0] * u1 * u1 * u2 + c[1] * (u1 * u1 * v2 + 2.0f * u2 * u1 * v1) +
+              c[2] * (u2 * v1 * v1 + 2.0f * u1 * v1 * v2) + c[3] * v1 * v1 * v2,
+          c[0] * u1 * u2 * u2 + c[1] * (u2 * u2 * v1 + 2.0f * u1 * u2 * v2) +
+              c[2] * (u1 * v2 * v2 + 2.0f * u2 * v2 * v1) + c[3] * v1 * v2 * v2,
+          c[0] * u2 * u2 * u2 + c[1] * 3.0f * u2 * u2 * v2 + c[2] * 3.0f * u2 * v2 * v2 +
+              c[3] * v2 * v2 * v2};
+}
+
+// Solves the symmetric tridiagonal system with diagonal d[0..N) and off-diagonal o[0..N-1)
+// (the full matrix: entry (i, i+1) = entry (i+1, i) = o[i]; cf. DESIGN.md on the
+// upper-triangle-only bug) by LDLᵀ in double. False when a pivot is not clearly positive
+// (degenerate face).
+template <int N>
+bool solveSymTridiagonal(const double (&d)[N], const double (&o)[N - 1], double (&x)[N]) {
+  double scale = 0.0;
+  for (int i = 0; i < N; ++i) scale = std::max(scale, std::abs(d[i]));
+  if (!(scale > 0.0) || !std::isfinite(scale)) return false;
+  double piv[N], l[N];
+  piv[0] = d[0];
+  l[0] = 0.0;
+  if (!(piv[0] > 1e-10 * scale)) return false;
+  for (int i = 1; i < N; ++i) {
+    l[i] = o[i - 1] / piv[i - 1];
+    piv[i] = d[i] - l[i] * o[i - 1];
+    if (!(piv[i] > 1e-10 * scale)) return false;
+  }
+  for (int i = 1; i < N; ++i) x[i] -= l[i] * x[i - 1];
+  x[N - 1] /= piv[N - 1];
+  for (int i = N - 2; i >= 0; --i) x[i] = x[i] / piv[i] - l[i + 1] * x[i + 1];
+  for (int i = 0; i < N; ++i)
+    if (!std::isfinite(x[i])) return false;
+  return true;
+}
+
+}  // namespace
+
+float cubicForm(const glm::vec4& c, glm::vec2 a, glm::vec2 b, glm::vec2 d) {
+  return c[0] * a.x * b.x * d.x + c[1] * (a.x * b.x * d.y + a.x * b.y * d.x + a.y * b.x * d.x) +
+         c[2] * (a.x * b.y * d.y + a.y * b.x * d.y + a.y * b.y * d.x) + c[3] * a.y * b.y * d.y;
+}
+
+void computeCornerAreas(const TriMesh& mesh, std::vector<std::array<float, 3>>& corner_areas,
+                        std::vector<float>& point_areas) {
+  const size_t nv = mesh.positions.size();
+  corner_areas.assign(mesh.faces.size(), {0.0f, 0.0f, 0.0f});
+  point_areas.assign(nv, 0.0f);
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& t = mesh.faces[f];
+    if (t[0] >= nv || t[1] >= nv || t[2] >= nv || t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+      continue;
+    const glm::vec3& p0 = mesh.positions[t[0]];
+    const glm::vec3& p1 = mesh.positions[t[1]];
+    const glm::vec3& p2 = mesh.positions[t[2]];
+    const glm::vec3 e[3] = {p2 - p1, p0 - p2, p1 - p0};
+    const float area = 0.5f * glm::length(glm::cross(e[0], e[1]));
+    if (!(area > 0.0f) || !std::isfinite(area)) continue;
+    cornerAreasOf(e, area, corner_areas[f]);
+    for (int j = 0; j < 3; ++j) point_areas[t[j]] += corner_areas[f][j];
+  }
+}
+
+float computeFeatureSize(std::span<const float> k1, std::span<const float> k2,
+                         float bounding_radius, const FeatureSizeParams& params) {
+  const size_t nv = std::min(k1.size(), k2.size());
+  const float cap = params.max_fraction_of_radius * bounding_radius;
+  if (nv == 0 || !(cap > 0.0f)) return cap > 0.0f ? cap : 1.0f;
+  const size_t nsamp = std::min<size_t>(nv, std::max<uint32_t>(params.max_samples, 1));
+  std::vector<float> samples;
+  samples.reserve(2 * nsamp);
+  for (size_t i = 0; i < nsamp; ++i) {
+    const size_t v = i * nv / nsamp;
+    if (std::isfinite(k1[v])) samples.push_back(std::abs(k1[v]));
+    if (std::isfinite(k2[v])) samples.push_back(std::abs(k2[v]));
+  }
+  if (samples.empty()) return cap;
+  const size_t which = std::min(samples.size() - 1,
+                                static_cast<size_t>(params.percentile * samples.size()));
+  std::nth_element(samples.begin(), samples.begin() + which, samples.end());
+  const float k = samples[which];
+  if (!(k > 0.0f)) return cap;
+  return std::min(params.multiplier / k, cap);
+}
+
+// ---------------------------------------------------------------------------------------
+// Per-face and per-vertex kernels. Each writes only its own slot and reads inputs that the
+// previous phase finished, in adjacency order, so any subset recomputes bit-identically.
+
+void ShapeCache::faceGeometry(const TriMesh& mesh, uint32_t f) {
+  face_fit_ok_[f] = 0;
+  face_normals_[f] = face_t_[f] = face_b_[f] = glm::vec3(0.0f);
+  corner_areas_[f] = {0.0f, 0.0f, 0.0f};
+  if (!adjacency_.face_valid[f]) return;
+  const auto& t = mesh.faces[f];
+  const glm::vec3& p0 = mesh.positions[t[0]];
+  const glm::vec3& p1 = mesh.positions[t[1]];
+  const glm::vec3& p2 = mesh.positions[t[2]];
+  const glm::vec3 e[3] = {p2 - p1, p0 - p2, p1 - p0};
+  const glm::vec3 cr = glm::cross(e[0], e[1]);
+  const float len = glm::length(cr);
+  if (!(len > 0.0f) || !std::isfinite(len)) return;
+  const glm::vec3 n = cr / len;
+  const glm::vec3 tt = glm::normalize(e[0]);
+  const glm::vec3 b = glm::cross(n, tt);
+  if (!finite3(n) || !finite3(tt)) return;
+  face_normals_[f] = n;
+  face_t_[f] = tt;
+  face_b_[f] = b;
+  cornerAreasOf(e, 0.5f * len, corner_areas_[f]);
+  face_fit_ok_[f] = kGeomOk;
+}
+
+void ShapeCache::vertexNormal(const TriMesh& mesh, uint32_t v) {
+  const MeshAdjacency& adj = adjacency_;
+  glm::vec3 n(0.0f);
+  float area = 0.0f;
+  const glm::vec3& p0 = mesh.positions[v];
+  for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
+    const uint32_t f = adj.vertex_faces[i];
+    const int c = adj.vertex_face_corners[i];
+    area += corner_areas_[f][c];
+    const auto& t = mesh.faces[f];
+    const glm::vec3 a = mesh.positions[t[nextCorner(c)]] - p0;
+    const glm::vec3 b = mesh.positions[t[prevCorner(c)]] - p0;
+    const glm::vec3 cr = glm::cross(a, b);
+    switch (params_.normal_weighting) {
+      case NormalWeighting::kArea:
+        n += cr;
+        break;
+      case NormalWeighting::kAngle: {
+        const float len = glm::length(cr);
+        if (len > 0.0f) n += cr * (std::atan2(len, glm::dot(a, b)) / len);
+        break;
+      }
+      case NormalWeighting::kMax: {
+        const float l = glm::dot(a, a) * glm::dot(b, b);
+        if (l > 0.0f) n += cr * (1.0f / l);
+        break;
+      }
+    }
+  }
+  const float len = glm::length(n);
+  n = (len > 0.0f && std::isfinite(len)) ? n / len : kFallbackNormal;
+  if (!finite3(n)) n = kFallbackNormal;
+  normals_[v] = n;
+  point_areas_[v] = area;
+  frameFromNormal(n, frame_u_[v], frame_v_[v]);
+}
+
+void ShapeCache::faceCurvatureFit(const TriMesh& mesh, uint32_t f) {
+  face_fit_ok_[f] &= static_cast<uint8_t>(~kCurvOk);
+  face_curv_[f] = glm::vec3(0.0f);
+  if (!(face_fit_ok_[f] & kGeomOk)) return;
+  const auto& t = mesh.faces[f];
+  const glm::vec3 p[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+  const glm::vec3& ft = face_t_[f];
+  const glm::vec3& fb = face_b_[f];
+  double a = 0, b = 0, c = 0, m[3] = {0, 0, 0};
+  for (int j = 0; j < 3; ++j) {
+    const glm::vec3 e = p[prevCorner(j)] - p[nextCorner(j)];
+    const glm::vec3 dn = normals_[t[prevCorner(j)]] - normals_[t[nextCorner(j)]];
+    const double u = glm::dot(e, ft), v = glm::dot(e, fb);
+    const double dnu = glm::dot(dn, ft), dnv = glm::dot(dn, fb);
+    a += u * u;
+    b += u * v;
+    c += v * v;
+    m[0] += dnu * u;
+    m[1] += dnu * v + dnv * u;
+    m[2] += dnv * v;
+  }
+  // Normal equations of Δn_t = e·u + f·v, Δn_b = f·u + g·v over the three edges:
+  // [[Σu², Σuv, 0], [Σuv, Σu²+Σv², Σuv], [0, Σuv, Σv²]] (full symmetric matrix).
+  const double d[3] = {a, a + c, c};
+  const double o[2] = {b, b};
+  if (!solveSymTridiagonal<3>(d, o, m)) return;
+  face_curv_[f] = glm::vec3(static_cast<float>(m[0]), static_cast<float>(m[1]),
+                            static_cast<float>(m[2]));
+  face_fit_ok_[f] |= kCurvOk;
+}
+
+void ShapeCache::vertexCurvature(uint32_t v) {
+  const MeshAdjacency& adj = adjacency_;
+  const glm::vec3& n = normals_[v];
+  const glm::vec3& u = frame_u_[v];
+  const glm::vec3& w = frame_v_[v];
+  glm::vec3 k(0.0f);
+  float wsum = 0.0f;
+  for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
+    const uint32_t f = adj.vertex_faces[i];
+    if (!(face_fit_ok_[f] & kCurvOk)) continue;
+    const float wt = corner_areas_[f][adj.vertex_face_corners[i]];
+    if (!(wt > 0.0f)) continue;
+    k += wt * projectCurvature(face_t_[f], face_b_[f], face_normals_[f], face_curv_[f], u, w, n);
+    wsum += wt;
+  }
+  float k1 = 0.0f, k2 = 0.0f;
+  glm::vec3 d1 = u, d2 = w;
+  if (wsum > 0.0f) {
+    k /= wsum;  // weights corner/point area, normalised over the faces that had a fit
+    const float ku = k[0], kuv = k[1], kv = k[2];
+    // Jacobi rotation diagonalising [[ku, kuv], [kuv, kv]].
+    float cs = 1.0f, sn = 0.0f, tt = 0.0f;
+    if (kuv != 0.0f) {
+      const float h = 0.5f * (kv - ku) / kuv;
+      tt = (h < 0.0f) ? 1.0f / (h - std::sqrt(1.0f + h * h)) : 1.0f / (h + std::sqrt(1.0f + h * h));
+      cs = 1.0f / std::sqrt(1.0f + tt * tt);
+      sn = tt * cs;
+    }
+    k1 = ku - tt * kuv;
+    k2 = kv + tt * kuv;
+    if (k1 >= k2) {
+      d1 = cs * u - sn * w;
+    } else {
+      std::swap(k1, k2);
+      d1 = sn * u + cs * w;
+    }
+    d1 = glm::normalize(d1);
+    d2 = glm::cross(n, d1);
+    if (!std::isfinite(k1) || !std::isfinite(k2) || !finite3(d1)) {
+      k1 = k2 = 0.0f;
+      d1 = u;
+      d2 = w;
+    }
+  }
+  k1_[v] = k1;
+  k2_[v] = k2;
+  pdir1_[v] = d1;
+  pdir2_[v] = d2;
+}
+
+void ShapeCache::faceDerivativeFit(const TriMesh& mesh, uint32_t f) {
+  face_fit_ok_[f] &= static_cast<uint8_t>(~kDcurvOk);
+  face_dcurv_[f] = glm::vec4(0.0f);
+  if (!(face_fit_ok_[f] & kGeomOk)) return;
+  const auto& t = mesh.faces[f];
+  const glm::vec3 p[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+  const glm::vec3& ft = face_t_[f];
+  const glm::vec3& fb = face_b_[f];
+  const glm::vec3& fn = face_normals_[f];
+  glm::vec3 fcurv[3];
+  for (int j = 0; j < 3; ++j) {
+    const uint32_t vj = t[j];
+    fcurv[j] = projectCurvature(pdir1_[vj], pdir2_[vj], normals_[vj],
+                                glm::vec3(k1_[vj], 0.0f, k2_[vj]), ft, fb, fn);
+  }
+  double a = 0, b = 0, c = 0, m[4] = {0, 0, 0, 0};
+  for (int j = 0; j < 3; ++j) {
+    const glm::vec3 e = p[prevCorner(j)] - p[nextCorner(j)];
+    const glm::vec3 dk = fcurv[prevCorner(j)] - fcurv[nextCorner(j)];
+    const double u = glm::dot(e, ft), v = glm::dot(e, fb);
+    a += u * u;
+    b += u * v;
+    c += v * v;
+    m[0] += u * dk[0];
+    m[1] += v * dk[0] + 2.0 * u * dk[1];
+    m[2] += 2.0 * v * dk[1] + u * dk[2];
+    m[3] += v * dk[2];
+  }
+  // Normal equations of Δe = C0·u + C1·v, Δf = C1·u + C2·v (weight 2), Δg = C2·u + C3·v:
+  // tridiagonal [Σu², 2Σu²+Σv², Σu²+2Σv², Σv²] with off-diagonal [Σuv, 2Σuv, Σuv].
+  const double d[4] = {a, 2.0 * a + c, a + 2.0 * c, c};
+  const double o[3] = {b, 2.0 * b, b};
+  if (!solveSymTridiagonal<4>(d, o, m)) return;
+  face_dcurv_[f] = glm::vec4(static_cast<float>(m[0]), static_cast<float>(m[1]),
+                             static_cast<float>(m[2]), static_cast<float>(m[3]));
+  face_fit_ok_[f] |= kDcurvOk;
+}
+
+void ShapeCache::vertexDerivative(uint32_t v) {
+  const MeshAdjacency& adj = adjacency_;
+  glm::vec4 c(0.0f);
+  float wsum = 0.0f;
+  for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
+    const uint32_t f = adj.vertex_faces[i];
+    if (!(face_fit_ok_[f] & kDcurvOk)) continue;
+    const float wt = corner_areas_[f][adj.vertex_face_corners[i]];
+    if (!(wt > 0.0f)) continue;
+    c += wt * projectDerivative(face_t_[f], face_b_[f], face_normals_[f], face_dcurv_[f],
+                                pdir1_[v], pdir2_[v], normals_[v]);
+    wsum += wt;
+  }
+  if (wsum > 0.0f) c /= wsum;
+  if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]) ||
+      !std::isfinite(c[3]))
+    c = glm::vec4(0.0f);
+  dcurv_[v] = c;
+}
+
+// ---------------------------------------------------------------------------------------
+
+void ShapeCache::resize(uint32_t nv, uint32_t nf) {
+  face_normals_.resize(nf);
+  face_t_.resize(nf);
+  face_b_.resize(nf);
+  corner_areas_.resize(nf);
+  face_curv_.resize(nf);
+  face_dcurv_.resize(params_.derivatives ? nf : 0);
+  face_fit_ok_.resize(nf);
+  normals_.resize(nv);
+  frame_u_.resize(nv);
+  frame_v_.resize(nv);
+  point_areas_.resize(nv);
+  k1_.resize(nv);
+  k2_.resize(nv);
+  pdir1_.resize(nv);
+  pdir2_.resize(nv);
+  dcurv_.resize(params_.derivatives ? nv : 0);
+  vertex_stamp_.assign(nv, 0);
+  face_stamp_.assign(nf, 0);
+  stamp_ = 0;
+}
+
+void ShapeCache::compute(const TriMesh& mesh) {
+  const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
+  const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
+  const bool same_faces =
+      computed_ && adjacency_.vertex_count == nv && faces_copy_.size() == mesh.faces.size() &&
+      (nf == 0 || std::memcmp(faces_copy_.data(), mesh.faces.data(),
+                              nf * sizeof(mesh.faces[0])) == 0);
+  stats_ = ShapeUpdateStats{};
+  if (!same_faces) {
+    buildAdjacency(mesh, adjacency_);
+    faces_copy_ = mesh.faces;
+    resize(nv, nf);
+    stats_.connectivity_rebuilt = true;
+  }
+  for (uint32_t f = 0; f < nf; ++f) faceGeometry(mesh, f);
+  for (uint32_t v = 0; v < nv; ++v) vertexNormal(mesh, v);
+  for (uint32_t f = 0; f < nf; ++f) faceCurvatureFit(mesh, f);
+  for (uint32_t v = 0; v < nv; ++v) vertexCurvature(v);
+  if (params_.derivatives) {
+    for (uint32_t f = 0; f < nf; ++f) faceDerivativeFit(mesh, f);
+    for (uint32_t v = 0; v < nv; ++v) vertexDerivative(v);
+  }
+  computed_ = true;
+  ++version_;
+  stats_.full = true;
+  stats_.normal_vertices = stats_.curvature_vertices = nv;
+  stats_.derivative_vertices = params_.derivatives ? nv : 0;
+}
+
+void ShapeCache::growFaces(size_t begin, size_t end) {
+  const MeshAdjacency& adj = adjacency_;
+  for (size_t k = begin; k < end; ++k) {
+    const uint32_t v = inc_verts_[k];
+    for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
+      const uint32_t f = adj.vertex_faces[i];
+      if (face_stamp_[f] != stamp_) {
+        face_stamp_[f] = stamp_;
+        inc_faces_.push_back(f);
+      }
+    }
+  }
+}
+
+void ShapeCache::growVertices(const TriMesh& mesh, size_t begin, size_t end) {
+  for (size_t k = begin; k < end; ++k) {
+    for (uint32_t v : mesh.faces[inc_faces_[k]]) {
+      if (vertex_stamp_[v] != stamp_) {
+        vertex_stamp_[v] = stamp_;
+        inc_verts_.push_back(v);
+      }
+    }
+  }
+}
+
+void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_vertices) {
+  const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
+  const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
+  if (!computed_ || adjacency_.vertex_count != nv || faces_copy_.size() != nf ||
+      (nf != 0 &&
+       std::memcmp(faces_copy_.data(), mesh.faces.data(), nf * sizeof(mesh.faces[0])) != 0)) {
+    compute(mesh);
+    return;
+  }
+  if (++stamp_ == 0) {  // wrapped: clear the marks once every 2³² updates
+    std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0);
+    std::fill(face_stamp_.begin(), face_stamp_.end(), 0);
+    stamp_ = 1;
+  }
+  inc_verts_.clear();
+  inc_faces_.clear();
+  for (uint32_t v : changed_vertices) {
+    if (v < nv && vertex_stamp_[v] != stamp_) {
+      vertex_stamp_[v] = stamp_;
+      inc_verts_.push_back(v);
+    }
+  }
+  const size_t m0 = inc_verts_.size();
+  if (static_cast<double>(m0) > params_.full_recompute_fraction * nv) {
+    compute(mesh);
+    stats_.changed_vertices = static_cast<uint32_t>(m0);
+    return;
+  }
+  // F1 = faces of the changed vertices: geometry and corner areas.
+  growFaces(0, m0);
+  const size_t n1 = inc_faces_.size();
+  for (size_t k = 0; k < n1; ++k) faceGeometry(mesh, inc_faces_[k]);
+  // V1 = their vertices: normals, point areas, frames.
+  growVertices(mesh, 0, n1);
+  const size_t m1 = inc_verts_.size();
+  for (size_t k = 0; k < m1; ++k) vertexNormal(mesh, inc_verts_[k]);
+  // F2 = faces of V1: curvature fits; V2 = their vertices: curvature.
+  growFaces(m0, m1);
+  const size_t n2 = inc_faces_.size();
+  for (size_t k = 0; k < n2; ++k) faceCurvatureFit(mesh, inc_faces_[k]);
+  growVertices(mesh, n1, n2);
+  const size_t m2 = inc_verts_.size();
+  for (size_t k = 0; k < m2; ++k) vertexCurvature(inc_verts_[k]);
+  size_t m3 = 0;
+  if (params_.derivatives) {
+    // F3 = faces of V2: derivative fits; V3 = their vertices: derivative tensors.
+    growFaces(m1, m2);
+    const size_t n3 = inc_faces_.size();
+    for (size_t k = 0; k < n3; ++k) faceDerivativeFit(mesh, inc_faces_[k]);
+    growVertices(mesh, n2, n3);
+    m3 = inc_verts_.size();
+    for (size_t k = 0; k < m3; ++k) vertexDerivative(inc_verts_[k]);
+  }
+  ++version_;
+  stats_ = ShapeUpdateStats{};
+  stats_.full = false;
+  stats_.changed_vertices = static_cast<uint32_t>(m0);
+  stats_.normal_vertices = static_cast<uint32_t>(m1);
+  stats_.curvature_vertices = static_cast<uint32_t>(m2);
+  stats_.derivative_vertices = static_cast<uint32_t>(m3);
+}
+
+SurfaceFields ShapeCache::fields(const TriMesh& mesh) const {
+  SurfaceFields s;
+  s.positions = mesh.positions;
+  s.normals = normals_;
+  s.k1 = k1_;
+  s.k2 = k2_;
+  s.pdir1 = pdir1_;
+  s.pdir2 = pdir2_;
+  s.dcurv = dcurv_;
+  return s;
+}
+
+}  // namespace lodline

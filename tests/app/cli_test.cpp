@@ -1,0 +1,137 @@
+// The `lodline` program as a user meets it: help, option errors, exit codes, outputs.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include "io/generate.h"
+#include "io/image.h"
+#include "io/load_mesh.h"
+#include "test_util.h"
+
+namespace lodline {
+namespace {
+
+struct CliRun {
+  int code = -1;
+  std::string output;  // stdout + stderr
+};
+
+CliRun lodline(const std::string& args) {
+  const std::string cmd = std::string("EGL_PLATFORM=surfaceless ") + LODLINE_BINARY + " " + args + " 2>&1";
+  CliRun r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof(buf), pipe)) > 0) r.output.append(buf, n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    sphere_ = (dir_ / "sphere.off").string();
+    ASSERT_TRUE(saveOff(sphere_, makeIcoSphere(1.0f, 3)).ok());
+  }
+  test::TempDir dir_;
+  std::string sphere_;
+};
+
+TEST_F(Cli, HelpListsCommands) {
+  CliRun r = lodline("--help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.output.find("render"), std::string::npos);
+  EXPECT_NE(r.output.find("view"), std::string::npos);
+  CliRun rr = lodline("render --help");
+  EXPECT_EQ(rr.code, 0);
+  for (const char* opt : {"--size", "--view", "--fov", "--style", "--line-width", "--background",
+                          "--stats", "--context", "--lines"})
+    EXPECT_NE(rr.output.find(opt), std::string::npos) << opt;
+  EXPECT_EQ(lodline("view --help").code, 0);
+}
+
+TEST_F(Cli, UsageErrorsExitWith2) {
+  EXPECT_EQ(lodline("").code, 2);
+  EXPECT_EQ(lodline("frobnicate").code, 2);
+  EXPECT_EQ(lodline("render " + sphere_).code, 2);  // no -o
+  const std::string out = (dir_ / "o.png").string();
+  for (const char* bad : {"--size 12", "--size 100x0", "--view 1,2", "--fov 0", "--style watercolour",
+                          "--background #12", "--lines contour,blobs", "--context vulkan",
+                          "--no-such-option"}) {
+    CliRun r = lodline("render " + sphere_ + " -o " + out + " " + bad);
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out)) << bad;
+  }
+  EXPECT_EQ(lodline("render " + sphere_ + " -o " + (dir_ / "o.jpg").string()).code, 2);
+}
+
+TEST_F(Cli, RuntimeErrorsExitWith1AndNameTheFile) {
+  const std::string out = (dir_ / "o.png").string();
+  CliRun missing = lodline("render /nonexistent/model.off -o " + out);
+  EXPECT_EQ(missing.code, 1);
+  EXPECT_NE(missing.output.find("/nonexistent/model.off"), std::string::npos) << missing.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+
+  std::ofstream(dir_ / "bad.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n";
+  CliRun bad = lodline("render " + (dir_ / "bad.off").string() + " -o " + out);
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.output.find("bad.off"), std::string::npos);
+  EXPECT_NE(bad.output.find("out of range"), std::string::npos) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+
+  CliRun unwritable = lodline("render " + sphere_ + " -o /nonexistent-dir/o.png");
+  EXPECT_EQ(unwritable.code, 1);
+  EXPECT_NE(unwritable.output.find("/nonexistent-dir/o.png"), std::string::npos);
+}
+
+TEST_F(Cli, RenderWritesPngAndStats) {
+  const std::string out = (dir_ / "s.png").string(), stats = (dir_ / "s.json").string();
+  CliRun r = lodline("render " + sphere_ + " -o " + out + " --size 320x200 --stats " + stats);
+  ASSERT_EQ(r.code, 0) << r.output;
+  auto img = readPng(out);
+  ASSERT_TRUE(img.ok()) << img.error().message;
+  EXPECT_EQ(img->width, 320);
+  EXPECT_EQ(img->height, 200);
+  std::ifstream in(stats);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["model"]["faces"], 1280);
+  EXPECT_EQ(j["model"]["vertices"], 642);
+  EXPECT_EQ(j["image"]["width"], 320);
+  EXPECT_EQ(j["faces_drawn"], 1280);
+  EXPECT_GT(j["line_segments"].get<int>(), 10);
+  for (const char* k : {"load", "setup", "render", "readback", "total"})
+    EXPECT_GE(j["ms"][k].get<double>(), 0.0) << k;
+  // Only the two outputs are in the directory (plus the model): no temporary files.
+  size_t files = 0;
+  for ([[maybe_unused]] auto& e : std::filesystem::directory_iterator(dir_.path())) ++files;
+  EXPECT_EQ(files, 3u);
+}
+
+TEST_F(Cli, ContextChoiceOsMesa) {
+  const std::string out = (dir_ / "m.png").string(), stats = (dir_ / "m.json").string();
+  CliRun r = lodline("render " + sphere_ + " -o " + out + " --size 64x64 --context osmesa --stats " + stats);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(stats);
+  EXPECT_EQ(nlohmann::json::parse(in)["context"]["backend"], "osmesa");
+}
+
+TEST_F(Cli, GenerateWritesLoadableMesh) {
+  const std::string out = (dir_ / "knot.off").string();
+  CliRun r = lodline("generate knot -o " + out + " --resolution 120");
+  ASSERT_EQ(r.code, 0) << r.output;
+  auto m = loadMesh(out);
+  ASSERT_TRUE(m.ok()) << m.error().message;
+  EXPECT_GT(m->faceCount(), 1000u);
+  EXPECT_EQ(lodline("generate teapot -o " + out).code, 2);
+  EXPECT_EQ(lodline("generate sphere --resolution 30 -o " + out).code, 2);
+}
+
+}  // namespace
+}  // namespace lodline

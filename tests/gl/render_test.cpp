@@ -1,0 +1,196 @@
+// Headless rendering: EGL surfaceless (and OSMesa) on Mesa, no display, no GPU.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <set>
+
+#include <glad/gl.h>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "frame/line_drawing.h"
+#include "gl/context.h"
+#include "gl/renderer.h"
+#include "io/generate.h"
+#include "io/load_mesh.h"
+#include "test_util.h"
+
+namespace lodline {
+namespace {
+
+struct Rendered {
+  Image image;
+  Camera camera;
+  size_t segments = 0;
+};
+
+// Renders `mesh` with the given style through `backend`; empty image if no context.
+Rendered renderMesh(TriMesh mesh, ContextBackend backend, RenderParams rp, OrbitView orbit,
+                    std::string* error = nullptr) {
+  Rendered out;
+  auto ctx = createHeadlessContext(backend);
+  if (!ctx) {
+    if (error) *error = ctx.error().message;
+    return out;
+  }
+  LineDrawing drawing(std::move(mesh));
+  out.camera = orbitCamera(drawing.bounds(), orbit, 35.0f,
+                           static_cast<float>(rp.width) / static_cast<float>(rp.height));
+  std::array<bool, kLineKindCount> enabled{};
+  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = rp.lines.kinds[k].enabled;
+  drawing.update(out.camera, enabled);
+  auto renderer = Renderer::create();
+  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+  auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
+  EXPECT_TRUE(target.ok()) << target.error().message;
+  renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
+  renderer->setLines(drawing.lines());
+  target->bind();
+  renderer->draw(out.camera, rp, rp.width, rp.height);
+  out.image = target->readback();
+  out.segments = renderer->segmentsDrawn();
+  return out;
+}
+
+bool isDark(const uint8_t* p) { return p[0] < 100 && p[1] < 100 && p[2] < 100; }
+
+RenderParams linesOnly(int w, int h) {
+  RenderParams rp;
+  rp.width = w;
+  rp.height = h;
+  rp.style = Style::kLines;
+  rp.msaa = 1;
+  rp.lines[LineKind::kContour].width_px = 1.0f;
+  return rp;
+}
+
+TEST(HeadlessRender, EglContextIsCoreProfile) {
+  auto ctx = createHeadlessContext(ContextBackend::kEgl);
+  ASSERT_TRUE(ctx.ok()) << ctx.error().message;
+  GLint major = 0, mask = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
+  EXPECT_GE(major, 3);
+  EXPECT_TRUE(mask & GL_CONTEXT_CORE_PROFILE_BIT);
+  EXPECT_FALSE((*ctx)->description().empty());
+}
+
+// The silhouette of a sphere is a closed ring of the radius the projection predicts.
+TEST(HeadlessRender, SphereSilhouetteIsRingOfExpectedRadius) {
+  const int w = 480, h = 360;
+  const float dist = 4.0f;  // bounding radii
+  Rendered r = renderMesh(makeIcoSphere(1.0f, 5), ContextBackend::kEgl, linesOnly(w, h),
+                          {20.0f, 10.0f, dist});
+  ASSERT_EQ(r.image.width, w);
+  ASSERT_EQ(r.image.height, h);
+  EXPECT_GT(r.segments, 50u);
+  // Angular radius asin(r/d) seen through focal length f = (h/2)/tan(fov/2).
+  const float f = 0.5f * h / std::tan(glm::radians(35.0f) * 0.5f);
+  const float expected = f * std::tan(std::asin(1.0f / dist));
+  const float cx = 0.5f * w, cy = 0.5f * h;
+  std::array<int, 72> hits{};
+  int dark = 0, off_ring = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!isDark(r.image.pixel(x, y))) continue;
+      ++dark;
+      const float dx = x + 0.5f - cx, dy = y + 0.5f - cy;
+      const float rad = std::sqrt(dx * dx + dy * dy);
+      if (std::abs(rad - expected) > 2.0f) {
+        ++off_ring;
+        continue;
+      }
+      const double a = std::atan2(dy, dx) + std::numbers::pi;
+      hits[static_cast<size_t>(a / (2 * std::numbers::pi) * 72) % 72]++;
+    }
+  EXPECT_GT(dark, 100);
+  EXPECT_EQ(off_ring, 0) << "dark pixels away from the predicted silhouette radius " << expected;
+  for (size_t i = 0; i < hits.size(); ++i) EXPECT_GT(hits[i], 0) << "gap in the ring at bin " << i;
+  // Background stays background: corners and centre (inside the sphere, no lines) are white.
+  for (auto [x, y] : {std::pair{0, 0}, {w - 1, 0}, {0, h - 1}, {w - 1, h - 1}, {w / 2, h / 2}}) {
+    const uint8_t* p = r.image.pixel(x, y);
+    EXPECT_EQ(p[0], 255);
+    EXPECT_EQ(p[1], 255);
+    EXPECT_EQ(p[2], 255);
+  }
+}
+
+// Lines hidden behind the surface are not drawn: a small sphere right behind a big one
+// (seen along +Z) has a contour, but none of it may show inside the big sphere's disk.
+TEST(HeadlessRender, HiddenLinesRemoved) {
+  TriMesh scene = makeIcoSphere(1.0f, 4);
+  TriMesh back = makeIcoSphere(0.4f, 3);
+  const uint32_t base = static_cast<uint32_t>(scene.positions.size());
+  for (auto p : back.positions) scene.positions.push_back(p + glm::vec3(0.0f, 0.0f, -2.5f));
+  for (auto f : back.faces) scene.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+  const int w = 320, h = 240;
+  Rendered r = renderMesh(scene, ContextBackend::kEgl, linesOnly(w, h), {0.0f, 0.0f, 3.0f});
+  // Both spheres' contours were extracted (the renderer got the hidden one too)...
+  EXPECT_GT(r.segments, 100u);
+  // ...but inside the big sphere's projected disk (minus a 3 px rim) every pixel is white.
+  const glm::vec2 c = projectToPixels(r.camera, glm::vec3(0.0f), w, h);
+  const glm::vec2 edge = projectToPixels(r.camera, glm::vec3(1.0f, 0.0f, 0.0f), w, h);
+  const float disk = glm::length(edge - c) * 0.9f;  // a point on the sphere's equator is inside
+  int dark_inside = 0, inside = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (glm::length(glm::vec2(x + 0.5f, y + 0.5f) - c) < disk - 3.0f) {
+        ++inside;
+        dark_inside += isDark(r.image.pixel(x, y));
+      }
+  EXPECT_GT(inside, 1000);
+  EXPECT_EQ(dark_inside, 0);
+}
+
+TEST(HeadlessRender, ToonShadesTheSurface) {
+  RenderParams rp;
+  rp.width = 200;
+  rp.height = 160;
+  rp.msaa = 1;
+  Rendered r = renderMesh(makeIcoSphere(1.0f, 4), ContextBackend::kEgl, rp, {0.0f, 0.0f, 4.0f});
+  // The centre is lit with one of the ramp's tones times the base colour: not background.
+  const uint8_t* c = r.image.pixel(100, 80);
+  EXPECT_LT(c[2], 250);
+  EXPECT_GT(c[0], 100);
+  // At least two distinct tones appear on the sphere (the ramp has three bands).
+  std::set<int> tones;
+  for (int x = 60; x < 140; ++x) tones.insert(r.image.pixel(x, 80)[0] / 8);
+  EXPECT_GE(tones.size(), 2u);
+}
+
+// EGL and OSMesa must draw the same image (both are Mesa's llvmpipe here).
+TEST(HeadlessRender, BackendsAgree) {
+  RenderParams rp;
+  rp.width = 240;
+  rp.height = 180;
+  rp.msaa = 1;
+  std::string err;
+  Rendered a = renderMesh(makeTorus(1.0f, 0.35f, 64, 32), ContextBackend::kEgl, rp, {30, 25, 0}, &err);
+  ASSERT_FALSE(a.image.rgba.empty()) << err;
+  Rendered b = renderMesh(makeTorus(1.0f, 0.35f, 64, 32), ContextBackend::kOsMesa, rp, {30, 25, 0}, &err);
+  if (b.image.rgba.empty()) GTEST_SKIP() << "OSMesa unavailable: " << err;
+  size_t differing = 0;
+  for (size_t i = 0; i < a.image.rgba.size(); i += 4) {
+    int d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(a.image.rgba[i + c] - b.image.rgba[i + c]));
+    if (d > 8) ++differing;
+  }
+  EXPECT_LT(differing, a.image.rgba.size() / 4 / 200) << "more than 0.5% of pixels differ";
+}
+
+TEST(HeadlessRender, CgalMeshRenders) {
+  const auto p = test::dataMesh("bunny00.off");
+  if (p.empty()) GTEST_SKIP() << "data/meshes/bunny00.off missing (run scripts/setup.sh)";
+  auto mesh = loadMesh(p);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+  Rendered r = renderMesh(std::move(mesh.value()), ContextBackend::kEgl, linesOnly(320, 240), {});
+  EXPECT_GT(r.segments, 100u);
+  int dark = 0;
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 320; ++x) dark += isDark(r.image.pixel(x, y));
+  EXPECT_GT(dark, 300);
+}
+
+}  // namespace
+}  // namespace lodline

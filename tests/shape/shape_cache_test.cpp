@@ -1,0 +1,321 @@
+// Adjacency, corner areas, robustness on bad meshes, the incremental update's bit-identity,
+// feature size, and the orientation of the generators the accuracy tests rely on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "io/generate.h"
+#include "shape/adjacency.h"
+#include "shape/shape_cache.h"
+#include "shape/shape_test_util.h"
+
+namespace lodline {
+namespace {
+
+bool allFinite(std::span<const float> a) {
+  for (float x : a)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+bool allUnit(std::span<const glm::vec3> a, float tol = 1e-4f) {
+  for (const glm::vec3& x : a)
+    if (!(std::abs(glm::length(x) - 1.0f) < tol)) return false;
+  return true;
+}
+
+TEST(Adjacency, ClosedIcoSphereEulerAndRings) {
+  const TriMesh m = makeIcoSphere(1.0f, 2);
+  MeshAdjacency adj;
+  buildAdjacency(m, adj);
+  EXPECT_EQ(adj.edgeCount(), m.vertexCount() + m.faceCount() - 2);  // V − E + F = 2
+  for (size_t e = 0; e < adj.edgeCount(); ++e) {
+    EXPECT_EQ(adj.edge_face_count[e], 2u);
+    EXPECT_LT(adj.edges[e][0], adj.edges[e][1]);
+    EXPECT_EQ(adj.findEdge(adj.edges[e][1], adj.edges[e][0]), e);
+  }
+  for (size_t v = 0; v < m.vertexCount(); ++v) {
+    const uint32_t nf = adj.vertex_face_offsets[v + 1] - adj.vertex_face_offsets[v];
+    const uint32_t nn = adj.vertex_vertex_offsets[v + 1] - adj.vertex_vertex_offsets[v];
+    EXPECT_EQ(nf, nn);  // closed manifold: as many neighbours as faces
+    EXPECT_TRUE(nf == 5 || nf == 6);
+    EXPECT_FALSE(adj.vertex_on_boundary[v]);
+  }
+  for (size_t f = 0; f < m.faceCount(); ++f)
+    for (int j = 0; j < 3; ++j) {
+      const EdgeKey k = adj.edges[adj.face_edges[f][j]];
+      const uint32_t a = m.faces[f][j], b = m.faces[f][(j + 1) % 3];
+      EXPECT_EQ(k[0], std::min(a, b));
+      EXPECT_EQ(k[1], std::max(a, b));
+    }
+}
+
+TEST(Adjacency, BoundaryNonManifoldAndInvalidFaces) {
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {5, 5, 5}};
+  m.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4},  // edge 0–1 shared by three faces
+             {2, 2, 3},                        // repeated index: invalid
+             {0, 1, 99}};                      // out of range: invalid
+  MeshAdjacency adj;
+  buildAdjacency(m, adj);
+  EXPECT_EQ(adj.face_valid[3], 0);
+  EXPECT_EQ(adj.face_valid[4], 0);
+  const uint32_t e01 = adj.findEdge(1, 0);
+  ASSERT_NE(e01, kNoIndex);
+  EXPECT_EQ(adj.edge_face_count[e01], 3u);
+  EXPECT_EQ(adj.edge_faces[e01][0], 0u);
+  EXPECT_EQ(adj.edge_faces[e01][1], 1u);
+  EXPECT_EQ(adj.edge_face_count[adj.findEdge(1, 2)], 1u);
+  EXPECT_TRUE(adj.vertex_on_boundary[2]);
+  EXPECT_FALSE(adj.vertex_on_boundary[5]);  // isolated
+  EXPECT_EQ(adj.vertex_face_offsets[6] - adj.vertex_face_offsets[5], 0u);
+  EXPECT_EQ(adj.findEdge(2, 3), kNoIndex);  // only in the invalid face
+  EXPECT_EQ(adj.face_edges[3][0], kNoIndex);
+}
+
+TEST(CornerAreas, SumToFaceAreaAndObtuseRule) {
+  // Acute triangle: corners sum to the area, each the Voronoi share.
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {2, 0, 0}, {1, 1.5f, 0}, {4, 0, 0}, {0, 0.5f, 0}};
+  m.faces = {{0, 1, 2}};
+  std::vector<std::array<float, 3>> corners;
+  std::vector<float> points;
+  computeCornerAreas(m, corners, points);
+  EXPECT_NEAR(corners[0][0] + corners[0][1] + corners[0][2], 1.5f, 1e-6f);
+  EXPECT_NEAR(corners[0][0], corners[0][1], 1e-6f);  // isosceles: symmetric
+  // Right angle at vertex 0 of triangle (0, 3, 4): the boundary case of the obtuse rule
+  // (circumcentre on the hypotenuse) still sums to the area.
+  m.faces = {{0, 3, 4}};
+  computeCornerAreas(m, corners, points);
+  const float area = 0.5f * 4.0f * 0.5f;
+  EXPECT_NEAR(corners[0][0] + corners[0][1] + corners[0][2], area, 1e-6f);
+  EXPECT_NEAR(corners[0][0], 0.5f * area, 1e-6f);  // right angle: half the area
+  // Clearly obtuse triangle: A(0,0), B(4,0), C(2,0.5): obtuse at C.
+  TriMesh o;
+  o.positions = {{0, 0, 0}, {4, 0, 0}, {2, 0.5f, 0}};
+  o.faces = {{0, 1, 2}};
+  computeCornerAreas(o, corners, points);
+  const float oa = 0.5f * 4.0f * 0.5f;
+  const float angle_a = std::atan2(0.5f, 2.0f);  // at A and at B
+  const float l_ac = 4.0f + 0.25f;                // squared length of A–C
+  EXPECT_NEAR(corners[0][0], l_ac / 8.0f * std::tan(angle_a), 1e-5f);
+  EXPECT_NEAR(corners[0][1], l_ac / 8.0f * std::tan(angle_a), 1e-5f);
+  EXPECT_NEAR(corners[0][2], oa - corners[0][0] - corners[0][1], 1e-5f);
+  EXPECT_GT(corners[0][2], corners[0][0]);
+  EXPECT_NEAR(points[0] + points[1] + points[2], oa, 1e-5f);
+}
+
+TEST(CornerAreas, PointAreasSumToSurfaceArea) {
+  const TriMesh m = makeTorusKnot(3, 2, 1.0f, 0.2f, 120, 16, 0.1f);
+  std::vector<std::array<float, 3>> corners;
+  std::vector<float> points;
+  computeCornerAreas(m, corners, points);
+  double total = 0.0, sum = 0.0;
+  for (const auto& f : m.faces) {
+    total += 0.5 * glm::length(glm::cross(m.positions[f[1]] - m.positions[f[0]],
+                                          m.positions[f[2]] - m.positions[f[0]]));
+  }
+  for (float p : points) {
+    EXPECT_GE(p, 0.0f);
+    sum += p;
+  }
+  EXPECT_NEAR(sum, total, 1e-4 * total);
+}
+
+TEST(ShapeCache, DegenerateMeshesGiveFiniteDefinedResults) {
+  TriMesh m = makeIcoSphere(1.0f, 1);
+  const uint32_t n = static_cast<uint32_t>(m.vertexCount());
+  // Zero-area face (three collinear points), a face with a repeated vertex, an isolated
+  // vertex, a duplicated vertex position, and a non-manifold fin on an existing edge.
+  m.positions.push_back({2, 0, 0});
+  m.positions.push_back({3, 0, 0});
+  m.positions.push_back({4, 0, 0});
+  m.faces.push_back({n, n + 1, n + 2});
+  m.faces.push_back({0, 0, 1});
+  m.positions.push_back({9, 9, 9});  // isolated, index n + 3
+  m.positions.push_back(m.positions[0]);  // coincident with vertex 0, index n + 4
+  m.faces.push_back({m.faces[0][0], m.faces[0][1], n + 4});  // zero-area fin (non-manifold)
+  m.positions.push_back({0, 0, 3});
+  m.faces.push_back({m.faces[0][1], m.faces[0][0], n + 5});  // third face on that edge
+  ShapeCache shape;
+  shape.compute(m);
+  EXPECT_TRUE(allUnit(shape.normals()));
+  EXPECT_TRUE(allFinite(shape.k1()));
+  EXPECT_TRUE(allFinite(shape.k2()));
+  EXPECT_TRUE(allFinite(shape.pointAreas()));
+  EXPECT_TRUE(allUnit(shape.pdir1()));
+  EXPECT_TRUE(allUnit(shape.pdir2()));
+  for (const glm::vec4& c : shape.dcurv())
+    EXPECT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && std::isfinite(c.w));
+  // Fallbacks: isolated and all-degenerate vertices get zero curvature and +Z normal.
+  for (uint32_t v : {n, n + 1, n + 2, n + 3}) {
+    EXPECT_EQ(shape.k1()[v], 0.0f) << v;
+    EXPECT_EQ(shape.k2()[v], 0.0f) << v;
+    EXPECT_EQ(shape.dcurv()[v], glm::vec4(0.0f)) << v;
+    EXPECT_EQ(shape.pointAreas()[v], 0.0f) << v;
+  }
+  EXPECT_EQ(shape.normals()[n + 3], glm::vec3(0, 0, 1));
+  // An incremental update on the same broken mesh stays identical to a full compute.
+  m.positions[n + 1] = {3, 1e-7f, 0};
+  const uint32_t moved[] = {n + 1, 0};
+  m.positions[0] *= 1.01f;
+  shape.update(m, moved);
+  ShapeCache full;
+  full.compute(m);
+  EXPECT_EQ(std::memcmp(shape.k1().data(), full.k1().data(), n * sizeof(float)), 0);
+}
+
+TEST(ShapeCache, EmptyAndTinyMeshes) {
+  ShapeCache shape;
+  TriMesh empty;
+  shape.compute(empty);
+  EXPECT_TRUE(shape.normals().empty());
+  shape.update(empty, {});
+  TriMesh one;
+  one.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  one.faces = {{0, 1, 2}};
+  shape.compute(one);
+  for (int v = 0; v < 3; ++v) {
+    EXPECT_NEAR(shape.normals()[v].z, 1.0f, 1e-6f);
+    EXPECT_EQ(shape.k1()[v], 0.0f);  // flat
+    EXPECT_EQ(shape.k2()[v], 0.0f);
+  }
+}
+
+// Compares every per-vertex array bit for bit.
+void expectBitIdentical(const ShapeCache& a, const ShapeCache& b, const char* what) {
+  auto same = [](auto x, auto y) {
+    return x.size() == y.size() &&
+           (x.empty() || std::memcmp(x.data(), y.data(), x.size_bytes()) == 0);
+  };
+  EXPECT_TRUE(same(a.normals(), b.normals())) << what;
+  EXPECT_TRUE(same(a.pointAreas(), b.pointAreas())) << what;
+  EXPECT_TRUE(same(a.k1(), b.k1())) << what;
+  EXPECT_TRUE(same(a.k2(), b.k2())) << what;
+  EXPECT_TRUE(same(a.pdir1(), b.pdir1())) << what;
+  EXPECT_TRUE(same(a.pdir2(), b.pdir2())) << what;
+  EXPECT_TRUE(same(a.dcurv(), b.dcurv())) << what;
+  EXPECT_TRUE(same(a.faceNormals(), b.faceNormals())) << what;
+  EXPECT_TRUE(same(a.cornerAreas(), b.cornerAreas())) << what;
+}
+
+TEST(ShapeCache, IncrementalUpdateIsBitIdentical) {
+  TriMesh m = makeTorusKnot(3, 2, 1.0f, 0.25f, 200, 24, 0.15f);
+  ShapeCache inc;
+  inc.compute(m);
+  std::mt19937 rng(7);
+  const uint32_t nv = static_cast<uint32_t>(m.vertexCount());
+  std::uniform_int_distribution<uint32_t> pick(0, nv - 1);
+  std::normal_distribution<float> jitter(0.0f, 0.01f);
+  for (uint32_t count : {1u, 3u, nv / 100u, nv / 10u, nv / 2u}) {
+    for (int round = 0; round < 3; ++round) {
+      std::vector<uint32_t> changed;
+      if (round == 2) {  // a contiguous patch, as the LOD stage produces
+        const uint32_t start = pick(rng) % (nv - count);
+        for (uint32_t i = 0; i < count; ++i) changed.push_back(start + i);
+      } else {
+        for (uint32_t i = 0; i < count; ++i) changed.push_back(pick(rng));
+      }
+      for (uint32_t v : changed) m.positions[v] += glm::vec3(jitter(rng), jitter(rng), jitter(rng));
+      inc.update(m, changed);
+      EXPECT_EQ(inc.lastStats().full, count > nv / 4) << count;
+      if (!inc.lastStats().full) {
+        EXPECT_LT(inc.lastStats().derivative_vertices, nv);
+        EXPECT_GE(inc.lastStats().curvature_vertices, inc.lastStats().normal_vertices);
+      }
+      ShapeCache full;
+      full.compute(m);
+      expectBitIdentical(inc, full, "after update");
+    }
+  }
+  // Connectivity change: update() rebuilds and still matches.
+  std::swap(m.faces[0][1], m.faces[0][2]);
+  const uint32_t any[] = {0};
+  inc.update(m, any);
+  EXPECT_TRUE(inc.lastStats().connectivity_rebuilt);
+  ShapeCache full;
+  full.compute(m);
+  expectBitIdentical(inc, full, "after connectivity change");
+}
+
+TEST(ShapeCache, IncrementalWorkIsLocal) {
+  TriMesh m = makeIcoSphere(1.0f, 5);  // 10242 vertices
+  ShapeCache shape;
+  shape.compute(m);
+  m.positions[100] *= 1.01f;
+  const uint32_t changed[] = {100};
+  shape.update(m, changed);
+  const ShapeUpdateStats& s = shape.lastStats();
+  EXPECT_FALSE(s.full);
+  EXPECT_EQ(s.changed_vertices, 1u);
+  EXPECT_LE(s.normal_vertices, 7u);        // the 1-ring
+  EXPECT_LE(s.curvature_vertices, 19u);    // the 2-ring
+  EXPECT_LE(s.derivative_vertices, 37u);   // the 3-ring
+  ShapeCache full;
+  full.compute(m);
+  expectBitIdentical(shape, full, "single vertex");
+}
+
+TEST(ShapeCache, IncrementalOnOpenMeshWithBoundary) {
+  TriMesh m = makeCylinder(1.0f, 2.0f, 32, 8);
+  ShapeCache shape;
+  shape.compute(m);
+  std::vector<uint32_t> changed = {0, 1, 2, 40, 100, static_cast<uint32_t>(m.vertexCount() - 1)};
+  for (uint32_t v : changed) m.positions[v].y += 0.05f;
+  changed.push_back(1);                                   // duplicate
+  changed.push_back(static_cast<uint32_t>(m.vertexCount() + 5));  // out of range: ignored
+  shape.update(m, changed);
+  ShapeCache full;
+  full.compute(m);
+  expectBitIdentical(shape, full, "cylinder");
+}
+
+TEST(FeatureSize, SphereAndPlane) {
+  // Sphere of radius 2: |k| = 0.5 everywhere → fs = 0.01/0.5 = 0.02, under the cap 0.05·2.
+  const TriMesh s = makeIcoSphere(2.0f, 3);
+  ShapeCache shape;
+  shape.compute(s);
+  EXPECT_NEAR(computeFeatureSize(shape.k1(), shape.k2(), 2.0f), 0.02f, 1e-4f);
+  // Flat grid: all curvatures zero → the cap.
+  const TriMesh g = makeGrid(4.0f, 10);
+  shape.compute(g);
+  EXPECT_FLOAT_EQ(computeFeatureSize(shape.k1(), shape.k2(), 2.0f * std::sqrt(2.0f)),
+                  0.05f * 2.0f * std::sqrt(2.0f));
+  // Scale-free: scaling the model scales fs.
+  const TriMesh k1 = makeTorusKnot(3, 2, 1.0f, 0.2f, 150, 16, 0.2f);
+  TriMesh k2 = k1;
+  for (auto& p : k2.positions) p *= 3.0f;
+  ShapeCache a, b;
+  a.compute(k1);
+  b.compute(k2);
+  const float fa = computeFeatureSize(a.k1(), a.k2(), computeBounds(k1.positions).radius);
+  const float fb = computeFeatureSize(b.k1(), b.k2(), computeBounds(k2.positions).radius);
+  EXPECT_NEAR(fb / fa, 3.0f, 1e-3f);
+  EXPECT_EQ(computeFeatureSize({}, {}, 0.0f), 1.0f);
+}
+
+// Orientation of the generators the accuracy tests rely on: all counter-clockwise seen
+// from outside (makeTorus and makeUvSphere were inside-out / mixed before commit 2ac09b1).
+TEST(Generators, Orientation) {
+  EXPECT_GT(test::signedVolume(makeIcoSphere(1.0f, 2)), 0.0);
+  EXPECT_GT(test::signedVolume(makeEllipsoid(1.0f, 0.5f, 0.3f, 2)), 0.0);
+  const TriMesh cyl = makeCylinder(1.0f, 2.0f, 16, 4);
+  EXPECT_EQ(test::countInwardFaces(cyl, [](glm::vec3 p) { return glm::vec3(p.x, 0, p.z); }), 0u);
+  const TriMesh grid = makeGrid(1.0f, 4);
+  EXPECT_EQ(test::countInwardFaces(grid, [](glm::vec3) { return glm::vec3(0, 1, 0); }), 0u);
+  const TriMesh torus = makeTorus(1.0f, 0.4f, 24, 12);
+  EXPECT_EQ(test::countInwardFaces(torus, test::torusOutward(1.0f)), 0u);
+  EXPECT_NEAR(test::signedVolume(torus), 2.0 * std::numbers::pi * std::numbers::pi * 0.16, 0.2);
+  const TriMesh uv = makeUvSphere(1.0f, 16, 8);
+  EXPECT_EQ(test::countInwardFaces(uv, test::sphereOutward), 0u);
+  EXPECT_GT(test::signedVolume(uv), 0.0);
+}
+
+}  // namespace
+}  // namespace lodline
