@@ -5,6 +5,8 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
+#include <mutex>
 #include <sstream>
 #include <system_error>
 
@@ -22,31 +24,37 @@ struct OmTraits : OpenMesh::DefaultTraits {
 };
 using OmMesh = OpenMesh::PolyMesh_ArrayKernelT<OmTraits>;
 
-// Routes OpenMesh's omerr/omlog into a string for the duration of a read, so that its
-// complaints become part of our one-line error instead of stray stderr output.
+// Routes OpenMesh's omerr/omlog into a string during a read, so its complaints become part
+// of our one-line error instead of stray stderr output. OpenMesh's multiplexing stream
+// never frees a disconnected target, so the capture buffer is connected once per process
+// (and OpenMesh's messages stay out of stderr from then on); a mutex serialises reads.
 class OmMessageCapture {
  public:
-  OmMessageCapture() {
-    ::omerr().disconnect(std::cerr);
-    ::omlog().disconnect(std::cerr);
-    ::omerr().connect(buffer_);
-    ::omlog().connect(buffer_);
-  }
-  ~OmMessageCapture() {
-    ::omerr().disconnect(buffer_);
-    ::omlog().disconnect(buffer_);
-    ::omerr().connect(std::cerr);
-  }
+  OmMessageCapture() : lock_(state().mutex) { state().buffer.str(""); }
   OmMessageCapture(const OmMessageCapture&) = delete;
   OmMessageCapture& operator=(const OmMessageCapture&) = delete;
   std::string text() {
     ::omerr().flush();
     ::omlog().flush();
-    return buffer_.str();
+    return state().buffer.str();
   }
 
  private:
-  std::ostringstream buffer_;
+  struct State {
+    State() {
+      ::omerr().disconnect(std::cerr);
+      ::omlog().disconnect(std::cerr);
+      ::omerr().connect(buffer);
+      ::omlog().connect(buffer);
+    }
+    std::mutex mutex;
+    std::ostringstream buffer;
+  };
+  static State& state() {
+    static State s;
+    return s;
+  }
+  std::lock_guard<std::mutex> lock_;
 };
 
 std::string lowerExtension(const std::filesystem::path& path) {
