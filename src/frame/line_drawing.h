@@ -38,6 +38,8 @@ class LineDrawing {
   const Bounds& bounds() const { return bounds_; }
   std::span<const glm::vec3> normals() const;
   const LineBuffer& lines() const { return buffer_; }
+  /// The extracted segments (all enabled kinds), as the lines stage produced them.
+  const LineSet& segments() const { return segments_; }
   const StrokeSet& strokes() const { return strokes_; }
   /// Model length scale used for the scale-free suggestive-contour thresholds.
   float featureSize() const { return feature_size_; }

@@ -192,10 +192,15 @@ Result<OffscreenTarget> OffscreenTarget::create(int width, int height, int sampl
   t.resolve_color_ = makeRenderbuffer();
   glBindRenderbuffer(GL_RENDERBUFFER, t.resolve_color_.id());
   glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  t.resolve_depth_ = makeRenderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, t.resolve_depth_.id());
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
   t.resolve_fbo_ = makeFramebuffer();
   glBindFramebuffer(GL_FRAMEBUFFER, t.resolve_fbo_.id());
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
                             t.resolve_color_.id());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                            t.resolve_depth_.id());
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     return Error::runtime("resolve framebuffer is incomplete");
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -224,6 +229,25 @@ Image OffscreenTarget::readback() const {
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return image;
+}
+
+DepthImage OffscreenTarget::readDepth() const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.id());
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_.id());
+  DepthImage d;
+  d.width = width_;
+  d.height = height_;
+  d.depth.resize(static_cast<size_t>(width_) * height_);
+  std::vector<float> rows(d.depth.size());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT, rows.data());
+  for (int y = 0; y < height_; ++y)
+    std::memcpy(&d.depth[static_cast<size_t>(y) * width_],
+                &rows[static_cast<size_t>(height_ - 1 - y) * width_], sizeof(float) * width_);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return d;
 }
 
 }  // namespace lodline

@@ -14,6 +14,7 @@
 #include "core/line_buffer.h"
 #include "core/render_params.h"
 #include "core/result.h"
+#include "export/visibility.h"
 #include "gl/gl_objects.h"
 #include "io/image.h"
 
@@ -58,6 +59,8 @@ class OffscreenTarget {
   void bind() const;
   /// Resolves the multisampled image and reads it back, top row first.
   Image readback() const;
+  /// Reads the depth buffer (one sample per pixel), top row first, values in [0, 1].
+  DepthImage readDepth() const;
   int width() const { return width_; }
   int height() const { return height_; }
   int samples() const { return samples_; }
@@ -66,7 +69,7 @@ class OffscreenTarget {
   OffscreenTarget() = default;
   int width_ = 0, height_ = 0, samples_ = 1;
   GlFramebuffer fbo_, resolve_fbo_;
-  GlRenderbuffer color_, depth_, resolve_color_;
+  GlRenderbuffer color_, depth_, resolve_color_, resolve_depth_;
 };
 
 }  // namespace lodline

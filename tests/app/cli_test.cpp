@@ -1,7 +1,9 @@
 // The `lodline` program as a user meets it: help, option errors, exit codes, outputs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -112,6 +114,56 @@ TEST_F(Cli, RenderWritesPngAndStats) {
   size_t files = 0;
   for ([[maybe_unused]] auto& e : std::filesystem::directory_iterator(dir_.path())) ++files;
   EXPECT_EQ(files, 3u);
+}
+
+// Fraction of the dark pixels of `a` that have a dark pixel of `b` within `r` pixels.
+double coveredFraction(const Image& a, const Image& b, int r) {
+  // "Inked": clearly darker than the white page (thin antialiased lines stay light grey).
+  auto dark = [](const Image& im, int x, int y) { return im.pixel(x, y)[0] < 200; };
+  size_t total = 0, covered = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      if (!dark(a, x, y)) continue;
+      ++total;
+      bool found = false;
+      for (int yy = std::max(0, y - r); yy <= std::min(b.height - 1, y + r) && !found; ++yy)
+        for (int xx = std::max(0, x - r); xx <= std::min(b.width - 1, x + r) && !found; ++xx)
+          found = dark(b, xx, yy);
+      covered += found;
+    }
+  return total ? static_cast<double>(covered) / static_cast<double>(total) : 0.0;
+}
+
+// The SVG holds exactly the visible strokes: rasterised by a real SVG renderer (librsvg's
+// rsvg-convert) it must match the OpenGL render of the same lines (hidden-line removal by
+// the depth buffer agrees with the GL depth test).
+void checkSvgAgainstGl(const std::filesystem::path& dir, const std::string& model, const std::string& view) {
+  if (std::system("command -v rsvg-convert >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "rsvg-convert not installed (scripts/setup.sh installs librsvg2-bin)";
+  const std::string png = (dir / "gl.png").string(), svg = (dir / "v.svg").string(),
+                    raster = (dir / "svg.png").string();
+  CliRun r = lodline("render " + model + " -o " + png + " --svg " + svg + " --size 400x300 --style lines " +
+                     "--msaa 1 " + view);
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(std::system(("rsvg-convert " + svg + " -o " + raster).c_str()), 0);
+  auto gl = readPng(png);
+  auto sv = readPng(raster);
+  ASSERT_TRUE(gl.ok() && sv.ok());
+  ASSERT_EQ(sv->width, 400);
+  ASSERT_EQ(sv->height, 300);
+  // Compositing the RGBA SVG raster over white is unnecessary: the page has a white rect.
+  EXPECT_GT(coveredFraction(*sv, *gl, 2), 0.95) << "SVG lines without a GL line nearby";
+  EXPECT_GT(coveredFraction(*gl, *sv, 2), 0.95) << "GL lines missing from the SVG";
+}
+
+TEST_F(Cli, SvgMatchesGlRenderSphereScene) {
+  checkSvgAgainstGl(dir_.path(), sphere_, "--view 30,20,3");
+}
+
+TEST_F(Cli, SvgMatchesGlRenderArmadillo) {
+  const auto p = test::dataMesh("armadillo.off");
+  if (p.empty()) GTEST_SKIP() << "data/meshes/armadillo.off missing (run scripts/setup.sh)";
+  checkSvgAgainstGl(dir_.path(), p.string(), "--view 200,10,2.9");
 }
 
 TEST_F(Cli, ContextChoiceOsMesa) {

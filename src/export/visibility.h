@@ -1,0 +1,66 @@
+// Hidden-line removal for vector output and for counting what is really visible: line
+// samples are tested against a depth image of the shaded surface (DESIGN.md "Hidden lines":
+// "test segment samples against a depth/ID buffer (needed for SVG)"). The depth image comes
+// from whichever rasteriser drew the faces (OpenGL here); this file needs no GL.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "core/camera.h"
+#include "lines/lines.h"
+#include "lines/strokes.h"
+
+namespace lodline {
+
+/// Window-space depths in [0, 1] (1 = far plane / background), row 0 = top of the image.
+struct DepthImage {
+  int width = 0;
+  int height = 0;
+  std::vector<float> depth;  ///< width·height values
+  float at(int x, int y) const { return depth[static_cast<size_t>(y) * width + x]; }
+};
+
+struct VisibilityParams {
+  /// A sample is visible when its eye-space depth exceeds the surface's by at most this
+  /// fraction of the surface depth. Default 0.002 (0.2%): well below any real occluder's
+  /// distance, above the faces' polygon offset and depth quantisation.
+  float relative_tolerance = 0.002f;
+  /// The surface depth is the farthest over a (2r+1)² pixel neighbourhood, so a contour on
+  /// the silhouette is not hidden by its own faces. Default r = 1.
+  int neighbourhood = 1;
+  /// Samples per stroke segment are spaced at most this many pixels apart. Default 1.
+  float sample_spacing_px = 1.0f;
+};
+
+/// Visible parts of strokes as 2D pixel polylines (origin top-left, y down).
+struct VisibleStrokes {
+  std::vector<glm::vec2> points;
+  std::vector<uint32_t> offsets;  ///< stroke s is points[offsets[s], offsets[s+1]); count+1 entries
+  std::vector<LineType> types;    ///< 1 per stroke
+  std::vector<float> opacity;     ///< 1 per stroke: mean alpha of its points
+  std::vector<float> length_px;   ///< 1 per stroke
+
+  size_t strokeCount() const { return types.size(); }
+  void clear();
+};
+
+/// True when the model-space point `p` is not hidden by the surface in `depth`, as seen by
+/// `camera` (the camera `depth` was drawn with); points outside the image are not visible.
+bool isPointVisible(const Camera& camera, const DepthImage& depth, glm::vec3 p,
+                    const VisibilityParams& params = {});
+
+/// Splits every stroke of `strokes` into its visible runs, sampled along the stroke.
+void visibleStrokes(const StrokeSet& strokes, const Camera& camera, const DepthImage& depth,
+                    const VisibilityParams& params, VisibleStrokes& out);
+
+/// Segments of `lines` whose midpoint is visible, per LineType.
+std::array<uint32_t, kLineTypeCount> countVisibleSegments(const LineSet& lines,
+                                                          const Camera& camera,
+                                                          const DepthImage& depth,
+                                                          const VisibilityParams& params = {});
+
+}  // namespace lodline

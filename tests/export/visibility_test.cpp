@@ -1,0 +1,97 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/trigonometric.hpp>
+
+#include "export/visibility.h"
+
+namespace lodline {
+namespace {
+
+// Camera at the origin looking down -Z; window depth of a surface at eye depth z.
+Camera testCamera() {
+  Camera cam;
+  cam.eye = {0, 0, 0};
+  cam.target = {0, 0, -1};
+  cam.fov_deg = 60.0f;
+  cam.near_plane = 1.0f;
+  cam.far_plane = 20.0f;
+  return cam;
+}
+
+float windowDepth(const Camera& cam, float z) {
+  const glm::vec4 c = cam.projection(1.0f) * glm::vec4(0, 0, -z, 1);
+  return 0.5f * c.z / c.w + 0.5f;
+}
+
+DepthImage flat(int w, int h, float value) {
+  DepthImage d;
+  d.width = w;
+  d.height = h;
+  d.depth.assign(static_cast<size_t>(w) * h, value);
+  return d;
+}
+
+TEST(Visibility, BackgroundShowsEverythingInsideTheImage) {
+  const Camera cam = testCamera();
+  const DepthImage d = flat(64, 64, 1.0f);
+  EXPECT_TRUE(isPointVisible(cam, d, {0, 0, -5}));
+  EXPECT_TRUE(isPointVisible(cam, d, {1, 1, -5}));
+  EXPECT_FALSE(isPointVisible(cam, d, {50, 0, -5}));  // outside the frustum
+  EXPECT_FALSE(isPointVisible(cam, d, {0, 0, 5}));    // behind the eye
+}
+
+TEST(Visibility, SurfaceHidesWhatIsBehindIt) {
+  const Camera cam = testCamera();
+  const DepthImage d = flat(64, 64, windowDepth(cam, 5.0f));
+  EXPECT_TRUE(isPointVisible(cam, d, {0, 0, -3}));
+  EXPECT_TRUE(isPointVisible(cam, d, {0, 0, -5.005f}));  // on the surface, within tolerance
+  EXPECT_FALSE(isPointVisible(cam, d, {0, 0, -5.1f}));
+  EXPECT_FALSE(isPointVisible(cam, d, {0, 0, -12}));
+}
+
+TEST(Visibility, StrokesSplitIntoVisibleRuns) {
+  const Camera cam = testCamera();
+  // Left half of the image: a wall at depth 5; right half: background.
+  DepthImage d = flat(100, 100, 1.0f);
+  const float wall = windowDepth(cam, 5.0f);
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 50; ++x) d.depth[static_cast<size_t>(y) * 100 + x] = wall;
+  // A horizontal stroke at depth 8 across the image: hidden on the left, visible on the
+  // right; a second one at depth 3, visible everywhere.
+  StrokeSet s;
+  s.points = {{-3, 0, -8}, {0, 0, -8}, {3, 0, -8}, {-1, 0.5f, -3}, {1, 0.5f, -3}};
+  s.alpha = {1, 1, 1, 0.5f, 0.5f};
+  s.offsets = {0, 3, 5};
+  s.types = {LineType::kContour, LineType::kSuggestive};
+  s.closed = {0, 0};
+  VisibleStrokes out;
+  visibleStrokes(s, cam, d, {}, out);
+  ASSERT_EQ(out.strokeCount(), 2u);
+  EXPECT_EQ(out.types[0], LineType::kContour);
+  // The visible part of the first stroke starts near the wall's edge (x = 50 px).
+  const glm::vec2 first = out.points[out.offsets[0]];
+  EXPECT_NEAR(first.x, 50.0f, 2.0f);
+  EXPECT_GT(out.length_px[0], 30.0f);
+  EXPECT_LT(out.length_px[0], 50.0f);
+  EXPECT_EQ(out.types[1], LineType::kSuggestive);
+  EXPECT_NEAR(out.opacity[1], 0.5f, 1e-5f);
+  // Projected length of the near stroke: 2 units at depth 3 with f = 50/tan(30°) px.
+  EXPECT_NEAR(out.length_px[1], 2.0f / 3.0f * 50.0f / std::tan(glm::radians(30.0f)), 1.5f);
+}
+
+TEST(Visibility, CountsMidpointsPerType) {
+  const Camera cam = testCamera();
+  const DepthImage d = flat(64, 64, windowDepth(cam, 5.0f));
+  LineSet lines;
+  lines.points = {{0, 0, -3}, {0.1f, 0, -3}, {0, 0, -9}, {0.1f, 0, -9}, {0, 0.1f, -4}, {0, 0.2f, -4}};
+  lines.types = {LineType::kContour, LineType::kContour, LineType::kCrease};
+  const auto counts = countVisibleSegments(lines, cam, d);
+  EXPECT_EQ(counts[0], 1u);
+  EXPECT_EQ(counts[2], 1u);
+  EXPECT_EQ(counts[1], 0u);
+}
+
+}  // namespace
+}  // namespace lodline
