@@ -28,7 +28,8 @@ void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out) {
                         t[1] != t[2] && t[2] != t[0];
   }
 
-  // Vertex → faces (counting sort keeps faces in increasing order per vertex).
+  // Vertex → faces (counting sort; filling from the back over faces in reverse keeps faces
+  // in increasing order per vertex and needs no cursor array).
   out.vertex_face_offsets.assign(nv + 1, 0);
   for (uint32_t f = 0; f < nf; ++f) {
     if (!out.face_valid[f]) continue;
@@ -38,60 +39,73 @@ void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out) {
   const uint32_t corner_total = out.vertex_face_offsets[nv];
   out.vertex_faces.resize(corner_total);
   out.vertex_face_corners.resize(corner_total);
-  {
-    std::vector<uint32_t> cursor(out.vertex_face_offsets.begin(), out.vertex_face_offsets.end() - 1);
-    for (uint32_t f = 0; f < nf; ++f) {
-      if (!out.face_valid[f]) continue;
-      for (uint8_t c = 0; c < 3; ++c) {
-        const uint32_t v = mesh.faces[f][c];
-        out.vertex_faces[cursor[v]] = f;
-        out.vertex_face_corners[cursor[v]] = c;
-        ++cursor[v];
-      }
+  for (uint32_t f = nf; f-- > 0;) {
+    if (!out.face_valid[f]) continue;
+    for (uint8_t c = 3; c-- > 0;) {
+      const uint32_t slot = --out.vertex_face_offsets[mesh.faces[f][c] + 1];
+      out.vertex_faces[slot] = f;
+      out.vertex_face_corners[slot] = c;
     }
   }
+  // Now vertex_face_offsets[v + 1] holds the start of v: shift down by one.
+  for (uint32_t v = 0; v < nv; ++v) out.vertex_face_offsets[v] = out.vertex_face_offsets[v + 1];
+  if (nv > 0) out.vertex_face_offsets[nv] = corner_total;
 
-  // Vertex → distinct neighbours, and edges (each created by its smaller vertex).
+  // Vertex → distinct neighbours, and edges: each edge is created by its smaller vertex,
+  // which also hands it to the face sides it lies on (faces in increasing order).
   out.vertex_vertex_offsets.assign(nv + 1, 0);
   out.vertex_vertices.clear();
-  out.vertex_vertices.reserve(corner_total * 2);
+  out.vertex_vertices.reserve(corner_total);
   out.edge_offsets.assign(nv + 1, 0);
   out.edges.clear();
   out.edges.reserve(corner_total / 2 + nv);
+  out.edge_faces.clear();
+  out.edge_faces.reserve(corner_total / 2 + nv);
+  out.edge_face_count.clear();
+  out.edge_face_count.reserve(corner_total / 2 + nv);
+  out.face_edges.assign(nf, {kNoIndex, kNoIndex, kNoIndex});
   for (uint32_t v = 0; v < nv; ++v) {
     const size_t ring_begin = out.vertex_vertices.size();
+    const uint32_t first_edge = static_cast<uint32_t>(out.edges.size());
+    // Index of the edge (v, w) for w > v, creating it on first sight.
+    auto edgeTo = [&](uint32_t w) {
+      for (uint32_t e = first_edge; e < out.edges.size(); ++e)
+        if (out.edges[e][1] == w) return e;
+      out.edges.push_back({v, w});
+      out.edge_faces.push_back({kNoIndex, kNoIndex});
+      out.edge_face_count.push_back(0);
+      return static_cast<uint32_t>(out.edges.size() - 1);
+    };
+    auto addFace = [&](uint32_t e, uint32_t f) {
+      const uint32_t k = out.edge_face_count[e]++;
+      if (k < 2) out.edge_faces[e][k] = f;
+    };
     for (uint32_t i = out.vertex_face_offsets[v]; i < out.vertex_face_offsets[v + 1]; ++i) {
-      const auto& t = mesh.faces[out.vertex_faces[i]];
+      const uint32_t f = out.vertex_faces[i];
+      const auto& t = mesh.faces[f];
       const uint8_t c = out.vertex_face_corners[i];
-      for (uint32_t w : {t[(c + 1) % 3], t[(c + 2) % 3]}) {
+      const uint32_t next = t[(c + 1) % 3], prev = t[(c + 2) % 3];
+      for (uint32_t w : {next, prev}) {
         bool seen = false;
         for (size_t k = ring_begin; k < out.vertex_vertices.size(); ++k)
           if (out.vertex_vertices[k] == w) { seen = true; break; }
         if (!seen) out.vertex_vertices.push_back(w);
       }
+      if (next > v) {  // side c joins corners c and c+1
+        const uint32_t e = edgeTo(next);
+        out.face_edges[f][c] = e;
+        addFace(e, f);
+      }
+      if (prev > v) {  // side c+2 joins corners c+2 and c
+        const uint32_t e = edgeTo(prev);
+        out.face_edges[f][(c + 2) % 3] = e;
+        addFace(e, f);
+      }
     }
     out.vertex_vertex_offsets[v + 1] = static_cast<uint32_t>(out.vertex_vertices.size());
-    for (size_t k = ring_begin; k < out.vertex_vertices.size(); ++k)
-      if (out.vertex_vertices[k] > v) out.edges.push_back({v, out.vertex_vertices[k]});
     out.edge_offsets[v + 1] = static_cast<uint32_t>(out.edges.size());
   }
-
-  // Faces on edges and edges of faces.
   const size_t ne = out.edges.size();
-  out.edge_faces.assign(ne, {kNoIndex, kNoIndex});
-  out.edge_face_count.assign(ne, 0);
-  out.face_edges.assign(nf, {kNoIndex, kNoIndex, kNoIndex});
-  for (uint32_t f = 0; f < nf; ++f) {
-    if (!out.face_valid[f]) continue;
-    const auto& t = mesh.faces[f];
-    for (int j = 0; j < 3; ++j) {
-      const uint32_t e = out.findEdge(t[j], t[(j + 1) % 3]);
-      LODLINE_ASSERT(e != kNoIndex);
-      out.face_edges[f][j] = e;
-      const uint32_t k = out.edge_face_count[e]++;
-      if (k < 2) out.edge_faces[e][k] = f;
-    }
-  }
 
   out.vertex_on_boundary.assign(nv, 0);
   for (size_t e = 0; e < ne; ++e) {

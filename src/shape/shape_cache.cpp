@@ -75,30 +75,30 @@ inline void rotateFrame(const glm::vec3& old_u, const glm::vec3& old_v, const gl
   new_v -= dperp * glm::dot(new_v, perp_old);
 }
 
-// Re-expresses the second fundamental form (ku, kuv, kv) given in frame (old_u, old_v, old_n)
-// in frame (new_u, new_v, new_n).
-inline glm::vec3 projectCurvature(const glm::vec3& old_u, const glm::vec3& old_v,
-                                  const glm::vec3& old_n, const glm::vec3& k,
-                                  const glm::vec3& new_u, const glm::vec3& new_v,
-                                  const glm::vec3& new_n) {
+// The relation between two tangent frames at a corner, after rotating one into the
+// other's plane (Rusinkiewicz 2004 §3): m = (u1, v1, u2, v2) where (u1, v1) and (u2, v2) are
+// the coordinates of the new frame's first and second axis in the old frame.
+inline glm::vec4 frameRelation(const glm::vec3& old_u, const glm::vec3& old_v,
+                               const glm::vec3& old_n, const glm::vec3& new_u,
+                               const glm::vec3& new_v, const glm::vec3& new_n) {
   glm::vec3 r_u, r_v;
   rotateFrame(new_u, new_v, new_n, old_n, r_u, r_v);
-  const float u1 = glm::dot(r_u, old_u), v1 = glm::dot(r_u, old_v);
-  const float u2 = glm::dot(r_v, old_u), v2 = glm::dot(r_v, old_v);
+  return {glm::dot(r_u, old_u), glm::dot(r_u, old_v), glm::dot(r_v, old_u),
+          glm::dot(r_v, old_v)};
+}
+
+// Re-expresses the second fundamental form k = (ku, kuv, kv) of the old frame in the new
+// frame whose axes have old-frame coordinates m = (u1, v1, u2, v2).
+inline glm::vec3 projectCurvature(const glm::vec3& k, const glm::vec4& m) {
+  const float u1 = m[0], v1 = m[1], u2 = m[2], v2 = m[3];
   return {k[0] * u1 * u1 + k[1] * (2.0f * u1 * v1) + k[2] * v1 * v1,
           k[0] * u1 * u2 + k[1] * (u1 * v2 + u2 * v1) + k[2] * v1 * v2,
           k[0] * u2 * u2 + k[1] * (2.0f * u2 * v2) + k[2] * v2 * v2};
 }
 
-// Same for the cubic derivative form C = (C_uuu, C_uuv, C_uvv, C_vvv).
-inline glm::vec4 projectDerivative(const glm::vec3& old_u, const glm::vec3& old_v,
-                                   const glm::vec3& old_n, const glm::vec4& c,
-                                   const glm::vec3& new_u, const glm::vec3& new_v,
-                                   const glm::vec3& new_n) {
-  glm::vec3 r_u, r_v;
-  rotateFrame(new_u, new_v, new_n, old_n, r_u, r_v);
-  const float u1 = glm::dot(r_u, old_u), v1 = glm::dot(r_u, old_v);
-  const float u2 = glm::dot(r_v, old_u), v2 = glm::dot(r_v, old_v);
+// Same for the cubic derivative form c = (C_uuu, C_uuv, C_uvv, C_vvv).
+inline glm::vec4 projectDerivative(const glm::vec4& c, const glm::vec4& m) {
+  const float u1 = m[0], v1 = m[1], u2 = m[2], v2 = m[3];
   return {c[0] * u1 * u1 * u1 + c[1] * 3.0f * u1 * u1 * v1 + c[2] * 3.0f * u1 * v1 * v1 +
               c[3] * v1 * v1 * v1,
           c[0] * u1 * u1 * u2 + c[1] * (u1 * u1 * v2 + 2.0f * u2 * u1 * v1) +
@@ -107,6 +107,14 @@ inline glm::vec4 projectDerivative(const glm::vec3& old_u, const glm::vec3& old_
               c[2] * (u1 * v2 * v2 + 2.0f * u2 * v2 * v1) + c[3] * v1 * v2 * v2,
           c[0] * u2 * u2 * u2 + c[1] * 3.0f * u2 * u2 * v2 + c[2] * 3.0f * u2 * v2 * v2 +
               c[3] * v2 * v2 * v2};
+}
+
+// Principal frame of a vertex relative to a face: given the corner relation m (vertex frame
+// axes (u, w) in face coordinates) and pdir1 = a·u + b·w, pdir2 = −b·u + a·w, returns the
+// face-coordinates of pdir1 and pdir2 as (u1, v1, u2, v2).
+inline glm::vec4 principalInFace(const glm::vec4& m, const glm::vec2& ab) {
+  const float a = ab.x, b = ab.y;
+  return {a * m[0] + b * m[2], a * m[1] + b * m[3], -b * m[0] + a * m[2], -b * m[1] + a * m[3]};
 }
 
 // Solves the symmetric tridiagonal system with diagonal d[0..N) and off-diagonal o[0..N-1)
@@ -176,8 +184,9 @@ float computeFeatureSize(std::span<const float> k1, std::span<const float> k2,
     if (std::isfinite(k2[v])) samples.push_back(std::abs(k2[v]));
   }
   if (samples.empty()) return cap;
-  const size_t which = std::min(samples.size() - 1,
-                                static_cast<size_t>(params.percentile * samples.size()));
+  const float pct = std::isfinite(params.percentile) ? std::clamp(params.percentile, 0.0f, 1.0f) : 0.1f;
+  const size_t which =
+      std::min(samples.size() - 1, static_cast<size_t>(pct * static_cast<float>(samples.size())));
   std::nth_element(samples.begin(), samples.begin() + which, samples.end());
   const float k = samples[which];
   if (!(k > 0.0f)) return cap;
@@ -189,7 +198,11 @@ float computeFeatureSize(std::span<const float> k1, std::span<const float> k2,
 // previous phase finished, in adjacency order, so any subset recomputes bit-identically.
 
 void ShapeCache::faceGeometry(const TriMesh& mesh, uint32_t f) {
-  face_fit_ok_[f] = 0;
+  FaceRecord& rec = faces_[f];
+  rec.ok = 0;
+  rec.corner = {0.0f, 0.0f, 0.0f};
+  rec.normal_weight = {0.0f, 0.0f, 0.0f};
+  rec.n = glm::vec3(0.0f);
   face_normals_[f] = face_t_[f] = face_b_[f] = glm::vec3(0.0f);
   corner_areas_[f] = {0.0f, 0.0f, 0.0f};
   if (!adjacency_.face_valid[f]) return;
@@ -209,58 +222,66 @@ void ShapeCache::faceGeometry(const TriMesh& mesh, uint32_t f) {
   face_t_[f] = tt;
   face_b_[f] = b;
   cornerAreasOf(e, 0.5f * len, corner_areas_[f]);
-  face_fit_ok_[f] = kGeomOk;
+  rec.corner = corner_areas_[f];
+  rec.n = n;
+  // Weight of this face's unit normal in each corner's vertex normal. Corner j sits between
+  // the edges a = e[j-1] and b = −e[j+1], with |a × b| = len.
+  const float l2[3] = {glm::dot(e[0], e[0]), glm::dot(e[1], e[1]), glm::dot(e[2], e[2])};
+  for (int j = 0; j < 3; ++j) {
+    const int jp = prevCorner(j), jn = nextCorner(j);
+    switch (params_.normal_weighting) {
+      case NormalWeighting::kArea:
+        rec.normal_weight[j] = len;
+        break;
+      case NormalWeighting::kAngle:
+        rec.normal_weight[j] = std::atan2(len, -glm::dot(e[jp], e[jn]));
+        break;
+      case NormalWeighting::kMax:
+        rec.normal_weight[j] = len / (l2[jp] * l2[jn]);
+        break;
+    }
+    if (!std::isfinite(rec.normal_weight[j])) rec.normal_weight[j] = 0.0f;
+  }
+  rec.ok = kGeomOk;
 }
 
-void ShapeCache::vertexNormal(const TriMesh& mesh, uint32_t v) {
+void ShapeCache::vertexNormal(uint32_t v) {
   const MeshAdjacency& adj = adjacency_;
   glm::vec3 n(0.0f);
   float area = 0.0f;
-  const glm::vec3& p0 = mesh.positions[v];
   for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
-    const uint32_t f = adj.vertex_faces[i];
+    const FaceRecord& rec = faces_[adj.vertex_faces[i]];
     const int c = adj.vertex_face_corners[i];
-    area += corner_areas_[f][c];
-    const auto& t = mesh.faces[f];
-    const glm::vec3 a = mesh.positions[t[nextCorner(c)]] - p0;
-    const glm::vec3 b = mesh.positions[t[prevCorner(c)]] - p0;
-    const glm::vec3 cr = glm::cross(a, b);
-    switch (params_.normal_weighting) {
-      case NormalWeighting::kArea:
-        n += cr;
-        break;
-      case NormalWeighting::kAngle: {
-        const float len = glm::length(cr);
-        if (len > 0.0f) n += cr * (std::atan2(len, glm::dot(a, b)) / len);
-        break;
-      }
-      case NormalWeighting::kMax: {
-        const float l = glm::dot(a, a) * glm::dot(b, b);
-        if (l > 0.0f) n += cr * (1.0f / l);
-        break;
-      }
-    }
+    area += rec.corner[c];
+    n += rec.normal_weight[c] * rec.n;
   }
   const float len = glm::length(n);
   n = (len > 0.0f && std::isfinite(len)) ? n / len : kFallbackNormal;
   if (!finite3(n)) n = kFallbackNormal;
   normals_[v] = n;
   point_areas_[v] = area;
-  frameFromNormal(n, frame_u_[v], frame_v_[v]);
+  VertexFrame& fr = frames_[v];
+  fr.n = n;
+  frameFromNormal(n, fr.u, fr.w);
 }
 
 void ShapeCache::faceCurvatureFit(const TriMesh& mesh, uint32_t f) {
-  face_fit_ok_[f] &= static_cast<uint8_t>(~kCurvOk);
-  face_curv_[f] = glm::vec3(0.0f);
-  if (!(face_fit_ok_[f] & kGeomOk)) return;
+  FaceRecord& rec = faces_[f];
+  rec.ok &= static_cast<uint8_t>(~kCurvOk);
+  rec.curv = glm::vec3(0.0f);
+  if (!(rec.ok & kGeomOk)) return;
   const auto& t = mesh.faces[f];
   const glm::vec3 p[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
   const glm::vec3& ft = face_t_[f];
   const glm::vec3& fb = face_b_[f];
+  // Corner relations (vertex frame axes in face coordinates), reused by every later gather.
+  const VertexFrame* fr[3] = {&frames_[t[0]], &frames_[t[1]], &frames_[t[2]]};
+  for (int j = 0; j < 3; ++j)
+    rec.rel[j] = frameRelation(ft, fb, face_normals_[f], fr[j]->u, fr[j]->w, fr[j]->n);
   double a = 0, b = 0, c = 0, m[3] = {0, 0, 0};
   for (int j = 0; j < 3; ++j) {
     const glm::vec3 e = p[prevCorner(j)] - p[nextCorner(j)];
-    const glm::vec3 dn = normals_[t[prevCorner(j)]] - normals_[t[nextCorner(j)]];
+    const glm::vec3 dn = fr[prevCorner(j)]->n - fr[nextCorner(j)]->n;
     const double u = glm::dot(e, ft), v = glm::dot(e, fb);
     const double dnu = glm::dot(dn, ft), dnv = glm::dot(dn, fb);
     a += u * u;
@@ -275,28 +296,29 @@ void ShapeCache::faceCurvatureFit(const TriMesh& mesh, uint32_t f) {
   const double d[3] = {a, a + c, c};
   const double o[2] = {b, b};
   if (!solveSymTridiagonal<3>(d, o, m)) return;
-  face_curv_[f] = glm::vec3(static_cast<float>(m[0]), static_cast<float>(m[1]),
-                            static_cast<float>(m[2]));
-  face_fit_ok_[f] |= kCurvOk;
+  rec.curv = glm::vec3(static_cast<float>(m[0]), static_cast<float>(m[1]),
+                       static_cast<float>(m[2]));
+  rec.ok |= kCurvOk;
 }
 
 void ShapeCache::vertexCurvature(uint32_t v) {
   const MeshAdjacency& adj = adjacency_;
-  const glm::vec3& n = normals_[v];
-  const glm::vec3& u = frame_u_[v];
-  const glm::vec3& w = frame_v_[v];
+  const glm::vec3& u = frames_[v].u;
+  const glm::vec3& w = frames_[v].w;
   glm::vec3 k(0.0f);
   float wsum = 0.0f;
   for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
     const uint32_t f = adj.vertex_faces[i];
-    if (!(face_fit_ok_[f] & kCurvOk)) continue;
-    const float wt = corner_areas_[f][adj.vertex_face_corners[i]];
+    const FaceRecord& rec = faces_[f];
+    if (!(rec.ok & kCurvOk)) continue;
+    const int c = adj.vertex_face_corners[i];
+    const float wt = rec.corner[c];
     if (!(wt > 0.0f)) continue;
-    k += wt * projectCurvature(face_t_[f], face_b_[f], face_normals_[f], face_curv_[f], u, w, n);
+    k += wt * projectCurvature(rec.curv, rec.rel[c]);
     wsum += wt;
   }
   float k1 = 0.0f, k2 = 0.0f;
-  glm::vec3 d1 = u, d2 = w;
+  glm::vec2 ab(1.0f, 0.0f);  // pdir1 = a·u + b·w
   if (wsum > 0.0f) {
     k /= wsum;  // weights corner/point area, normalised over the faces that had a fit
     const float ku = k[0], kuv = k[1], kv = k[2];
@@ -311,39 +333,41 @@ void ShapeCache::vertexCurvature(uint32_t v) {
     k1 = ku - tt * kuv;
     k2 = kv + tt * kuv;
     if (k1 >= k2) {
-      d1 = cs * u - sn * w;
+      ab = glm::vec2(cs, -sn);
     } else {
       std::swap(k1, k2);
-      d1 = sn * u + cs * w;
+      ab = glm::vec2(sn, cs);
     }
-    d1 = glm::normalize(d1);
-    d2 = glm::cross(n, d1);
-    if (!std::isfinite(k1) || !std::isfinite(k2) || !finite3(d1)) {
+    ab /= std::sqrt(ab.x * ab.x + ab.y * ab.y);
+    if (!std::isfinite(k1) || !std::isfinite(k2) || !std::isfinite(ab.x) ||
+        !std::isfinite(ab.y)) {
       k1 = k2 = 0.0f;
-      d1 = u;
-      d2 = w;
+      ab = glm::vec2(1.0f, 0.0f);
     }
   }
   k1_[v] = k1;
   k2_[v] = k2;
-  pdir1_[v] = d1;
-  pdir2_[v] = d2;
+  vertex_kab_[v] = glm::vec4(k1, k2, ab.x, ab.y);
+  pdir1_[v] = ab.x * u + ab.y * w;  // unit: (u, w) orthonormal
+  pdir2_[v] = ab.x * w - ab.y * u;  // = n × pdir1
 }
 
 void ShapeCache::faceDerivativeFit(const TriMesh& mesh, uint32_t f) {
-  face_fit_ok_[f] &= static_cast<uint8_t>(~kDcurvOk);
-  face_dcurv_[f] = glm::vec4(0.0f);
-  if (!(face_fit_ok_[f] & kGeomOk)) return;
+  FaceRecord& rec = faces_[f];
+  rec.ok &= static_cast<uint8_t>(~kDcurvOk);
+  rec.dcurv = glm::vec4(0.0f);
+  if (!(rec.ok & kGeomOk)) return;
   const auto& t = mesh.faces[f];
   const glm::vec3 p[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
   const glm::vec3& ft = face_t_[f];
   const glm::vec3& fb = face_b_[f];
-  const glm::vec3& fn = face_normals_[f];
   glm::vec3 fcurv[3];
   for (int j = 0; j < 3; ++j) {
     const uint32_t vj = t[j];
-    fcurv[j] = projectCurvature(pdir1_[vj], pdir2_[vj], normals_[vj],
-                                glm::vec3(k1_[vj], 0.0f, k2_[vj]), ft, fb, fn);
+    // Principal axes in face coordinates; transposed: face axes in principal coordinates.
+    const glm::vec4 kab = vertex_kab_[vj];
+    const glm::vec4 q = principalInFace(rec.rel[j], glm::vec2(kab[2], kab[3]));
+    fcurv[j] = projectCurvature(glm::vec3(kab[0], 0.0f, kab[1]), glm::vec4(q[0], q[2], q[1], q[3]));
   }
   double a = 0, b = 0, c = 0, m[4] = {0, 0, 0, 0};
   for (int j = 0; j < 3; ++j) {
@@ -363,22 +387,24 @@ void ShapeCache::faceDerivativeFit(const TriMesh& mesh, uint32_t f) {
   const double d[4] = {a, 2.0 * a + c, a + 2.0 * c, c};
   const double o[3] = {b, 2.0 * b, b};
   if (!solveSymTridiagonal<4>(d, o, m)) return;
-  face_dcurv_[f] = glm::vec4(static_cast<float>(m[0]), static_cast<float>(m[1]),
+  rec.dcurv = glm::vec4(static_cast<float>(m[0]), static_cast<float>(m[1]),
                              static_cast<float>(m[2]), static_cast<float>(m[3]));
-  face_fit_ok_[f] |= kDcurvOk;
+  rec.ok |= kDcurvOk;
 }
 
 void ShapeCache::vertexDerivative(uint32_t v) {
   const MeshAdjacency& adj = adjacency_;
   glm::vec4 c(0.0f);
   float wsum = 0.0f;
+  const glm::vec2 ab(vertex_kab_[v][2], vertex_kab_[v][3]);
   for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
     const uint32_t f = adj.vertex_faces[i];
-    if (!(face_fit_ok_[f] & kDcurvOk)) continue;
-    const float wt = corner_areas_[f][adj.vertex_face_corners[i]];
+    const FaceRecord& rec = faces_[f];
+    if (!(rec.ok & kDcurvOk)) continue;
+    const int corner = adj.vertex_face_corners[i];
+    const float wt = rec.corner[corner];
     if (!(wt > 0.0f)) continue;
-    c += wt * projectDerivative(face_t_[f], face_b_[f], face_normals_[f], face_dcurv_[f],
-                                pdir1_[v], pdir2_[v], normals_[v]);
+    c += wt * projectDerivative(rec.dcurv, principalInFace(rec.rel[corner], ab));
     wsum += wt;
   }
   if (wsum > 0.0f) c /= wsum;
@@ -395,20 +421,20 @@ void ShapeCache::resize(uint32_t nv, uint32_t nf) {
   face_t_.resize(nf);
   face_b_.resize(nf);
   corner_areas_.resize(nf);
-  face_curv_.resize(nf);
-  face_dcurv_.resize(params_.derivatives ? nf : 0);
-  face_fit_ok_.resize(nf);
+  faces_.resize(nf);
   normals_.resize(nv);
-  frame_u_.resize(nv);
-  frame_v_.resize(nv);
+  frames_.resize(nv);
   point_areas_.resize(nv);
   k1_.resize(nv);
   k2_.resize(nv);
   pdir1_.resize(nv);
+  vertex_kab_.resize(nv);
   pdir2_.resize(nv);
   dcurv_.resize(params_.derivatives ? nv : 0);
   vertex_stamp_.assign(nv, 0);
   face_stamp_.assign(nf, 0);
+  vertex_level_.assign(nv, 0);
+  face_level_.assign(nf, 0);
   stamp_ = 0;
 }
 
@@ -427,7 +453,7 @@ void ShapeCache::compute(const TriMesh& mesh) {
     stats_.connectivity_rebuilt = true;
   }
   for (uint32_t f = 0; f < nf; ++f) faceGeometry(mesh, f);
-  for (uint32_t v = 0; v < nv; ++v) vertexNormal(mesh, v);
+  for (uint32_t v = 0; v < nv; ++v) vertexNormal(v);
   for (uint32_t f = 0; f < nf; ++f) faceCurvatureFit(mesh, f);
   for (uint32_t v = 0; v < nv; ++v) vertexCurvature(v);
   if (params_.derivatives) {
@@ -441,7 +467,7 @@ void ShapeCache::compute(const TriMesh& mesh) {
   stats_.derivative_vertices = params_.derivatives ? nv : 0;
 }
 
-void ShapeCache::growFaces(size_t begin, size_t end) {
+void ShapeCache::growFaces(size_t begin, size_t end, uint8_t level) {
   const MeshAdjacency& adj = adjacency_;
   for (size_t k = begin; k < end; ++k) {
     const uint32_t v = inc_verts_[k];
@@ -449,31 +475,57 @@ void ShapeCache::growFaces(size_t begin, size_t end) {
       const uint32_t f = adj.vertex_faces[i];
       if (face_stamp_[f] != stamp_) {
         face_stamp_[f] = stamp_;
+        face_level_[f] = level;
         inc_faces_.push_back(f);
       }
     }
   }
 }
 
-void ShapeCache::growVertices(const TriMesh& mesh, size_t begin, size_t end) {
+void ShapeCache::growVertices(const TriMesh& mesh, size_t begin, size_t end, uint8_t level) {
   for (size_t k = begin; k < end; ++k) {
     for (uint32_t v : mesh.faces[inc_faces_[k]]) {
       if (vertex_stamp_[v] != stamp_) {
         vertex_stamp_[v] = stamp_;
+        vertex_level_[v] = level;
         inc_verts_.push_back(v);
       }
     }
   }
 }
 
+template <class Fn>
+void ShapeCache::forEachMarked(bool faces, size_t count, uint8_t max_level, Fn&& fn) {
+  const std::vector<uint32_t>& list = faces ? inc_faces_ : inc_verts_;
+  const std::vector<uint32_t>& stamps = faces ? face_stamp_ : vertex_stamp_;
+  const std::vector<uint8_t>& levels = faces ? face_level_ : vertex_level_;
+  if (count * 16 < stamps.size()) {
+    for (size_t k = 0; k < count; ++k) fn(list[k]);  // few: list order
+  } else {
+    // Many: memory order, much kinder to the caches than the list's random order.
+    for (uint32_t i = 0; i < stamps.size(); ++i)
+      if (stamps[i] == stamp_ && levels[i] <= max_level) fn(i);
+  }
+}
+
 void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_vertices) {
   const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
   const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
-  if (!computed_ || adjacency_.vertex_count != nv || faces_copy_.size() != nf ||
-      (nf != 0 &&
-       std::memcmp(faces_copy_.data(), mesh.faces.data(), nf * sizeof(mesh.faces[0])) != 0)) {
+  const uint32_t old_nv = adjacency_.vertex_count;
+  if (!computed_ || nv < old_nv) {  // vertices removed: indices may have moved, start over
     compute(mesh);
     return;
+  }
+  const uint32_t old_nf = static_cast<uint32_t>(faces_copy_.size());
+  const bool same_faces =
+      old_nv == nv && old_nf == nf &&
+      (nf == 0 ||
+       std::memcmp(faces_copy_.data(), mesh.faces.data(), nf * sizeof(mesh.faces[0])) == 0);
+  if (!same_faces) {
+    // Connectivity changed: new adjacency; per-face/per-vertex slots keep their values (a
+    // face slot whose triple is unchanged stays valid), new slots start empty.
+    buildAdjacency(mesh, adjacency_);
+    resize(nv, nf);
   }
   if (++stamp_ == 0) {  // wrapped: clear the marks once every 2³² updates
     std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0);
@@ -482,50 +534,84 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
   }
   inc_verts_.clear();
   inc_faces_.clear();
-  for (uint32_t v : changed_vertices) {
+  auto seed = [&](uint32_t v) {
     if (v < nv && vertex_stamp_[v] != stamp_) {
       vertex_stamp_[v] = stamp_;
+      vertex_level_[v] = 0;
       inc_verts_.push_back(v);
     }
+  };
+  for (uint32_t v : changed_vertices) seed(v);
+  if (!same_faces) {
+    // Every vertex whose ring may have changed: those of changed, added and removed face
+    // slots (old and new triples), and new vertices.
+    const uint32_t common = std::min(old_nf, nf);
+    // A slot that became invalid is in no ring, so reset it here (valid ones are redone
+    // with F1 below).
+    for (uint32_t f = 0; f < common; ++f) {
+      if (faces_copy_[f] == mesh.faces[f]) continue;
+      for (uint32_t v : faces_copy_[f]) seed(v);
+      for (uint32_t v : mesh.faces[f]) seed(v);
+      if (!adjacency_.face_valid[f]) faceGeometry(mesh, f);
+    }
+    for (uint32_t f = common; f < nf; ++f) {
+      for (uint32_t v : mesh.faces[f]) seed(v);
+      if (!adjacency_.face_valid[f]) faceGeometry(mesh, f);
+    }
+    for (uint32_t f = common; f < old_nf; ++f)
+      for (uint32_t v : faces_copy_[f]) seed(v);
+    for (uint32_t v = old_nv; v < nv; ++v) seed(v);
+    faces_copy_.assign(mesh.faces.begin(), mesh.faces.end());
   }
+  // The nested support sets, as prefixes of inc_faces_ / inc_verts_ (level = ring):
+  //   C = changed; F1 = faces of C (geometry, corner areas); V1 = their vertices (normals,
+  //   areas, frames); F2 = faces of V1 (curvature fits, corner relations); V2 (curvature);
+  //   F3 = faces of V2 (derivative fits); V3 (derivative tensors).
   const size_t m0 = inc_verts_.size();
-  if (static_cast<double>(m0) > params_.full_recompute_fraction * nv) {
-    compute(mesh);
+  const double limit = params_.full_recompute_fraction * nv;
+  if (static_cast<double>(m0) > limit) {
+    compute(mesh);  // the adjacency is already current: compute() keeps it
     stats_.changed_vertices = static_cast<uint32_t>(m0);
+    stats_.connectivity_rebuilt = !same_faces;
     return;
   }
-  // F1 = faces of the changed vertices: geometry and corner areas.
-  growFaces(0, m0);
+  growFaces(0, m0, 1);
   const size_t n1 = inc_faces_.size();
-  for (size_t k = 0; k < n1; ++k) faceGeometry(mesh, inc_faces_[k]);
-  // V1 = their vertices: normals, point areas, frames.
-  growVertices(mesh, 0, n1);
+  growVertices(mesh, 0, n1, 1);
   const size_t m1 = inc_verts_.size();
-  for (size_t k = 0; k < m1; ++k) vertexNormal(mesh, inc_verts_[k]);
-  // F2 = faces of V1: curvature fits; V2 = their vertices: curvature.
-  growFaces(m0, m1);
+  growFaces(m0, m1, 2);
   const size_t n2 = inc_faces_.size();
-  for (size_t k = 0; k < n2; ++k) faceCurvatureFit(mesh, inc_faces_[k]);
-  growVertices(mesh, n1, n2);
+  growVertices(mesh, n1, n2, 2);
   const size_t m2 = inc_verts_.size();
-  for (size_t k = 0; k < m2; ++k) vertexCurvature(inc_verts_[k]);
-  size_t m3 = 0;
+  size_t n3 = n2, m3 = m2;
   if (params_.derivatives) {
-    // F3 = faces of V2: derivative fits; V3 = their vertices: derivative tensors.
-    growFaces(m1, m2);
-    const size_t n3 = inc_faces_.size();
-    for (size_t k = 0; k < n3; ++k) faceDerivativeFit(mesh, inc_faces_[k]);
-    growVertices(mesh, n2, n3);
+    growFaces(m1, m2, 3);
+    n3 = inc_faces_.size();
+    growVertices(mesh, n2, n3, 3);
     m3 = inc_verts_.size();
-    for (size_t k = 0; k < m3; ++k) vertexDerivative(inc_verts_[k]);
+  }
+  if (static_cast<double>(m3) > limit) {  // touches most of the mesh: do it all in order
+    compute(mesh);
+    stats_.changed_vertices = static_cast<uint32_t>(m0);
+    stats_.connectivity_rebuilt = !same_faces;
+    return;
+  }
+  forEachMarked(true, n1, 1, [&](uint32_t f) { faceGeometry(mesh, f); });
+  forEachMarked(false, m1, 1, [&](uint32_t v) { vertexNormal(v); });
+  forEachMarked(true, n2, 2, [&](uint32_t f) { faceCurvatureFit(mesh, f); });
+  forEachMarked(false, m2, 2, [&](uint32_t v) { vertexCurvature(v); });
+  if (params_.derivatives) {
+    forEachMarked(true, n3, 3, [&](uint32_t f) { faceDerivativeFit(mesh, f); });
+    forEachMarked(false, m3, 3, [&](uint32_t v) { vertexDerivative(v); });
   }
   ++version_;
   stats_ = ShapeUpdateStats{};
   stats_.full = false;
+  stats_.connectivity_rebuilt = !same_faces;
   stats_.changed_vertices = static_cast<uint32_t>(m0);
   stats_.normal_vertices = static_cast<uint32_t>(m1);
   stats_.curvature_vertices = static_cast<uint32_t>(m2);
-  stats_.derivative_vertices = static_cast<uint32_t>(m3);
+  stats_.derivative_vertices = static_cast<uint32_t>(params_.derivatives ? m3 : 0);
 }
 
 SurfaceFields ShapeCache::fields(const TriMesh& mesh) const {

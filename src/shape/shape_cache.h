@@ -46,16 +46,17 @@ struct ShapeParams {
   /// Also compute the curvature-derivative tensor (needed by suggestive contours).
   /// Default true.
   bool derivatives = true;
-  /// update() recomputes everything (same result, less bookkeeping) when more than this
-  /// fraction of the vertices changed. Default 0.25.
-  float full_recompute_fraction = 0.25f;
+  /// update() recomputes everything (same result, in memory order) when the vertices it
+  /// would touch (the changed set grown by three rings) exceed this fraction of all
+  /// vertices. Default 0.5.
+  float full_recompute_fraction = 0.5f;
 };
 
 /// What the last compute()/update() touched (for frame stats and tests).
 struct ShapeUpdateStats {
   bool full = true;                  ///< true: everything was recomputed
   bool connectivity_rebuilt = false; ///< true: adjacency was rebuilt (faces changed)
-  uint32_t changed_vertices = 0;     ///< distinct vertices passed to update()
+  uint32_t changed_vertices = 0;     ///< distinct seeds: vertices passed + those of changed face slots
   uint32_t normal_vertices = 0;      ///< vertices whose normal/area/frame were recomputed
   uint32_t curvature_vertices = 0;   ///< vertices whose curvature was recomputed
   uint32_t derivative_vertices = 0;  ///< vertices whose derivative tensor was recomputed
@@ -116,10 +117,14 @@ class ShapeCache {
 
   /// Recomputes what depends on the positions of `changed_vertices` (any order, duplicates
   /// and out-of-range ids ignored): face geometry on their faces, normals on the 1-ring,
-  /// curvature on the 1-ring of changed normals, derivatives one ring further. If the face
-  /// array or vertex count differs from the last call (compared with one memcmp, ~0.05 ms per
-  /// 100k faces) or nothing was computed yet, this is compute(mesh). The result is
-  /// bit-identical to compute(mesh).
+  /// curvature on the 1-ring of changed normals, derivatives one ring further.
+  /// Connectivity may change too (checked with one memcmp, ~0.05 ms per 100k faces): the
+  /// adjacency is then rebuilt (O(V + F)) and the vertices of every face slot whose triple
+  /// changed, was added or removed, and every new vertex, join the changed set — cheap when
+  /// the caller keeps face slots stable (edits in place, additions at the end); a compacted
+  /// face array changes most slots and falls back to a full compute. Fewer vertices than last
+  /// time, or nothing computed yet: compute(mesh). The result is always bit-identical to
+  /// compute(mesh) on a fresh cache.
   void update(const TriMesh& mesh, std::span<const uint32_t> changed_vertices);
 
   const ShapeParams& params() const { return params_; }
@@ -148,7 +153,7 @@ class ShapeCache {
  private:
   void resize(uint32_t nv, uint32_t nf);
   void faceGeometry(const TriMesh& mesh, uint32_t f);
-  void vertexNormal(const TriMesh& mesh, uint32_t v);
+  void vertexNormal(uint32_t v);
   void faceCurvatureFit(const TriMesh& mesh, uint32_t f);
   void vertexCurvature(uint32_t v);
   void faceDerivativeFit(const TriMesh& mesh, uint32_t f);
@@ -156,8 +161,12 @@ class ShapeCache {
   // Incremental bookkeeping over the nested sets C ⊆ V1 ⊆ V2 ⊆ V3, F1 ⊆ F2 ⊆ F3 kept as
   // prefixes of inc_verts_/inc_faces_: appends the unstamped faces around
   // inc_verts_[begin, end), resp. the unstamped vertices of inc_faces_[begin, end).
-  void growFaces(size_t begin, size_t end);
-  void growVertices(const TriMesh& mesh, size_t begin, size_t end);
+  void growFaces(size_t begin, size_t end, uint8_t level);
+  void growVertices(const TriMesh& mesh, size_t begin, size_t end, uint8_t level);
+  // Calls fn on the first `count` marked faces (or vertices) of level ≤ max_level: in list
+  // order when few, in index order when many.
+  template <class Fn>
+  void forEachMarked(bool faces, size_t count, uint8_t max_level, Fn&& fn);
 
   ShapeParams params_;
   MeshAdjacency adjacency_;
@@ -169,17 +178,32 @@ class ShapeCache {
   // Per face.
   std::vector<glm::vec3> face_normals_, face_t_, face_b_;
   std::vector<std::array<float, 3>> corner_areas_;
-  std::vector<glm::vec3> face_curv_;    // (e, f, g) in (t, b)
-  std::vector<glm::vec4> face_dcurv_;   // C in (t, b)
-  std::vector<uint8_t> face_fit_ok_;    // bit 0: geometry ok, bit 1: curvature fit, bit 2: dcurv fit
+  // Everything a vertex gather reads about one face, in one record (one or two cache
+  // lines instead of one per array: the gathers are memory-latency bound).
+  struct FaceRecord {
+    glm::vec4 rel[3];  // per corner: the vertex frame's axes in face coordinates (u1,v1,u2,v2)
+    glm::vec4 dcurv;   // derivative tensor C in (t, b)
+    glm::vec3 curv;    // (e, f, g) in (t, b)
+    std::array<float, 3> corner;  // corner areas (copy of corner_areas_[f])
+    glm::vec3 n;                  // unit face normal (0 if degenerate)
+    std::array<float, 3> normal_weight;  // weight of n in each corner's vertex normal
+    uint8_t ok = 0;    // bit 0: geometry ok, bit 1: curvature fit, bit 2: dcurv fit
+  };
+  std::vector<FaceRecord> faces_;
   // Per vertex.
-  std::vector<glm::vec3> normals_, frame_u_, frame_v_;
+  std::vector<glm::vec3> normals_;
+  struct VertexFrame {
+    glm::vec3 n, u, w;  // unit normal and the tangent frame derived from it (u × w = n)
+  };
+  std::vector<VertexFrame> frames_;
   std::vector<float> point_areas_, k1_, k2_;
   std::vector<glm::vec3> pdir1_, pdir2_;
+  std::vector<glm::vec4> vertex_kab_;  // (k1, k2, a, b): pdir1 = a·u + b·w in frames_
   std::vector<glm::vec4> dcurv_;
 
   // Incremental scratch: stamps avoid clearing per-vertex/face marks.
   std::vector<uint32_t> vertex_stamp_, face_stamp_;
+  std::vector<uint8_t> vertex_level_, face_level_;  // ring level at which an item was marked
   uint32_t stamp_ = 0;
   std::vector<uint32_t> inc_verts_, inc_faces_;
 };

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <random>
@@ -171,6 +172,22 @@ TEST(ShapeCache, DegenerateMeshesGiveFiniteDefinedResults) {
   EXPECT_EQ(std::memcmp(shape.k1().data(), full.k1().data(), n * sizeof(float)), 0);
 }
 
+TEST(ShapeCache, NonFinitePositionsStayContained) {
+  // Outside the TriMesh invariant, but must not spread: faces touching a NaN/inf vertex are
+  // treated as degenerate, everything stays finite.
+  TriMesh m = makeIcoSphere(1.0f, 2);
+  m.positions[5] = glm::vec3(std::numeric_limits<float>::quiet_NaN());
+  m.positions[9].x = std::numeric_limits<float>::infinity();
+  ShapeCache shape;
+  shape.compute(m);
+  EXPECT_TRUE(allUnit(shape.normals()));
+  EXPECT_TRUE(allFinite(shape.k1()));
+  EXPECT_TRUE(allFinite(shape.k2()));
+  EXPECT_TRUE(allFinite(shape.pointAreas()));
+  for (const glm::vec4& c : shape.dcurv())
+    EXPECT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && std::isfinite(c.w));
+}
+
 TEST(ShapeCache, EmptyAndTinyMeshes) {
   ShapeCache shape;
   TriMesh empty;
@@ -224,7 +241,14 @@ TEST(ShapeCache, IncrementalUpdateIsBitIdentical) {
       }
       for (uint32_t v : changed) m.positions[v] += glm::vec3(jitter(rng), jitter(rng), jitter(rng));
       inc.update(m, changed);
-      EXPECT_EQ(inc.lastStats().full, count > nv / 4) << count;
+      // Small sets go incremental (list order, or index order once the rings are big);
+      // sets whose 3-ring covers over half the mesh fall back to the full compute.
+      if (count <= 3) {
+        EXPECT_FALSE(inc.lastStats().full) << count;
+      }
+      if (count > nv / 2) {
+        EXPECT_TRUE(inc.lastStats().full) << count;
+      }
       if (!inc.lastStats().full) {
         EXPECT_LT(inc.lastStats().derivative_vertices, nv);
         EXPECT_GE(inc.lastStats().curvature_vertices, inc.lastStats().normal_vertices);
@@ -242,6 +266,94 @@ TEST(ShapeCache, IncrementalUpdateIsBitIdentical) {
   ShapeCache full;
   full.compute(m);
   expectBitIdentical(inc, full, "after connectivity change");
+}
+
+// Connectivity edits of the kind a view-dependent mesh makes, with stable face slots: an
+// edge flip in place, a vertex split appending a vertex and faces, a face turned degenerate,
+// faces dropped from the end. Each update must equal a fresh full compute, bit for bit, and
+// stay local.
+TEST(ShapeCache, IncrementalConnectivityChangesAreBitIdentical) {
+  TriMesh m = makeTorusKnot(3, 2, 1.0f, 0.25f, 200, 24, 0.15f);
+  const size_t nv0 = m.vertexCount();
+  ShapeCache inc;
+  inc.compute(m);
+  auto check = [&](const char* what, std::span<const uint32_t> moved) {
+    inc.update(m, moved);
+    EXPECT_TRUE(inc.lastStats().connectivity_rebuilt) << what;
+    EXPECT_FALSE(inc.lastStats().full) << what;
+    EXPECT_LT(inc.lastStats().derivative_vertices, nv0 / 10) << what;
+    ShapeCache full;
+    full.compute(m);
+    expectBitIdentical(inc, full, what);
+  };
+  // 1. Flip an interior edge: (a,b,c) + (b,a,d) → (c,a,d) + (d,b,c), in place.
+  {
+    MeshAdjacency adj;
+    buildAdjacency(m, adj);
+    const uint32_t e = adj.findEdge(m.faces[100][0], m.faces[100][1]);
+    ASSERT_EQ(adj.edge_face_count[e], 2u);
+    const uint32_t f0 = adj.edge_faces[e][0], f1 = adj.edge_faces[e][1];
+    int j = 0, k = 0;
+    while (adj.face_edges[f0][j] != e) ++j;
+    while (adj.face_edges[f1][k] != e) ++k;
+    const uint32_t a = m.faces[f0][j], b = m.faces[f0][(j + 1) % 3], c = m.faces[f0][(j + 2) % 3];
+    const uint32_t d = m.faces[f1][(k + 2) % 3];
+    ASSERT_EQ(m.faces[f1][k], b);
+    m.faces[f0] = {c, a, d};
+    m.faces[f1] = {d, b, c};
+    check("edge flip", {});
+  }
+  // 2. Split face 500 with a new vertex at its centroid (1 → 3 faces, 2 appended).
+  {
+    const auto t = m.faces[500];
+    const uint32_t n = static_cast<uint32_t>(m.vertexCount());
+    m.positions.push_back((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0f +
+                          glm::vec3(0.0f, 0.001f, 0.0f));
+    m.faces[500] = {t[0], t[1], n};
+    m.faces.push_back({t[1], t[2], n});
+    m.faces.push_back({t[2], t[0], n});
+    check("vertex split", {});
+  }
+  // 3. A face slot becomes degenerate (repeated index) while a vertex also moves.
+  {
+    m.faces[1000] = {m.faces[1000][0], m.faces[1000][0], m.faces[1000][1]};
+    const uint32_t moved[] = {m.faces[2000][0]};
+    m.positions[moved[0]] += glm::vec3(0.01f);
+    check("degenerate slot + move", moved);
+  }
+  // 4. Drop the two appended faces again (the new vertex becomes isolated).
+  {
+    m.faces.resize(m.faces.size() - 2);
+    check("faces removed", {});
+  }
+  // Fewer vertices: falls back to a full compute, still identical.
+  m.positions.pop_back();
+  m.faces[500] = m.faces[501];  // no face may use the removed vertex
+  inc.update(m, {});
+  EXPECT_TRUE(inc.lastStats().full);
+  ShapeCache full;
+  full.compute(m);
+  expectBitIdentical(inc, full, "vertex removed");
+}
+
+TEST(ShapeCache, IncrementalWithoutDerivatives) {
+  TriMesh m = makeTorusKnot(3, 2, 1.0f, 0.25f, 100, 16, 0.1f);
+  ShapeParams params;
+  params.derivatives = false;
+  ShapeCache inc(params);
+  inc.compute(m);
+  EXPECT_TRUE(inc.dcurv().empty());
+  std::vector<uint32_t> changed;
+  for (uint32_t v = 0; v < m.vertexCount(); v += 97) {
+    changed.push_back(v);
+    m.positions[v] *= 1.02f;
+  }
+  inc.update(m, changed);
+  EXPECT_FALSE(inc.lastStats().full);
+  EXPECT_EQ(inc.lastStats().derivative_vertices, 0u);
+  ShapeCache full(params);
+  full.compute(m);
+  expectBitIdentical(inc, full, "no derivatives");
 }
 
 TEST(ShapeCache, IncrementalWorkIsLocal) {

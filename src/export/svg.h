@@ -1,0 +1,53 @@
+// SVG export of 2D line drawings (strokes already projected to pixels and, if wanted,
+// hidden-line tested by the caller). Written atomically: a temporary file in the target
+// directory, renamed over the target, so a failure never leaves a half-written file.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+
+#include <glm/vec2.hpp>
+
+#include "core/result.h"
+#include "lines/lines.h"
+
+namespace lodline {
+
+/// How one line type is drawn.
+struct SvgLineStyle {
+  std::string colour = "#000000";  ///< any SVG colour. Default black
+  float width = 1.5f;              ///< stroke width, px. Default 1.5
+  float opacity = 1.0f;            ///< multiplied by the stroke's own opacity. Default 1
+};
+
+/// Per-type styles and the page.
+struct SvgStyle {
+  /// Indexed by LineType: contour black 2 px, suggestive dark grey 1.5 px, crease dark blue
+  /// 1 px, boundary black 1.5 px.
+  std::array<SvgLineStyle, kLineTypeCount> lines = {
+      SvgLineStyle{"#000000", 2.0f, 1.0f}, SvgLineStyle{"#333333", 1.5f, 1.0f},
+      SvgLineStyle{"#1f3a70", 1.0f, 1.0f}, SvgLineStyle{"#000000", 1.5f, 1.0f}};
+  bool background = true;             ///< fill the page first. Default true
+  std::string background_colour = "#ffffff";  ///< Default white
+  int decimals = 2;                   ///< digits after the point in coordinates. Default 2
+};
+
+/// 2D strokes in pixel coordinates (origin top-left, y down).
+struct SvgStrokes {
+  std::span<const glm::vec2> points;
+  /// Stroke s is points[offsets[s] .. offsets[s+1]) (strokeCount + 1 entries, or empty).
+  std::span<const uint32_t> offsets;
+  std::span<const LineType> types;   ///< 1 per stroke
+  std::span<const float> opacity;    ///< optional, 1 per stroke, in [0, 1]
+};
+
+/// Writes a `width`×`height` px SVG (viewBox "0 0 width height") with one <polyline> per
+/// stroke of ≥ 2 points, grouped by type. Errors (bad size, inconsistent arrays, unwritable
+/// path) name the file; on error no file is left at `path`.
+Status writeSvg(const std::filesystem::path& path, int width, int height,
+                const SvgStrokes& strokes, const SvgStyle& style = {});
+
+}  // namespace lodline

@@ -1,0 +1,182 @@
+// ShapeCache throughput (Rusinkiewicz 2004 curvature + derivative tensor): full recompute on
+// the CGAL demo meshes and a ~1.3M-triangle icosphere, and incremental updates for 1% / 10%
+// changed vertices (random, and a spatially coherent patch like the LOD stage produces).
+// Items = vertices (full) or changed vertices (update).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "core/mesh.h"
+#include "io/generate.h"
+#include "io/load_mesh.h"
+#include "shape/shape_cache.h"
+
+namespace lodline {
+namespace {
+
+// Renumbers vertices along a Morton curve and sorts faces by their first vertex: the memory
+// locality a cache-aware mesh order (or the LOD stage's own) gives. The demo files as stored
+// have vertex indices spread over about half the mesh within a single face.
+void reorderForLocality(TriMesh& m) {
+  const Bounds b = computeBounds(m.positions);
+  const glm::vec3 ext = glm::max(b.max - b.min, glm::vec3(1e-12f));
+  auto spread = [](uint32_t x) {  // 10 bits → every third bit
+    x &= 0x3ff;
+    x = (x | (x << 16)) & 0x030000ff;
+    x = (x | (x << 8)) & 0x0300f00f;
+    x = (x | (x << 4)) & 0x030c30c3;
+    x = (x | (x << 2)) & 0x09249249;
+    return x;
+  };
+  const size_t nv = m.positions.size();
+  std::vector<std::pair<uint32_t, uint32_t>> keyed(nv);
+  for (uint32_t i = 0; i < nv; ++i) {
+    const glm::vec3 q = (m.positions[i] - b.min) / ext * 1023.0f;
+    keyed[i] = {spread(uint32_t(q.x)) | (spread(uint32_t(q.y)) << 1) | (spread(uint32_t(q.z)) << 2), i};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<uint32_t> remap(nv);
+  std::vector<glm::vec3> pos(nv);
+  for (uint32_t i = 0; i < nv; ++i) {
+    remap[keyed[i].second] = i;
+    pos[i] = m.positions[keyed[i].second];
+  }
+  m.positions = std::move(pos);
+  for (auto& f : m.faces)
+    for (auto& v : f) v = remap[v];
+  std::sort(m.faces.begin(), m.faces.end(), [](const auto& a, const auto& c) {
+    return std::min({a[0], a[1], a[2]}) < std::min({c[0], c[1], c[2]});
+  });
+}
+
+// Meshes are loaded once per process. Null when the file is missing (setup.sh not run).
+// A name ending in ":sorted" is the same mesh after reorderForLocality().
+const TriMesh* benchMesh(const std::string& full_name) {
+  static std::map<std::string, std::unique_ptr<TriMesh>> cache;
+  auto it = cache.find(full_name);
+  if (it != cache.end()) return it->second.get();
+  const size_t colon = full_name.find(':');
+  const std::string name = full_name.substr(0, colon);
+  std::unique_ptr<TriMesh> mesh;
+  if (name == "icosphere8") {
+    mesh = std::make_unique<TriMesh>(makeIcoSphere(1.0f, 8));  // 1,310,720 triangles
+  } else {
+    auto loaded = loadMesh(std::string(LODLINE_DATA_MESHES) + "/" + name);
+    if (loaded) mesh = std::make_unique<TriMesh>(std::move(loaded.value()));
+  }
+  if (mesh && colon != std::string::npos) reorderForLocality(*mesh);
+  return cache.emplace(full_name, std::move(mesh)).first->second.get();
+}
+
+const char* kMeshes[] = {"armadillo.off",        "bunny00.off",        "refined_elephant.off",
+                         "icosphere8",           "armadillo.off:sorted", "bunny00.off:sorted",
+                         "refined_elephant.off:sorted", "icosphere8:sorted"};
+
+// Full compute with adjacency already built (the per-frame cost when all vertices move).
+void BM_ShapeFull(benchmark::State& state) {
+  const TriMesh* mesh = benchMesh(kMeshes[state.range(0)]);
+  if (!mesh) return state.SkipWithError("mesh not found (run scripts/setup.sh)");
+  state.SetLabel(kMeshes[state.range(0)]);
+  ShapeParams params;
+  params.derivatives = state.range(1) != 0;
+  ShapeCache shape(params);
+  shape.compute(*mesh);
+  for (auto _ : state) {
+    shape.compute(*mesh);
+    benchmark::DoNotOptimize(shape.k1().data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh->vertexCount()));
+  state.counters["faces"] = static_cast<double>(mesh->faceCount());
+}
+BENCHMARK(BM_ShapeFull)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7}, {1}})
+    ->ArgNames({"mesh", "derivs"})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShapeFull)->Args({1, 0})->ArgNames({"mesh", "derivs"})->Unit(benchmark::kMillisecond);
+
+// Including the adjacency build (first frame / connectivity change).
+void BM_ShapeFullWithAdjacency(benchmark::State& state) {
+  const TriMesh* mesh = benchMesh(kMeshes[state.range(0)]);
+  if (!mesh) return state.SkipWithError("mesh not found (run scripts/setup.sh)");
+  state.SetLabel(kMeshes[state.range(0)]);
+  for (auto _ : state) {
+    ShapeCache shape;
+    shape.compute(*mesh);
+    benchmark::DoNotOptimize(shape.k1().data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh->vertexCount()));
+}
+BENCHMARK(BM_ShapeFullWithAdjacency)->DenseRange(0, 3)->ArgName("mesh")->Unit(benchmark::kMillisecond);
+
+// Connectivity changes every frame (the LOD stage splits and collapses): update() rebuilds
+// the adjacency (O(V + F)) and recomputes around the changed face slot only. Two face arrays
+// differing in one face slot alternate; the cost is dominated by the adjacency rebuild.
+void BM_ShapeConnectivityChange(benchmark::State& state) {
+  const TriMesh* mesh = benchMesh(kMeshes[state.range(0)]);
+  if (!mesh) return state.SkipWithError("mesh not found (run scripts/setup.sh)");
+  state.SetLabel(kMeshes[state.range(0)]);
+  TriMesh a = *mesh, b = *mesh;
+  std::swap(b.faces[0][1], b.faces[0][2]);  // a change of the face array (orientation flip)
+  ShapeCache shape;
+  shape.compute(a);
+  shape.compute(b);
+  const uint32_t changed[] = {b.faces[0][0]};
+  bool flip = false;
+  for (auto _ : state) {
+    shape.update(flip ? b : a, changed);
+    flip = !flip;
+    benchmark::DoNotOptimize(shape.k1().data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh->vertexCount()));
+}
+BENCHMARK(BM_ShapeConnectivityChange)->Args({0})->Args({4})->ArgName("mesh")->Unit(benchmark::kMillisecond);
+
+// Incremental update: range(1) = changed per mille, range(2) = 0 random / 1 coherent patch.
+void BM_ShapeUpdate(benchmark::State& state) {
+  const TriMesh* mesh = benchMesh(kMeshes[state.range(0)]);
+  if (!mesh) return state.SkipWithError("mesh not found (run scripts/setup.sh)");
+  const size_t nv = mesh->vertexCount();
+  const size_t count = std::max<size_t>(1, nv * state.range(1) / 1000);
+  std::vector<uint32_t> changed;
+  if (state.range(2) == 0) {
+    std::mt19937 rng(1);
+    std::uniform_int_distribution<uint32_t> pick(0, static_cast<uint32_t>(nv - 1));
+    for (size_t i = 0; i < count; ++i) changed.push_back(pick(rng));
+  } else {  // the `count` vertices nearest to one vertex
+    const glm::vec3 c = mesh->positions[nv / 3];
+    std::vector<uint32_t> order(nv);
+    for (uint32_t i = 0; i < nv; ++i) order[i] = i;
+    std::nth_element(order.begin(), order.begin() + (count - 1), order.end(), [&](uint32_t a, uint32_t b) {
+      return glm::distance(mesh->positions[a], c) < glm::distance(mesh->positions[b], c);
+    });
+    changed.assign(order.begin(), order.begin() + count);
+  }
+  state.SetLabel(std::string(kMeshes[state.range(0)]) + (state.range(2) ? " patch" : " random"));
+  ShapeCache shape;
+  shape.compute(*mesh);
+  shape.update(*mesh, changed);
+  for (auto _ : state) {
+    shape.update(*mesh, changed);
+    benchmark::DoNotOptimize(shape.k1().data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(count));
+  state.counters["changed"] = static_cast<double>(count);
+  state.counters["touched"] = shape.lastStats().derivative_vertices;
+  state.counters["full"] = shape.lastStats().full ? 1 : 0;
+}
+BENCHMARK(BM_ShapeUpdate)
+    ->ArgsProduct({{0, 3, 4, 7}, {10, 100}, {0, 1}})
+    ->ArgNames({"mesh", "permille", "patch"})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace lodline
+
+BENCHMARK_MAIN();
