@@ -6,15 +6,13 @@
 #include <iostream>
 #include <memory>
 
-#include <glad/gl.h>
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/headless.h"
 #include "app/options.h"
 #include "core/timer.h"
 #include "frame/line_drawing.h"
-#include "gl/context.h"
-#include "gl/renderer.h"
 #include "export/svg.h"
 #include "export/visibility.h"
 #include "io/atomic_file.h"
@@ -82,26 +80,18 @@ int runRender(const RenderOptions& o) {
   drawing.update(camera, enabled);
   stage.lap();
 
-  auto context = createHeadlessContext(*backend);
-  if (!context) return reportError(context.error());
-  auto renderer = Renderer::create();
-  if (!renderer) return reportError(renderer.error());
-  auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
-  if (!target) return reportError(target.error());
-  renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
-  renderer->setLines(drawing.lines());
-  glFinish();
+  auto headless = HeadlessRenderer::create(*backend, rp);
+  if (!headless) return reportError(headless.error());
+  headless->setMesh(drawing);
   const double ms_setup = stage.lap();
 
-  target->bind();
-  renderer->draw(camera, rp, rp.width, rp.height);
-  glFinish();
+  headless->draw(drawing, camera, rp);
   const double ms_render = stage.lap();
-  const Image image = target->readback();
+  const Image image = headless->readImage();
   const double ms_readback = stage.lap();
 
   // Visible lines, from the depth buffer of the faces just drawn: for the SVG and the stats.
-  const DepthImage depth = target->readDepth();
+  const DepthImage depth = headless->readDepth();
   VisibleStrokes visible;
   visibleStrokes(drawing.strokes(), camera, depth, {}, visible);
   const auto visible_segments = countVisibleSegments(drawing.segments(), camera, depth);
@@ -126,9 +116,10 @@ int runRender(const RenderOptions& o) {
     nlohmann::json j;
     j["model"] = {{"path", resolved->model.string()}, {"vertices", model_vertices}, {"faces", model_faces}};
     j["image"] = {{"width", rp.width}, {"height", rp.height}};
-    j["context"] = {{"backend", backendName((*context)->backend())}, {"gl", (*context)->description()}};
-    j["faces_drawn"] = renderer->faceCount();
-    j["line_segments"] = renderer->segmentsDrawn();
+    j["context"] = {{"backend", backendName(headless->context().backend())},
+                    {"gl", headless->context().description()}};
+    j["faces_drawn"] = headless->renderer().faceCount();
+    j["line_segments"] = headless->renderer().segmentsDrawn();
     nlohmann::json lines, extracted;
     for (int k = 0; k < kLineKindCount; ++k) {
       const char* name = lineKindName(static_cast<LineKind>(k));

@@ -18,6 +18,7 @@ struct Command {
 Command addRenderCommand(CLI::App& parent);
 Command addViewCommand(CLI::App& parent);
 Command addGenerateCommand(CLI::App& parent);
+Command addCaptureCommand(CLI::App& parent);
 
 /// Prints "lodline: <message>" to stderr and returns the error's exit code.
 int reportError(const Error& e);

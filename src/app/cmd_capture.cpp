@@ -1,0 +1,300 @@
+// `lodline capture MODEL --path P -o out.mp4|DIR/`: renders a camera path headlessly, frame
+// by frame at a fixed simulated frame rate (so results do not depend on the machine's
+// speed), into an MP4 (through ffmpeg) or a numbered PNG sequence, with optional per-frame
+// temporal-coherence metrics (docs/capture.md).
+#include <algorithm>
+#include <atomic>
+#include <charconv>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "app/commands.h"
+#include "app/headless.h"
+#include "app/options.h"
+#include "core/timer.h"
+#include "export/coherence.h"
+#include "export/video_writer.h"
+#include "export/visibility.h"
+#include "frame/camera_path.h"
+#include "io/atomic_file.h"
+#include "io/load_mesh.h"
+
+namespace lodline {
+namespace {
+
+// Set by SIGINT/SIGTERM; the capture loop stops after the current frame and finishes its
+// outputs. (Signal handlers can only reach process-wide state.)
+std::atomic<bool> g_interrupted{false};
+extern "C" void onInterrupt(int) { g_interrupted.store(true); }
+
+struct CaptureOptions {
+  ViewOptions view;
+  std::string path = "orbit";
+  double duration = 8.0;
+  std::string frames;
+  double fps = 30.0;
+  std::string output;
+  std::string metrics;
+  std::string stats;
+  std::string context = "auto";
+};
+
+struct FrameRange {
+  int64_t first = 0;
+  int64_t end = 0;  // exclusive
+};
+
+Result<FrameRange> parseFrames(const std::string& s, int64_t total) {
+  FrameRange r{0, total};
+  if (s.empty()) return r;
+  const auto bad = Error::usage("--frames: invalid value '" + s + "' (expected N or A:B with 0 <= A < B)");
+  auto parse = [](std::string_view v, int64_t& out) {
+    auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), out);
+    return ec == std::errc() && p == v.data() + v.size() && out >= 0;
+  };
+  const auto colon = s.find(':');
+  if (colon == std::string::npos) {
+    if (!parse(s, r.end) || r.end == 0) return bad;
+    return r;
+  }
+  if (!parse(std::string_view(s).substr(0, colon), r.first) ||
+      !parse(std::string_view(s).substr(colon + 1), r.end) || r.first >= r.end)
+    return bad;
+  return r;
+}
+
+void progress(int64_t done, int64_t total, double elapsed_ms) {
+  const int width = 30;
+  const double f = total ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
+  const int filled = static_cast<int>(f * width);
+  const double eta_s = done ? elapsed_ms / static_cast<double>(done) * static_cast<double>(total - done) / 1000.0 : 0.0;
+  std::fprintf(stderr, "\r  frame %lld/%lld [%s%s] %3d%%  ETA %dm%02ds ", static_cast<long long>(done),
+               static_cast<long long>(total), std::string(filled, '#').c_str(),
+               std::string(width - filled, ' ').c_str(), static_cast<int>(f * 100.0),
+               static_cast<int>(eta_s) / 60, static_cast<int>(eta_s) % 60);
+  std::fflush(stderr);
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t i = std::min(v.size() - 1, static_cast<size_t>(std::ceil(p * static_cast<double>(v.size()))) - (p > 0 ? 1 : 0));
+  return v[i];
+}
+
+int runCapture(const CaptureOptions& o) {
+  auto resolved = resolveViewOptions(o.view);
+  if (!resolved) return reportError(resolved.error());
+  auto backend = parseContextBackend(o.context);
+  if (!backend) return reportError(backend.error());
+  if (!(o.fps > 0.0 && o.fps <= 1000.0)) return reportError(Error::usage("--fps: must be in (0, 1000]"));
+  if (o.output.empty()) return reportError(Error::usage("capture: -o out.mp4 or -o DIR/ is required"));
+  const bool png_sequence = o.output.back() == '/' || std::filesystem::is_directory(o.output);
+  const std::filesystem::path out(o.output);
+  if (!png_sequence && out.extension() != ".mp4")
+    return reportError(Error::usage("-o: expected a .mp4 file or a directory ending in '/', got '" + o.output + "'"));
+  for (const std::string* p : {&o.metrics, &o.stats})
+    if (!p->empty())
+      if (Status s = checkWritable(*p); !s) return reportError(s.error());
+  if (png_sequence) {
+    std::error_code ec;
+    std::filesystem::create_directories(out, ec);
+    if (ec) return reportError(Error::runtime(o.output + ": cannot create directory: " + ec.message()));
+  } else if (Status s = checkWritable(out); !s) {
+    return reportError(s.error());
+  } else if (!ffmpegAvailable()) {
+    return reportError(Error::runtime(o.output + ": ffmpeg not found (install Debian's ffmpeg, or write a "
+                                      "PNG sequence with -o DIR/)"));
+  }
+
+  const RenderParams& rp = resolved->render;
+  auto mesh = loadMesh(resolved->model);
+  if (!mesh) return reportError(mesh.error());
+  const float aspect = static_cast<float>(rp.width) / static_cast<float>(rp.height);
+  LineDrawing drawing(std::move(mesh.value()));
+
+  Result<CameraPath> cam_path = [&]() -> Result<CameraPath> {
+    const auto& names = builtinPathNames();
+    if (std::find(names.begin(), names.end(), o.path) != names.end())
+      return builtinPath(o.path, drawing.bounds(), resolved->fov_deg, aspect, o.duration);
+    return loadCameraPath(o.path);
+  }();
+  if (!cam_path) return reportError(cam_path.error());
+  const int64_t total = std::max<int64_t>(1, std::llround(cam_path->duration() * o.fps));
+  auto range = parseFrames(o.frames, total);
+  if (!range) return reportError(range.error());
+
+  auto headless = HeadlessRenderer::create(*backend, rp);
+  if (!headless) return reportError(headless.error());
+  headless->setMesh(drawing);
+  std::optional<VideoWriter> video;
+  if (!png_sequence) {
+    auto v = VideoWriter::open(out, {rp.width, rp.height, o.fps, 18});
+    if (!v) return reportError(v.error());
+    video.emplace(std::move(v.value()));
+  }
+
+  std::array<bool, kLineKindCount> enabled{};
+  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = rp.lines.kinds[k].enabled;
+  const bool want_metrics = !o.metrics.empty() || !o.stats.empty();
+  VisibleStrokes visible;
+  LineMask prev_mask, mask;
+  bool have_prev = false;
+  std::ostringstream csv;
+  csv << "frame,line_pixels,appeared,vanished,churn,strokes,specks,active_faces,splits,collapses,ms_total\n";
+  std::vector<double> churns, specks_per_frame, frame_ms;
+
+  // One step of the simulation at frame k (time k/fps): the state every later frame builds
+  // on. Level of detail and temporal smoothing will keep state here; with full detail a
+  // frame depends on its camera only.
+  auto simulate = [&](int64_t k) -> Camera {
+    const Camera cam = cam_path->at(static_cast<double>(k) / o.fps, drawing.bounds());
+    drawing.update(cam, enabled);
+    return cam;
+  };
+  auto line_mask = [&](const Camera& cam, LineMask& m) {
+    headless->draw(drawing, cam, rp);
+    visibleStrokes(drawing.strokes(), cam, headless->readDepth(), {}, visible);
+    rasterizeStrokes(visible, rp.width, rp.height, m);
+  };
+  // Frames before the range only advance the simulation; the one just before it also gives
+  // the previous line mask, so frame k's metrics are the same whichever range renders it.
+  for (int64_t k = 0; k < range->first; ++k) {
+    const Camera cam = simulate(k);
+    if (want_metrics && k == range->first - 1) {
+      line_mask(cam, prev_mask);
+      have_prev = true;
+    }
+  }
+
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
+  const bool tty = isatty(STDERR_FILENO);
+  Stopwatch wall;
+  int64_t done = 0;
+  Status failure;
+  for (int64_t k = range->first; k < range->end && !g_interrupted.load(); ++k) {
+    Stopwatch frame_clock;
+    const Camera cam = simulate(k);
+    headless->draw(drawing, cam, rp);
+    const Image image = headless->readImage();
+    if (png_sequence) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "frame_%05lld.png", static_cast<long long>(k));
+      failure = writePng(out / name, image);
+    } else {
+      failure = video->write(image.rgba);
+    }
+    if (!failure) break;
+    if (want_metrics) {
+      visibleStrokes(drawing.strokes(), cam, headless->readDepth(), {}, visible);
+      rasterizeStrokes(visible, rp.width, rp.height, mask);
+      MaskChange change;
+      if (have_prev) {
+        change = compareMasks(prev_mask, mask);
+      } else {
+        for (uint8_t v : mask.on) change.line_pixels += v;  // frame 0: nothing to compare with
+      }
+      const auto specks = std::count_if(visible.length_px.begin(), visible.length_px.end(),
+                                        [](float len) { return len < 3.0f; });
+      const double ms = frame_clock.elapsed();
+      csv << k << ',' << change.line_pixels << ',' << change.appeared << ',' << change.vanished << ','
+          << change.churn() << ',' << visible.strokeCount() << ',' << specks << ','
+          << drawing.mesh().faceCount() << ",0,0," << ms << '\n';
+      if (have_prev) churns.push_back(change.churn());
+      specks_per_frame.push_back(static_cast<double>(specks));
+      std::swap(prev_mask, mask);
+      have_prev = true;
+    }
+    frame_ms.push_back(frame_clock.elapsed());
+    ++done;
+    if (tty) progress(done, range->end - range->first, wall.elapsed());
+  }
+  if (tty) std::fputc('\n', stderr);
+  const bool interrupted = g_interrupted.load();
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+
+  // Finish every output, even after an interruption or a failure: the frames done so far
+  // make a valid video / complete PNG files.
+  if (video) {
+    if (Status s = video->finish(); !s && failure) failure = s;
+  }
+  if (!o.metrics.empty()) {
+    const std::string text = csv.str();
+    if (Status s = writeFileAtomically(o.metrics, [&](std::ostream& os) -> Status {
+          os << text;
+          return {};
+        });
+        !s && failure)
+      failure = s;
+  }
+  double mean_churn = 0.0, mean_specks = 0.0;
+  for (double c : churns) mean_churn += c;
+  for (double s : specks_per_frame) mean_specks += s;
+  if (!churns.empty()) mean_churn /= static_cast<double>(churns.size());
+  if (!specks_per_frame.empty()) mean_specks /= static_cast<double>(specks_per_frame.size());
+  if (want_metrics)
+    std::cout << "frames " << done << "  churn mean " << mean_churn << " p95 " << percentile(churns, 0.95)
+              << "  specks mean " << mean_specks << '\n';
+  if (!o.stats.empty()) {
+    nlohmann::json j;
+    j["model"] = {{"path", resolved->model.string()}, {"vertices", drawing.mesh().vertexCount()},
+                  {"faces", drawing.mesh().faceCount()}};
+    j["image"] = {{"width", rp.width}, {"height", rp.height}};
+    j["capture"] = {{"path", o.path}, {"fps", o.fps}, {"first_frame", range->first},
+                    {"frames", done}, {"interrupted", interrupted}};
+    j["coherence"] = {{"churn_mean", mean_churn}, {"churn_p95", percentile(churns, 0.95)},
+                      {"specks_mean", mean_specks}};
+    double mean_ms = 0.0;
+    for (double m : frame_ms) mean_ms += m;
+    j["ms"] = {{"frame_mean", frame_ms.empty() ? 0.0 : mean_ms / static_cast<double>(frame_ms.size())},
+               {"frame_p95", percentile(frame_ms, 0.95)}, {"total", wall.elapsed()}};
+    const std::string text = j.dump(2) + "\n";
+    if (Status s = writeFileAtomically(o.stats, [&](std::ostream& os) -> Status {
+          os << text;
+          return {};
+        });
+        !s && failure)
+      failure = s;
+  }
+  if (!failure) return reportError(failure.error());
+  if (interrupted) {
+    std::cerr << "lodline: interrupted after " << done << " frame(s); outputs hold the frames done\n";
+    return 130;
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command addCaptureCommand(CLI::App& parent) {
+  auto o = std::make_shared<CaptureOptions>();
+  CLI::App* cmd = parent.add_subcommand(
+      "capture", "Render a camera path headlessly to an MP4 video or a numbered PNG sequence");
+  addViewOptions(*cmd, o->view);
+  cmd->add_option("--path", o->path, "Camera path: orbit, zoom-out, dolly, flyover, or a path file (.json)")
+      ->capture_default_str();
+  cmd->add_option("--duration", o->duration, "Length of a built-in path in seconds")->capture_default_str();
+  cmd->add_option("--frames", o->frames,
+                  "N renders frames 0..N-1; A:B renders frames A..B-1 only (frame k is identical "
+                  "whichever range renders it); default: the whole path");
+  cmd->add_option("--fps", o->fps, "Simulated frame rate (the video's rate)")->capture_default_str();
+  cmd->add_option("-o,--output", o->output, "out.mp4 (through ffmpeg) or DIR/ for frame_NNNNN.png files")
+      ->required();
+  cmd->add_option("--metrics", o->metrics, "Per-frame temporal-coherence metrics as CSV (docs/capture.md)");
+  cmd->add_option("--stats", o->stats, "Summary statistics as JSON");
+  cmd->add_option("--context", o->context, "OpenGL context: auto, egl or osmesa")->capture_default_str();
+  return {cmd, [o] { return runCapture(*o); }};
+}
+
+}  // namespace lodline

@@ -1,0 +1,48 @@
+// One headless OpenGL renderer (context + shaders + offscreen target) drawing frames of a
+// LineDrawing: shared by `render` (one frame) and `capture` (many).
+#pragma once
+
+#include <memory>
+
+#include "core/render_params.h"
+#include "export/visibility.h"
+#include "frame/line_drawing.h"
+#include "gl/context.h"
+#include "gl/renderer.h"
+#include "io/image.h"
+
+namespace lodline {
+
+struct FrameTimes {
+  double upload = 0.0;    ///< line buffer (and mesh) uploads, ms
+  double render = 0.0;    ///< drawing up to glFinish, ms
+  double readback = 0.0;  ///< resolve + glReadPixels, ms
+};
+
+class HeadlessRenderer {
+ public:
+  static Result<HeadlessRenderer> create(ContextBackend backend, const RenderParams& params);
+
+  /// Uploads the surface (call when the mesh changes).
+  void setMesh(const LineDrawing& drawing);
+  /// Draws `drawing`'s current lines from `camera`; the image is then in image().
+  void draw(const LineDrawing& drawing, const Camera& camera, const RenderParams& params, bool upload_lines = true);
+  /// Reads back the colour image of the last draw().
+  Image readImage();
+  /// Reads back the depth of the last draw() (for visibility of lines).
+  DepthImage readDepth() const { return target_->readDepth(); }
+
+  const GlContext& context() const { return *context_; }
+  const Renderer& renderer() const { return *renderer_; }
+  const FrameTimes& times() const { return times_; }
+
+ private:
+  HeadlessRenderer() = default;
+  std::unique_ptr<GlContext> context_;
+  // Optional-like holders: destroyed before the context (declared after it).
+  std::unique_ptr<Renderer> renderer_;
+  std::unique_ptr<OffscreenTarget> target_;
+  FrameTimes times_;
+};
+
+}  // namespace lodline
