@@ -124,7 +124,8 @@ int runCapture(const CaptureOptions& o) {
 
   Result<CameraPath> cam_path = [&]() -> Result<CameraPath> {
     const auto& names = builtinPathNames();
-    if (std::find(names.begin(), names.end(), o.path) != names.end())
+    if (std::find(names.begin(), names.end(), o.path) != names.end() ||
+        std::filesystem::path(o.path).extension() != ".json")  // unknown names get the usage error
       return builtinPath(o.path, drawing.bounds(), resolved->fov_deg, aspect, o.duration);
     return loadCameraPath(o.path);
   }();

@@ -1,0 +1,141 @@
+// `lodline capture`: determinism, frame ranges, video frame counts, interruption, metrics.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <sys/wait.h>
+
+#include "io/generate.h"
+#include "io/load_mesh.h"
+#include "test_util.h"
+
+namespace lodline {
+namespace {
+
+int shell(const std::string& cmd, std::string* output = nullptr) {
+  FILE* pipe = popen(("EGL_PLATFORM=surfaceless " + cmd + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof(buf), pipe)) > 0) out.append(buf, n);
+  const int status = pclose(pipe);
+  if (output) *output = out;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::string readAll(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class Capture : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // A knot, not a torus: an orbit about the axis of a torus gives identical frames.
+    model_ = (dir_ / "knot.off").string();
+    ASSERT_TRUE(saveOff(model_, makeTorusKnot(2, 3, 1.0f, 0.16f, 240, 16, 0.1f)).ok());
+  }
+  std::string capture(const std::string& args) {
+    return std::string(LODLINE_BINARY) + " capture " + model_ + " --size 160x96 --msaa 1 " + args;
+  }
+  test::TempDir dir_;
+  std::string model_;
+};
+
+TEST_F(Capture, FramesAreDeterministicAndRangesAgree) {
+  const auto a = dir_ / "a", b = dir_ / "b", c = dir_ / "c";
+  std::string out;
+  ASSERT_EQ(shell(capture("--duration 1 --fps 8 -o " + a.string() + "/"), &out), 0) << out;
+  ASSERT_EQ(shell(capture("--duration 1 --fps 8 -o " + b.string() + "/"), &out), 0) << out;
+  ASSERT_EQ(shell(capture("--duration 1 --fps 8 --frames 5:8 -o " + c.string() + "/"), &out), 0) << out;
+  for (int k = 0; k < 8; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%05d.png", k);
+    ASSERT_TRUE(std::filesystem::exists(a / name)) << name;
+    EXPECT_TRUE(readAll(a / name) == readAll(b / name)) << "same frame bytes twice: " << name;
+    if (k >= 5) EXPECT_TRUE(readAll(a / name) == readAll(c / name)) << "full vs ranged: " << name;
+    else EXPECT_FALSE(std::filesystem::exists(c / name)) << name;
+  }
+  EXPECT_FALSE(std::filesystem::exists(a / "frame_00008.png"));
+  // The camera moves: consecutive frames differ.
+  EXPECT_FALSE(readAll(a / "frame_00000.png") == readAll(a / "frame_00001.png"));
+}
+
+TEST_F(Capture, VideoHasTheRequestedFrameCount) {
+  if (shell("command -v ffprobe") != 0) GTEST_SKIP() << "ffprobe not installed";
+  const auto video = dir_ / "v.mp4";
+  std::string out;
+  ASSERT_EQ(shell(capture("--path zoom-out --duration 2 --fps 10 --frames 13 -o " + video.string()), &out), 0) << out;
+  ASSERT_EQ(shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+                  "-of csv=p=0 " + video.string(), &out), 0);
+  EXPECT_EQ(std::stoi(out), 13);
+  // Nothing but the model and the video in the directory: the temporary file was renamed.
+  size_t files = 0;
+  for ([[maybe_unused]] auto& e : std::filesystem::directory_iterator(dir_.path())) ++files;
+  EXPECT_EQ(files, 2u);
+}
+
+TEST_F(Capture, InterruptedCaptureLeavesAPlayableVideo) {
+  if (shell("command -v ffprobe") != 0) GTEST_SKIP() << "ffprobe not installed";
+  const auto video = dir_ / "i.mp4";
+  std::string out;
+  // 30000 frames take far longer than the 3 s before SIGINT.
+  const int code = shell("sh -c '" + capture("--duration 1000 --fps 30 -o " + video.string()) +
+                             " & pid=$!; sleep 3; kill -INT $pid; wait $pid'", &out);
+  EXPECT_EQ(code, 130) << out;
+  EXPECT_NE(out.find("interrupted"), std::string::npos) << out;
+  ASSERT_TRUE(std::filesystem::exists(video)) << out;
+  ASSERT_EQ(shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+                  "-of csv=p=0 " + video.string(), &out), 0) << out;
+  EXPECT_GT(std::stoi(out), 0);
+  EXPECT_LT(std::stoi(out), 30000);
+}
+
+TEST_F(Capture, MetricsCsvHasHeaderAndOneRowPerFrame) {
+  const auto csv = dir_ / "m.csv";
+  std::string out;
+  ASSERT_EQ(shell(capture("--duration 1 --fps 6 -o " + (dir_ / "seq").string() + "/ --metrics " + csv.string()), &out), 0)
+      << out;
+  EXPECT_NE(out.find("churn mean"), std::string::npos) << out;
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "frame,line_pixels,appeared,vanished,churn,strokes,specks,active_faces,splits,collapses,ms_total");
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 10) << line;
+  }
+  EXPECT_EQ(rows, 6);
+}
+
+TEST_F(Capture, MissingFfmpegIsAClearError) {
+  std::string out;
+  const int code = shell("PATH=/nonexistent " + capture("-o " + (dir_ / "x.mp4").string()), &out);
+  EXPECT_EQ(code, 1);
+  EXPECT_NE(out.find("ffmpeg not found"), std::string::npos) << out;
+  EXPECT_NE(out.find("PNG"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "x.mp4"));
+}
+
+TEST_F(Capture, BadOptions) {
+  for (const std::string args : {"--frames 5:2 -o " + (dir_ / "s").string() + "/",
+                                 "--path spiral -o " + (dir_ / "s").string() + "/",
+                                 "-o " + (dir_ / "v.avi").string(), "--fps 0 -o " + (dir_ / "s").string() + "/"}) {
+    std::string out;
+    EXPECT_EQ(shell(capture(args), &out), 2) << args << ": " << out;
+  }
+  std::ofstream(dir_ / "bad.json") << "{\"keys\": 3}";
+  std::string out;
+  EXPECT_EQ(shell(capture("--path " + (dir_ / "bad.json").string() + " -o " + (dir_ / "s").string() + "/"), &out), 1);
+  EXPECT_NE(out.find("bad.json"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace lodline
