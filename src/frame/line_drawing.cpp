@@ -13,6 +13,17 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params)
   timings_.shape = sw.lap();
 }
 
+void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
+                             std::span<const std::array<uint32_t, 3>> faces,
+                             std::span<const uint32_t> changed) {
+  Stopwatch sw;
+  mesh_.positions.assign(positions.begin(), positions.end());
+  mesh_.faces.assign(faces.begin(), faces.end());
+  mesh_.marked_edges.clear();  // marked edges refer to full-detail vertex ids
+  shape_.update(mesh_, changed);
+  timings_.shape = sw.lap();
+}
+
 std::span<const glm::vec3> LineDrawing::normals() const { return shape_.normals(); }
 
 void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled) {
@@ -23,15 +34,12 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   p.marked_edges = p.marked_edges && p.creases;
   p.boundaries = p.boundaries && enabled[static_cast<int>(LineKind::kBoundary)];
 
-  Stopwatch sw;
   extractor_.extract(mesh_, shape_, ViewSpec::fromCamera(camera), p, feature_size_, segments_);
-  const double extract_total = sw.lap();
+  timings_.view = extractor_.lastViewMs();
+  timings_.extract = extractor_.lastExtractMs();
+  Stopwatch sw;
   chainStrokes(segments_, strokes_, chain_scratch_);
   timings_.chain = sw.lap();
-  // LineExtractor does view quantities and extraction in one call; split its time by a
-  // separate measurement would double the work, so `view` is reported inside `extract`.
-  timings_.view = 0.0;
-  timings_.extract = extract_total;
 
   // Group segments by kind for the renderer (LineType and LineKind share their order).
   buffer_.clear();

@@ -25,8 +25,17 @@ struct CpuTimings {
 
 class LineDrawing {
  public:
-  /// Takes the mesh and computes its shape quantities (normals, curvature, derivatives).
+  /// Takes the full-detail mesh and computes its shape quantities (normals, curvature,
+  /// derivatives), its bounds and its feature size (which stay those of the full-detail model
+  /// when level of detail later replaces the mesh).
   explicit LineDrawing(TriMesh mesh, const LineParams& params = {});
+
+  /// Replaces the mesh by an adapted one (level of detail): `positions` per vertex slot,
+  /// `faces` indexing them; `changed` lists the vertices whose position or incident faces
+  /// changed since the last call. Shape quantities are updated incrementally (bit-identical
+  /// to a full recompute). Unused slots may hold any finite position.
+  void updateMesh(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
+                  std::span<const uint32_t> changed);
 
   /// Recomputes the lines for `camera`. Kinds disabled in `enabled` are not extracted.
   void update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled);
@@ -44,6 +53,7 @@ class LineDrawing {
   /// Model length scale used for the scale-free suggestive-contour thresholds.
   float featureSize() const { return feature_size_; }
   const CpuTimings& timings() const { return timings_; }
+  const ShapeCache& shape() const { return shape_; }
 
  private:
   TriMesh mesh_;
