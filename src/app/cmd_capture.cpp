@@ -26,7 +26,7 @@
 #include "export/visibility.h"
 #include "frame/camera_path.h"
 #include "io/atomic_file.h"
-#include "io/load_mesh.h"
+#include "app/model.h"
 
 namespace lodline {
 namespace {
@@ -38,6 +38,7 @@ extern "C" void onInterrupt(int) { g_interrupted.store(true); }
 
 struct CaptureOptions {
   ViewOptions view;
+  DetailOptions detail;
   std::string path = "orbit";
   double duration = 8.0;
   std::string frames;
@@ -116,11 +117,15 @@ int runCapture(const CaptureOptions& o) {
                                       "PNG sequence with -o DIR/)"));
   }
 
+  auto detail = resolveDetailOptions(o.detail);
+  if (!detail) return reportError(detail.error());
   const RenderParams& rp = resolved->render;
-  auto mesh = loadMesh(resolved->model);
-  if (!mesh) return reportError(mesh.error());
+  auto model = loadModel(resolved->model, *detail);
+  if (!model) return reportError(model.error());
+  LodDrawing& lod_drawing = **model;
+  const LineDrawing& drawing = lod_drawing.drawing();
+  const size_t model_vertices = drawing.mesh().vertexCount(), model_faces = drawing.mesh().faceCount();
   const float aspect = static_cast<float>(rp.width) / static_cast<float>(rp.height);
-  LineDrawing drawing(std::move(mesh.value()));
 
   Result<CameraPath> cam_path = [&]() -> Result<CameraPath> {
     const auto& names = builtinPathNames();
@@ -136,7 +141,6 @@ int runCapture(const CaptureOptions& o) {
 
   auto headless = HeadlessRenderer::create(*backend, rp);
   if (!headless) return reportError(headless.error());
-  headless->setMesh(drawing);
   std::optional<VideoWriter> video;
   if (!png_sequence) {
     auto v = VideoWriter::open(out, {rp.width, rp.height, o.fps, 18});
@@ -157,16 +161,29 @@ int runCapture(const CaptureOptions& o) {
   // One step of the simulation at frame k (time k/fps): the state every later frame builds
   // on. Level of detail and temporal smoothing will keep state here; with full detail a
   // frame depends on its camera only.
+  // Errors from the detail parameters were ruled out by resolveDetailOptions.
   auto simulate = [&](int64_t k) -> Camera {
     const Camera cam = cam_path->at(static_cast<double>(k) / o.fps, drawing.bounds());
-    drawing.update(cam, enabled);
+    (void)lod_drawing.frame(cam, rp.width, rp.height, detail->params, static_cast<float>(1.0 / o.fps), enabled);
     return cam;
   };
   auto line_mask = [&](const Camera& cam, LineMask& m) {
+    headless->setMesh(drawing);
     headless->draw(drawing, cam, rp);
     visibleStrokes(drawing.strokes(), cam, headless->readDepth(), {}, visible);
     rasterizeStrokes(visible, rp.width, rp.height, m);
   };
+  // Frame 0 starts from the detail converged for its camera (as a still render would), not
+  // from the base mesh, so the first frames are not a refinement transient.
+  {
+    DetailParams still = detail->params;
+    still.geomorphs = false;
+    const Camera cam0 = cam_path->at(0.0, drawing.bounds());
+    if (auto steps = lod_drawing.converge(cam0, rp.width, rp.height, still, static_cast<float>(1.0 / o.fps),
+                                          detail->max_adapt_frames, enabled);
+        !steps)
+      return reportError(steps.error());
+  }
   // Frames before the range only advance the simulation; the one just before it also gives
   // the previous line mask, so frame k's metrics are the same whichever range renders it.
   for (int64_t k = 0; k < range->first; ++k) {
@@ -186,6 +203,7 @@ int runCapture(const CaptureOptions& o) {
   for (int64_t k = range->first; k < range->end && !g_interrupted.load(); ++k) {
     Stopwatch frame_clock;
     const Camera cam = simulate(k);
+    if (lod_drawing.meshChanged() || k == range->first) headless->setMesh(drawing);
     headless->draw(drawing, cam, rp);
     const Image image = headless->readImage();
     if (png_sequence) {
@@ -210,7 +228,8 @@ int runCapture(const CaptureOptions& o) {
       const double ms = frame_clock.elapsed();
       csv << k << ',' << change.line_pixels << ',' << change.appeared << ',' << change.vanished << ','
           << change.churn() << ',' << visible.strokeCount() << ',' << specks << ','
-          << drawing.mesh().faceCount() << ",0,0," << ms << '\n';
+          << drawing.mesh().faceCount() << ',' << (lod_drawing.lod() ? lod_drawing.lod()->stats().splits : 0) << ','
+          << (lod_drawing.lod() ? lod_drawing.lod()->stats().collapses : 0) << ',' << ms << '\n';
       if (have_prev) churns.push_back(change.churn());
       specks_per_frame.push_back(static_cast<double>(specks));
       std::swap(prev_mask, mask);
@@ -249,8 +268,8 @@ int runCapture(const CaptureOptions& o) {
               << "  specks mean " << mean_specks << '\n';
   if (!o.stats.empty()) {
     nlohmann::json j;
-    j["model"] = {{"path", resolved->model.string()}, {"vertices", drawing.mesh().vertexCount()},
-                  {"faces", drawing.mesh().faceCount()}};
+    j["model"] = {{"path", resolved->model.string()}, {"vertices", model_vertices},
+                  {"faces", model_faces}};
     j["image"] = {{"width", rp.width}, {"height", rp.height}};
     j["capture"] = {{"path", o.path}, {"fps", o.fps}, {"first_frame", range->first},
                     {"frames", done}, {"interrupted", interrupted}};
@@ -283,6 +302,7 @@ Command addCaptureCommand(CLI::App& parent) {
   CLI::App* cmd = parent.add_subcommand(
       "capture", "Render a camera path headlessly to an MP4 video or a numbered PNG sequence");
   addViewOptions(*cmd, o->view);
+  addDetailOptions(*cmd, o->detail);
   cmd->add_option("--path", o->path, "Camera path: orbit, zoom-out, dolly, flyover, or a path file (.json)")
       ->capture_default_str();
   cmd->add_option("--duration", o->duration, "Length of a built-in path in seconds")->capture_default_str();

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -12,12 +13,13 @@
 #include "app/headless.h"
 #include "app/options.h"
 #include "core/timer.h"
-#include "frame/line_drawing.h"
+#include "app/model.h"
 #include "export/svg.h"
 #include "export/visibility.h"
 #include "io/atomic_file.h"
 #include "io/image.h"
 #include "io/load_mesh.h"
+#include "raster/soft_renderer.h"
 
 namespace lodline {
 
@@ -37,10 +39,12 @@ std::string colorToHex(const glm::vec4& c) {
 
 struct RenderOptions {
   ViewOptions view;
+  DetailOptions detail;
   std::string output;
   std::string svg;
   std::string stats;
   std::string context = "auto";
+  std::string backend = "gl";  ///< gl (OpenGL context) or soft (raster/, no OpenGL at all)
 };
 
 int runRender(const RenderOptions& o) {
@@ -49,6 +53,9 @@ int runRender(const RenderOptions& o) {
   if (!resolved) return reportError(resolved.error());
   auto backend = parseContextBackend(o.context);
   if (!backend) return reportError(backend.error());
+  if (o.backend != "gl" && o.backend != "soft")
+    return reportError(Error::usage("--backend: expected gl or soft, got '" + o.backend + "'"));
+  const bool soft = o.backend == "soft";
   if (o.output.empty() && o.svg.empty())
     return reportError(Error::usage("render: give an output: -o FILE.png and/or --svg FILE.svg"));
   auto has_ext = [](const std::string& path, const char* want) {
@@ -66,32 +73,58 @@ int runRender(const RenderOptions& o) {
       if (Status s = checkWritable(*path); !s) return reportError(s.error());
 
   const RenderParams& rp = resolved->render;
+  auto detail = resolveDetailOptions(o.detail);
+  if (!detail) return reportError(detail.error());
   Stopwatch stage;
-  auto mesh = loadMesh(resolved->model);
-  if (!mesh) return reportError(mesh.error());
-  const size_t model_vertices = mesh->vertexCount(), model_faces = mesh->faceCount();
-  const double ms_load = stage.lap();
+  double ms_load = 0.0, ms_pm = 0.0;
+  std::string cache_note;
+  auto model = loadModel(resolved->model, *detail, &ms_load, &ms_pm, &cache_note);
+  if (!model) return reportError(model.error());
+  LodDrawing& lod_drawing = **model;
+  const LineDrawing& drawing = lod_drawing.drawing();
+  const size_t model_vertices = drawing.mesh().vertexCount(), model_faces = drawing.mesh().faceCount();
+  stage.lap();
 
-  LineDrawing drawing(std::move(mesh.value()));
   const float aspect = static_cast<float>(rp.width) / static_cast<float>(rp.height);
   const Camera camera = orbitCamera(drawing.bounds(), resolved->orbit, resolved->fov_deg, aspect);
   std::array<bool, kLineKindCount> enabled{};
   for (int k = 0; k < kLineKindCount; ++k) enabled[k] = rp.lines.kinds[k].enabled;
-  drawing.update(camera, enabled);
-  stage.lap();
+  // A still image shows the converged detail: adapt without geomorphs until nothing changes.
+  DetailParams still = detail->params;
+  still.geomorphs = false;
+  auto steps = lod_drawing.converge(camera, rp.width, rp.height, still, 1.0f / 30.0f,
+                                    detail->max_adapt_frames, enabled);
+  if (!steps) return reportError(steps.error());
+  const double ms_adapt = stage.lap();
 
-  auto headless = HeadlessRenderer::create(*backend, rp);
-  if (!headless) return reportError(headless.error());
-  headless->setMesh(drawing);
-  const double ms_setup = stage.lap();
-
-  headless->draw(drawing, camera, rp);
-  const double ms_render = stage.lap();
-  const Image image = headless->readImage();
-  const double ms_readback = stage.lap();
+  // --backend soft: the software rasteriser (raster/), no OpenGL context is created.
+  std::optional<Result<HeadlessRenderer>> headless;
+  SoftRenderer soft_renderer;
+  Image image;
+  DepthImage depth;
+  double ms_setup = 0.0, ms_render = 0.0, ms_readback = 0.0;
+  if (soft) {
+    soft_renderer.setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
+    soft_renderer.setLines(drawing.lines());
+    ms_setup = stage.lap();
+    soft_renderer.draw(camera, rp);
+    ms_render = stage.lap();
+    image = soft_renderer.image();
+    depth = soft_renderer.depth();
+    ms_readback = stage.lap();
+  } else {
+    headless = HeadlessRenderer::create(*backend, rp);
+    if (!*headless) return reportError(headless->error());
+    (*headless)->setMesh(drawing);
+    ms_setup = stage.lap();
+    (*headless)->draw(drawing, camera, rp);
+    ms_render = stage.lap();
+    image = (*headless)->readImage();
+    ms_readback = stage.lap();
+    depth = (*headless)->readDepth();
+  }
 
   // Visible lines, from the depth buffer of the faces just drawn: for the SVG and the stats.
-  const DepthImage depth = headless->readDepth();
   VisibleStrokes visible;
   visibleStrokes(drawing.strokes(), camera, depth, {}, visible);
   const auto visible_segments = countVisibleSegments(drawing.segments(), camera, depth);
@@ -116,10 +149,16 @@ int runRender(const RenderOptions& o) {
     nlohmann::json j;
     j["model"] = {{"path", resolved->model.string()}, {"vertices", model_vertices}, {"faces", model_faces}};
     j["image"] = {{"width", rp.width}, {"height", rp.height}};
-    j["context"] = {{"backend", backendName(headless->context().backend())},
-                    {"gl", headless->context().description()}};
-    j["faces_drawn"] = headless->renderer().faceCount();
-    j["line_segments"] = headless->renderer().segmentsDrawn();
+    if (soft) {
+      j["context"] = {{"backend", "soft"}, {"gl", "none"}};
+      j["faces_drawn"] = soft_renderer.faceCount();
+      j["line_segments"] = soft_renderer.segmentsDrawn();
+    } else {
+      j["context"] = {{"backend", backendName((*headless)->context().backend())},
+                      {"gl", (*headless)->context().description()}};
+      j["faces_drawn"] = (*headless)->renderer().faceCount();
+      j["line_segments"] = (*headless)->renderer().segmentsDrawn();
+    }
     nlohmann::json lines, extracted;
     for (int k = 0; k < kLineKindCount; ++k) {
       const char* name = lineKindName(static_cast<LineKind>(k));
@@ -127,11 +166,21 @@ int runRender(const RenderOptions& o) {
       extracted[name] = drawing.lines().count[k] / 2;
     }
     j["lines"] = lines;
+    if (const AdaptiveMesh* lod = lod_drawing.lod()) {
+      const LodStats& ls = lod->stats();
+      float band = 0.0f;
+      uint32_t visible_faces = 0;
+      lod->measureBand(band, visible_faces);
+      j["lod"] = {{"active_vertices", lod->activeVertexCount()}, {"active_faces", lod->activeFaceCount()},
+                  {"visible_faces", visible_faces}, {"splits", ls.splits}, {"collapses", ls.collapses},
+                  {"morphing", ls.morphing}, {"band_fraction", band}, {"target_area", ls.target_area},
+                  {"adapt_steps", *steps}, {"cache", cache_note}};
+    }
     j["lines_extracted"] = extracted;
     j["strokes"] = visible.strokeCount();
     j["specks"] = std::count_if(visible.length_px.begin(), visible.length_px.end(),
                                 [](float len) { return len < 3.0f; });
-    j["ms"] = {{"load", ms_load},   {"shape", t.shape},   {"view", t.view},
+    j["ms"] = {{"load", ms_load}, {"pm", ms_pm}, {"adapt", ms_adapt},   {"shape", t.shape},   {"view", t.view},
                {"extract", t.extract}, {"chain", t.chain}, {"setup", ms_setup},
                {"render", ms_render}, {"readback", ms_readback}, {"visibility", ms_visibility}, {"total", total.elapsed()}};
     const std::string text = j.dump(2) + "\n";
@@ -150,12 +199,20 @@ Command addRenderCommand(CLI::App& parent) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = parent.add_subcommand("render", "Render a model headlessly to a PNG line drawing");
   addViewOptions(*cmd, o->view);
+  addDetailOptions(*cmd, o->detail);
+  cmd->add_option("--max-adapt-frames", o->detail.max_adapt_frames,
+                  "Adaptation steps at most before drawing the still image")
+      ->capture_default_str();
   cmd->add_option("-o,--output", o->output, "Output PNG file");
   cmd->add_option("--svg", o->svg,
                   "Also (or only) write the visible strokes as an SVG line drawing of the same size");
   cmd->add_option("--stats", o->stats, "Write per-frame statistics as JSON to this file (docs/stats.md)");
   cmd->add_option("--context", o->context,
                   "OpenGL context: auto (EGL surfaceless, then OSMesa), egl or osmesa")
+      ->capture_default_str();
+  cmd->add_option("--backend", o->backend,
+                  "Renderer: gl (OpenGL through --context) or soft (software rasteriser with "
+                  "constant-depth scanlines, no OpenGL context; docs/softraster.md)")
       ->capture_default_str();
   return {cmd, [o] { return runRender(*o); }};
 }

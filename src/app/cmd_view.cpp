@@ -3,8 +3,9 @@
 //
 // Mouse: left-drag orbits, right- or middle-drag pans, wheel zooms.
 // Keys: arrows orbit, +/- (or PageUp/PageDown) zoom, T toggles toon/lines, 1-4 toggle
-// contour/suggestive/crease/boundary lines, R resets the view, P saves lodline-view.png,
-// Esc or Q quits.
+// contour/suggestive/crease/boundary lines, [ and ] halve/double the target triangle area
+// (detail control), G toggles geomorphs, R resets the view, P saves lodline-view.png, Esc
+// or Q quits.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -17,8 +18,7 @@
 #include "app/commands.h"
 #include "app/options.h"
 #include "core/timer.h"
-#include "frame/line_drawing.h"
-#include "io/load_mesh.h"
+#include "app/model.h"
 
 #ifdef LODLINE_HAVE_VIEWER
 #include "gl/glfw_window.h"
@@ -35,6 +35,7 @@ struct ViewerState {
   OrbitView initial;
   glm::vec3 pan{0.0f};
   RenderParams params;
+  DetailParams detail;
   float fov_deg = 35.0f;
   bool dirty = true;  // camera or line selection changed: lines must be recomputed
   bool dragging_orbit = false, dragging_pan = false;
@@ -84,6 +85,9 @@ void onKey(GLFWwindow* w, int key, int, int action, int) {
       s.dirty = true;
       break;
     }
+    case GLFW_KEY_LEFT_BRACKET: s.detail.target_area = std::max(0.25f, s.detail.target_area * 0.5f); break;
+    case GLFW_KEY_RIGHT_BRACKET: s.detail.target_area = std::min(4096.0f, s.detail.target_area * 2.0f); break;
+    case GLFW_KEY_G: s.detail.geomorphs = !s.detail.geomorphs; break;
     case GLFW_KEY_R: s.orbit = s.initial; s.pan = glm::vec3(0.0f); s.dirty = true; break;
     case GLFW_KEY_P: s.screenshot = true; break;
     default: break;
@@ -127,16 +131,19 @@ void onScroll(GLFWwindow* w, double, double dy) {
   zoom(s, static_cast<float>(std::pow(1.1, -dy)));
 }
 
-int runView(const ViewOptions& o) {
+int runView(const ViewOptions& o, const DetailOptions& d) {
   auto resolved = resolveViewOptions(o);
   if (!resolved) return reportError(resolved.error());
-  auto mesh = loadMesh(resolved->model);
-  if (!mesh) return reportError(mesh.error());
-  const size_t face_count = mesh->faceCount();
-  LineDrawing drawing(std::move(mesh.value()));
+  auto detail = resolveDetailOptions(d);
+  if (!detail) return reportError(detail.error());
+  auto model = loadModel(resolved->model, *detail);
+  if (!model) return reportError(model.error());
+  LodDrawing& lod_drawing = **model;
+  const LineDrawing& drawing = lod_drawing.drawing();
 
   ViewerState s;
   s.params = resolved->render;
+  s.detail = detail->params;
   s.fov_deg = resolved->fov_deg;
   s.bounds = drawing.bounds();
   s.orbit = resolved->orbit;
@@ -159,10 +166,9 @@ int runView(const ViewOptions& o) {
   {
     auto renderer = Renderer::create();
     if (!renderer) return reportError(renderer.error());
-    renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
     if (s.params.msaa > 1) glEnable(GL_MULTISAMPLE);
 
-    Stopwatch fps_clock;
+    Stopwatch fps_clock, frame_clock;
     int frames = 0;
     while (!glfwWindowShouldClose(w)) {
       glfwPollEvents();
@@ -173,10 +179,16 @@ int runView(const ViewOptions& o) {
         continue;
       }
       const Camera cam = viewerCamera(s, static_cast<float>(fb_w) / static_cast<float>(fb_h));
-      if (s.dirty) {
+      // Detail control adapts every frame (geomorphs run on while the camera rests); full
+      // detail recomputes lines only when the view or the line selection changed.
+      const float dt = std::min(0.1f, static_cast<float>(frame_clock.lap() / 1000.0));
+      if (s.dirty || lod_drawing.detailControlled()) {
         std::array<bool, kLineKindCount> enabled{};
         for (int k = 0; k < kLineKindCount; ++k) enabled[k] = s.params.lines.kinds[k].enabled;
-        drawing.update(cam, enabled);
+        if (Status st = lod_drawing.frame(cam, fb_w, fb_h, s.detail, dt, enabled); !st)
+          return reportError(st.error());
+        if (lod_drawing.meshChanged())
+          renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
         renderer->setLines(drawing.lines());
         s.dirty = false;
       }
@@ -200,8 +212,13 @@ int runView(const ViewOptions& o) {
         const double fps = frames * 1000.0 / fps_clock.lap();
         frames = 0;
         char title[256];
-        std::snprintf(title, sizeof(title), "lodline - %s - %.1f fps - %zu faces - %zu line segments",
-                      resolved->model.filename().c_str(), fps, face_count, renderer->segmentsDrawn());
+        if (lod_drawing.detailControlled())
+          std::snprintf(title, sizeof(title), "lodline - %s - %.1f fps - %zu faces (T %.3g px^2%s) - %zu line segments",
+                        resolved->model.filename().c_str(), fps, renderer->faceCount(), s.detail.target_area,
+                        s.detail.geomorphs ? "" : ", no geomorphs", renderer->segmentsDrawn());
+        else
+          std::snprintf(title, sizeof(title), "lodline - %s - %.1f fps - %zu faces - %zu line segments",
+                        resolved->model.filename().c_str(), fps, renderer->faceCount(), renderer->segmentsDrawn());
         glfwSetWindowTitle(w, title);
       }
     }
@@ -213,16 +230,22 @@ int runView(const ViewOptions& o) {
 #endif
 
 Command addViewCommand(CLI::App& parent) {
-  auto o = std::make_shared<ViewOptions>();
+  struct Opts {
+    ViewOptions view;
+    DetailOptions detail;
+  };
+  auto o = std::make_shared<Opts>();
   CLI::App* cmd = parent.add_subcommand(
       "view",
       "Open a model in an interactive window.\n"
       "  Mouse: left-drag orbit, right/middle-drag pan, wheel zoom.\n"
       "  Keys: arrows orbit, +/- zoom, T toon/lines, 1-4 toggle contour/suggestive/crease/boundary,\n"
+      "        [ ] halve/double the target triangle area, G geomorphs on/off,\n"
       "        R reset view, P save lodline-view.png, Esc/Q quit.");
-  addViewOptions(*cmd, *o);
+  addViewOptions(*cmd, o->view);
+  addDetailOptions(*cmd, o->detail);
 #ifdef LODLINE_HAVE_VIEWER
-  return {cmd, [o] { return runView(*o); }};
+  return {cmd, [o] { return runView(o->view, o->detail); }};
 #else
   return {cmd, [] { return reportError(Error::runtime("this build has no viewer (built with LODLINE_BUILD_VIEWER=OFF)")); }};
 #endif

@@ -19,6 +19,7 @@ Command addRenderCommand(CLI::App& parent);
 Command addViewCommand(CLI::App& parent);
 Command addGenerateCommand(CLI::App& parent);
 Command addCaptureCommand(CLI::App& parent);
+Command addBuildCommand(CLI::App& parent);
 
 /// Prints "lodline: <message>" to stderr and returns the error's exit code.
 int reportError(const Error& e);

@@ -14,7 +14,9 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
                  "Camera as AZ,EL,DIST: azimuth and elevation in degrees, distance in "
                  "bounding-sphere radii (default: a 3/4 view that frames the whole model)");
   cmd.add_option("--fov", o.fov_deg, "Vertical field of view in degrees (1-170)")->capture_default_str();
-  cmd.add_option("--style", o.style, "lines (lines on the background) or toon (toon-shaded faces + lines)")
+  cmd.add_option("--style", o.style,
+                 "lines (lines on the background), toon (toon-shaded faces + lines) or shaded "
+                 "(Blinn-Phong faces + chamfer edge highlights + lines)")
       ->capture_default_str();
   cmd.add_option("--line-width", o.line_width,
                  "Contour width in pixels; the other line kinds scale with it (default 2.5)");
@@ -25,6 +27,22 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
       ->capture_default_str();
   cmd.add_option("--lines", o.lines,
                  "Comma-separated line kinds to draw: contour, suggestive, crease, boundary (or none)")
+      ->capture_default_str();
+  cmd.add_option("--chamfer", o.chamfer,
+                 "Chamfer highlights on sharp edges: auto (with --style shaded), on (also over "
+                 "toon) or off")
+      ->capture_default_str();
+  cmd.add_option("--chamfer-radius", o.chamfer_radius,
+                 "Rounded-edge radius r_e in model units (0 = auto: 0.004 x bounding radius)")
+      ->capture_default_str();
+  cmd.add_option("--chamfer-k", o.chamfer_k,
+                 "K of the highlight weight W = K*r_e/(d*r_max), pixels (0 = auto: focal length)")
+      ->capture_default_str();
+  cmd.add_option("--chamfer-angle", o.chamfer_angle,
+                 "Dihedral angle in degrees from which an edge is sharp (1-180)")
+      ->capture_default_str();
+  cmd.add_option("--chamfer-shininess", o.chamfer_shininess,
+                 "Blinn-Phong exponent of the shaded faces and highlights (1-127)")
       ->capture_default_str();
 }
 
@@ -81,6 +99,31 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   r.render.background = *bg;
   if (o.msaa < 1 || o.msaa > 16) return Error::usage("--msaa: must be 1..16");
   r.render.msaa = o.msaa;
+  ChamferParams& ch = r.render.chamfer;
+  if (o.chamfer == "auto") {
+    ch.enabled = true;
+    ch.over_toon = false;
+  } else if (o.chamfer == "on") {
+    ch.enabled = true;
+    ch.over_toon = true;
+  } else if (o.chamfer == "off") {
+    ch.enabled = false;
+    ch.over_toon = false;
+  } else {
+    return Error::usage("--chamfer: unknown value '" + o.chamfer + "' (expected auto, on or off)");
+  }
+  if (!(o.chamfer_radius >= 0.0f) || !std::isfinite(o.chamfer_radius))
+    return Error::usage("--chamfer-radius: must be >= 0 model units (0 = auto)");
+  ch.radius = o.chamfer_radius;
+  if (!(o.chamfer_k >= 0.0f) || !std::isfinite(o.chamfer_k))
+    return Error::usage("--chamfer-k: must be >= 0 pixels (0 = auto)");
+  ch.k = o.chamfer_k;
+  if (!(o.chamfer_angle >= 1.0f && o.chamfer_angle <= 180.0f))
+    return Error::usage("--chamfer-angle: must be in [1, 180] degrees");
+  ch.threshold_deg = o.chamfer_angle;
+  if (!(o.chamfer_shininess >= 1.0f && o.chamfer_shininess <= 127.0f))
+    return Error::usage("--chamfer-shininess: must be in [1, 127]");
+  ch.shininess = o.chamfer_shininess;
   for (auto& k : r.render.lines.kinds) k.enabled = false;
   std::stringstream ss(o.lines);
   std::string item;

@@ -25,6 +25,12 @@ struct ViewOptions {
   std::string background = "white";
   int msaa = 4;
   std::string lines = "contour,suggestive,crease,boundary";
+  // Chamfer edge highlights (ChamferParams; Wei, Shi, Yong 2014).
+  std::string chamfer = "auto";   ///< auto (with the shaded style), on (also over toon), off
+  float chamfer_radius = 0.0f;    ///< r_e, model units; 0 = auto
+  float chamfer_k = 0.0f;         ///< K, pixels; 0 = auto (focal length in px)
+  float chamfer_angle = 30.0f;    ///< sharp-edge threshold, degrees
+  float chamfer_shininess = 32.0f;  ///< Blinn–Phong exponent n
 };
 
 /// Everything a frame needs that does not depend on the model.

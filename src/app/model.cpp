@@ -1,0 +1,132 @@
+#include "app/model.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "core/timer.h"
+#include "io/image.h"
+#include "io/load_mesh.h"
+#include "pm/pm_file.h"
+
+namespace lodline {
+
+void addDetailOptions(CLI::App& cmd, DetailOptions& o) {
+  cmd.add_flag("--full-detail", o.full_detail,
+               "Draw the full-detail mesh (no progressive mesh, no detail control)");
+  cmd.add_option("--target-area", o.target_area,
+                 "Target image area T of visible triangles in px^2 (Jeong et al. 2005); larger = coarser")
+      ->capture_default_str();
+  cmd.add_option("--t-collapse", o.t_c, "Collapse below t_c*T")->capture_default_str();
+  cmd.add_option("--t-split", o.t_s, "Split above t_s*T (needs 2*t_c < t_s)")->capture_default_str();
+  cmd.add_option("--detail-map", o.detail_map,
+                 "Grayscale PNG over the image: a pixel of value v multiplies T by (v/255)*scale "
+                 "(white = coarse, black = finest); any size, stretched over the image");
+  cmd.add_option("--detail-map-scale", o.detail_map_scale, "Factor of T at a white detail-map pixel")
+      ->capture_default_str();
+  cmd.add_option("--depth-falloff", o.depth_falloff,
+                 "T grows as (distance/focus distance)^X with depth (terrain); 0 = off")
+      ->capture_default_str();
+  cmd.add_option("--foveation", o.foveation,
+                 "T grows away from the focus point by ((90/(90-q))^2)^X, q the angle; 0 = off")
+      ->capture_default_str();
+  cmd.add_option("--focus", o.focus, "Foveation focus as X,Y pixels (default: image centre)");
+  cmd.add_option("--object-factor", o.object_factor, "Per-object factor on T (e.g. 3 for a background object)")
+      ->capture_default_str();
+  cmd.add_option("--geomorphs", o.geomorphs, "Real-time geomorphs (Jeong et al. 2005 §3.2): on or off")
+      ->capture_default_str();
+  cmd.add_option("--morph-time", o.morph_time, "Geomorph transition time in seconds")->capture_default_str();
+  cmd.add_option("--cache-dir", o.cache_dir,
+                 "Where progressive meshes are cached (default $XDG_CACHE_HOME/lodline or ~/.cache/lodline)");
+}
+
+std::filesystem::path defaultCacheDir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "lodline";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache" / "lodline";
+  return std::filesystem::temp_directory_path() / "lodline-cache";
+}
+
+Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
+  ResolvedDetail r;
+  r.full_detail = o.full_detail;
+  r.max_adapt_frames = o.max_adapt_frames;
+  DetailParams& p = r.params;
+  if (!(o.target_area > 0.0f && o.target_area < 1e7f)) return Error::usage("--target-area: must be > 0 px^2");
+  p.target_area = o.target_area;
+  if (!(o.t_c > 0.0f && 2.0f * o.t_c < o.t_s))
+    return Error::usage("--t-collapse/--t-split: need 0 < 2*t_c < t_s (defaults 0.7 and 1.42)");
+  p.t_c = o.t_c;
+  p.t_s = o.t_s;
+  if (!(o.depth_falloff >= 0.0f && o.depth_falloff <= 8.0f)) return Error::usage("--depth-falloff: must be in [0, 8]");
+  p.depth_falloff = o.depth_falloff;
+  if (!(o.foveation >= 0.0f && o.foveation <= 8.0f)) return Error::usage("--foveation: must be in [0, 8]");
+  p.foveation = o.foveation;
+  if (!o.focus.empty()) {
+    float x = 0, y = 0;
+    char comma = 0;
+    std::istringstream in(o.focus);
+    if (!(in >> x >> comma >> y) || comma != ',' || !in.eof())
+      return Error::usage("--focus: expected X,Y in pixels, got '" + o.focus + "'");
+    p.focus_px = {x, y};
+  }
+  if (!(o.object_factor > 0.0f)) return Error::usage("--object-factor: must be > 0");
+  p.object_factor = o.object_factor;
+  if (o.geomorphs != "on" && o.geomorphs != "off") return Error::usage("--geomorphs: expected on or off");
+  p.geomorphs = o.geomorphs == "on";
+  if (!(o.morph_time > 0.0f && o.morph_time <= 60.0f)) return Error::usage("--morph-time: must be in (0, 60] s");
+  p.morph_time = o.morph_time;
+  if (!(o.detail_map_scale > 0.0f)) return Error::usage("--detail-map-scale: must be > 0");
+  if (!o.detail_map.empty()) {
+    auto img = readPng(o.detail_map);
+    if (!img) return img.error();
+    auto map = std::make_shared<DetailMap>();
+    map->width = img->width;
+    map->height = img->height;
+    map->values.resize(static_cast<size_t>(img->width) * img->height);
+    for (size_t i = 0; i < map->values.size(); ++i) {
+      const uint8_t* px = &img->rgba[i * 4];
+      const float grey = (0.299f * px[0] + 0.587f * px[1] + 0.114f * px[2]) / 255.0f;
+      map->values[i] = grey * o.detail_map_scale;
+    }
+    p.detail_map = std::move(map);
+  }
+  r.cache_dir = o.cache_dir.empty() ? defaultCacheDir() : std::filesystem::path(o.cache_dir);
+  return r;
+}
+
+PmProgress buildProgressBar(const std::string& label) {
+  if (!isatty(STDERR_FILENO)) return {};
+  auto clock = std::make_shared<Stopwatch>();
+  return [clock, label](float f) {
+    if (clock->elapsed() < 1000.0 && f < 1.0f) return;
+    const int width = 30, filled = static_cast<int>(f * width);
+    std::fprintf(stderr, "\r%s [%s%s] %3d%%", label.c_str(), std::string(filled, '#').c_str(),
+                 std::string(width - filled, ' ').c_str(), static_cast<int>(f * 100.0f));
+    if (f >= 1.0f) std::fputc('\n', stderr);
+    std::fflush(stderr);
+  };
+}
+
+Result<std::unique_ptr<LodDrawing>> loadModel(const std::filesystem::path& model, const ResolvedDetail& detail,
+                                              double* load_ms, double* pm_ms, std::string* note) {
+  Stopwatch sw;
+  auto mesh = loadMesh(model);
+  if (!mesh) return mesh.error();
+  if (load_ms) *load_ms = sw.lap();
+  if (detail.full_detail) {
+    if (pm_ms) *pm_ms = 0.0;
+    return std::make_unique<LodDrawing>(std::move(mesh.value()));
+  }
+  const uint64_t hash = meshContentHash(*mesh);
+  auto pm = loadOrBuildPm(*mesh, hash, detail.cache_dir, {},
+                          buildProgressBar("lodline: building progressive mesh of " + model.filename().string()),
+                          note);
+  if (!pm) return Error::runtime(model.string() + ": " + pm.error().message);
+  if (pm_ms) *pm_ms = sw.lap();
+  auto shared = std::make_shared<const ProgressiveMesh>(std::move(pm.value()));
+  return std::make_unique<LodDrawing>(std::move(mesh.value()), std::move(shared));
+}
+
+}  // namespace lodline

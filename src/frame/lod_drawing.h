@@ -1,0 +1,58 @@
+// One model through the whole CPU pipeline of a frame (DESIGN.md: io → pm → lod → shape →
+// lines): either at full detail, or as a progressive mesh selectively refined every frame so
+// visible triangles keep a target image area (Jeong et al. 2005 §3.1–3.2), feeding the same
+// LineDrawing. `render`, `view` and `capture` all drive this object, so they agree.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "frame/line_drawing.h"
+#include "lod/adaptive_mesh.h"
+#include "pm/progressive_mesh.h"
+
+namespace lodline {
+
+class LodDrawing {
+ public:
+  /// Full detail: the mesh is drawn as it is.
+  explicit LodDrawing(TriMesh full, const LineParams& params = {});
+  /// Detail control: `full` is the input mesh (for bounds and feature size), `pm` its
+  /// progressive mesh. Starts at the base mesh.
+  LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params = {});
+
+  bool detailControlled() const { return lod_ != nullptr; }
+
+  /// One frame: adapts the mesh to the view (advancing geomorphs by `dt` seconds), updates
+  /// the shape quantities of what changed and extracts the lines. Errors come only from
+  /// invalid detail parameters.
+  Status frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
+               const std::array<bool, kLineKindCount>& enabled);
+
+  /// Adapts with geomorphs and `dt` per step until a step changes nothing (no split, collapse
+  /// or running morph) or `max_steps` steps ran; then extracts the lines. Returns the steps.
+  Result<int> converge(const Camera& camera, int width, int height, const DetailParams& detail,
+                       float dt, int max_steps, const std::array<bool, kLineKindCount>& enabled);
+
+  const LineDrawing& drawing() const { return drawing_; }
+  const Bounds& bounds() const { return drawing_.bounds(); }
+  /// Null at full detail.
+  const AdaptiveMesh* lod() const { return lod_.get(); }
+  /// Milliseconds of the last adapt step (0 at full detail).
+  double adaptMs() const { return adapt_ms_; }
+  /// True when the mesh (positions or faces) changed in the last frame(): re-upload it.
+  bool meshChanged() const { return mesh_changed_; }
+
+ private:
+  Status adaptStep(const Camera& camera, int width, int height, const DetailParams& detail, float dt);
+  LineDrawing drawing_;
+  std::shared_ptr<const ProgressiveMesh> pm_;
+  std::unique_ptr<AdaptiveMesh> lod_;
+  std::vector<std::array<uint32_t, 3>> faces_;
+  std::vector<uint32_t> changed_;
+  double adapt_ms_ = 0.0;
+  bool mesh_changed_ = true;
+  bool first_ = true;
+};
+
+}  // namespace lodline
