@@ -1,0 +1,1146 @@
+// Selective refinement with image-space area control and geomorphs.
+//
+//   Hoppe 1997, "View-dependent refinement of progressive meshes": §4 (vsplit legal iff vs
+//     active and fn0..fn3 active; ecol legal iff vt, vu active and the faces adjacent to fl,
+//     fr are fn0..fn3; force_vsplit with an explicit stack; view frustum test with bounding
+//     spheres, back-face test with cones of normals), §5 (adapt_refinement loop).
+//   Hoppe 1998, "Efficient implementation of progressive meshes", §5 (flat arrays, free lists).
+//   Jeong, Ni, Lee, Markosian 2005, "Detail control in line drawings of 3D meshes":
+//     §3.1 (criterion: mean image-space area A_img = k·A/d² of the active faces around a
+//     vertex; split above t_s·T, collapse below t_c·T; T varying per object, by a detail map,
+//     with depth), §3.2 (geomorphs: collapses lock both vertices and morph them to the parent
+//     position before executing; splits execute at once and the children morph out; speed
+//     grows with the discrepancy between current and target area).
+//
+// Face ids are the input face ids; a face stores its 3 corner nodes and its 3 neighbour faces
+// (across edge (c[i], c[i+1])). Rotation counter-clockwise around corner i goes through the
+// neighbour across edge (c[i+2], c[i]).
+#include "lod/adaptive_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace lodline {
+
+namespace {
+
+constexpr uint32_t kNone = kPmNone;
+constexpr size_t kMaxFan = 1024;
+constexpr size_t kMaxStack = 1u << 20;
+/// Frames before a vertex whose (forced) split was refused is tried again.
+constexpr uint32_t kRetryFrames = 8;
+/// Evaluation passes per frame at most (a pass repeats only while it changes a lot).
+constexpr int kMaxPasses = 4;
+/// The exact post-collapse mean is computed only when the estimate is below this × t_c·T.
+constexpr float kEstimateMargin = 1.25f;
+
+inline uint32_t next3(uint32_t i) { return i == 2 ? 0 : i + 1; }
+inline uint32_t prev3(uint32_t i) { return i == 0 ? 2 : i - 1; }
+
+inline float clampf(float x, float lo, float hi) { return std::min(std::max(x, lo), hi); }
+
+}  // namespace
+
+AdaptiveMesh::AdaptiveMesh(const ProgressiveMesh& pm) : pm_(pm) {
+  n_nodes_ = pm.nodeCount();
+  n_faces_ = pm.faceCount();
+  const uint32_t n = pm.vertexCount();
+  node_pos_.resize(n_nodes_);
+  for (uint32_t v = 0; v < n_nodes_; ++v) node_pos_[v] = pm.positions[pm.origin[v]];
+
+  // Reference normals, leaf bounding spheres (1-ring reach) and leaf normal cones.
+  ref_normal_.resize(n_faces_);
+  std::vector<float> node_radius(n_nodes_, 0.0f);
+  std::vector<glm::vec3> cone_axis(n_nodes_, glm::vec3(0.0f));
+  for (uint32_t f = 0; f < n_faces_; ++f) {
+    const auto& c = pm.faces[f];
+    const glm::vec3 &a = pm.positions[c[0]], &b = pm.positions[c[1]], &d = pm.positions[c[2]];
+    const glm::vec3 nn = glm::cross(b - a, d - a);
+    const float len = glm::length(nn);
+    ref_normal_[f] = len > 0.0f ? nn / len : glm::vec3(0.0f);
+    for (int i = 0; i < 3; ++i) {
+      const glm::vec3& p = pm.positions[c[i]];
+      node_radius[c[i]] = std::max({node_radius[c[i]], glm::length(pm.positions[c[(i + 1) % 3]] - p),
+                                     glm::length(pm.positions[c[(i + 2) % 3]] - p)});
+      cone_axis[c[i]] += ref_normal_[f];
+    }
+  }
+  std::vector<float> angle(n_nodes_, 0.0f);
+  for (uint32_t v = 0; v < n; ++v) {
+    const float len = glm::length(cone_axis[v]);
+    if (len > 1e-6f) cone_axis[v] /= len;
+    else angle[v] = static_cast<float>(M_PI);
+  }
+  for (uint32_t f = 0; f < n_faces_; ++f) {
+    if (ref_normal_[f] == glm::vec3(0.0f)) continue;
+    for (uint32_t v : pm.faces[f]) {
+      const float a = std::acos(clampf(glm::dot(cone_axis[v], ref_normal_[f]), -1.0f, 1.0f));
+      angle[v] = std::max(angle[v], a);
+    }
+  }
+  // Internal nodes: children precede parents, so one forward pass merges bottom-up.
+  for (uint32_t s = n; s < n_nodes_; ++s) {
+    const VertexSplit& vs = pm.split(s);
+    const glm::vec3 p = node_pos_[s];
+    node_radius[s] = std::max(glm::length(node_pos_[vs.vt] - p) + node_radius[vs.vt],
+                               glm::length(node_pos_[vs.vu] - p) + node_radius[vs.vu]);
+    const glm::vec3 sum = cone_axis[vs.vt] + cone_axis[vs.vu];
+    const float len = glm::length(sum);
+    if (len < 1e-6f || angle[vs.vt] >= M_PI || angle[vs.vu] >= M_PI) {
+      angle[s] = static_cast<float>(M_PI);
+      continue;
+    }
+    const glm::vec3 axis = sum / len;
+    cone_axis[s] = axis;
+    const float a1 = std::acos(clampf(glm::dot(axis, cone_axis[vs.vt]), -1.0f, 1.0f)) + angle[vs.vt];
+    const float a2 = std::acos(clampf(glm::dot(axis, cone_axis[vs.vu]), -1.0f, 1.0f)) + angle[vs.vu];
+    angle[s] = std::min(static_cast<float>(M_PI), std::max(a1, a2));
+  }
+  bounds_.resize(n_nodes_);
+  for (uint32_t v = 0; v < n_nodes_; ++v) {
+    NodeBounds& b = bounds_[v];
+    b.pos = node_pos_[v];
+    b.radius = node_radius[v];
+    b.axis = cone_axis[v];
+    b.cone_sin = std::sin(angle[v]);
+    b.cone_cos = std::cos(angle[v]);
+    b.parent = pm.parent[v];
+    b.sibling = (b.parent != kNone && pm.split(b.parent).vt == v) ? pm.split(b.parent).vu : kNone;
+  }
+
+  node_slot_.assign(n_nodes_, kNone);
+  node_state_.assign(n_nodes_, 0);
+  pending_pos_.assign(n_nodes_, kNone);
+  retry_frame_.assign(n_nodes_, 0);
+  chain_.reserve(1024);
+  fv_.assign(n_faces_, {kNone, kNone, kNone});
+  fnb_.assign(n_faces_, {kNone, kNone, kNone});
+  face_pos_.assign(n_faces_, kNone);
+  active_faces_.reserve(n_faces_);
+  active_fs_.reserve(n_faces_);
+  active_area_.reserve(n_faces_);
+  const uint32_t cap = std::max<uint32_t>(n, 1);
+  slot_node_.assign(cap, kNone);
+  slot_face_.assign(cap, kNone);
+  disp_.assign(cap, glm::vec3(0.0f));
+  morph_from_.assign(cap, glm::vec3(0.0f));
+  morph_to_.assign(cap, glm::vec3(0.0f));
+  morph_t_.assign(cap, 0.0f);
+  morph_rate_.assign(cap, 0.0f);
+  morph_pos_.assign(cap, kNone);
+  dirty_stamp_.assign(cap, 0);
+  ring_sum_.assign(cap, 0.0);
+  slot_bounds_.assign(cap, NodeBounds{});
+
+  ring_cnt_.assign(cap, 0);
+  moved_stamp_.assign(cap, 0);
+  free_slots_.reserve(cap);
+  morphing_.reserve(cap);
+  pending_.reserve(cap / 2 + 1);
+  work_.reserve(2 * static_cast<size_t>(cap) + 16);
+  stack_.reserve(1024);
+  fan_u_.reserve(kMaxFan + 1);
+  fan_t_.reserve(kMaxFan + 1);
+  done_pending_.reserve(cap / 2 + 1);
+  resetToBase();
+}
+
+void AdaptiveMesh::resetToBase() {
+  std::fill(node_slot_.begin(), node_slot_.end(), kNone);
+  std::fill(node_state_.begin(), node_state_.end(), 0);
+  std::fill(pending_pos_.begin(), pending_pos_.end(), kNone);
+  for (uint32_t f : active_faces_) face_pos_[f] = kNone;
+  active_faces_.clear();
+  active_fs_.clear();
+  active_area_.clear();
+  std::fill(slot_node_.begin(), slot_node_.end(), kNone);
+  std::fill(morph_pos_.begin(), morph_pos_.end(), kNone);
+  slot_count_ = 0;
+  active_vertices_ = 0;
+  free_slots_.clear();
+  morphing_.clear();
+  pending_.clear();
+  for (uint32_t r : pm_.roots) allocSlot(r);
+  for (size_t k = 0; k < pm_.base_faces.size(); ++k) {
+    const uint32_t f = pm_.base_faces[k];
+    fv_[f] = pm_.base_corners[k];
+    fnb_[f] = pm_.base_neighbors[k];
+    activateFace(f);
+    for (int i = 0; i < 3; ++i) active_fs_[face_pos_[f]][i] = node_slot_[fv_[f][i]];
+    for (uint32_t v : fv_[f]) slot_face_[node_slot_[v]] = f;
+    active_area_[face_pos_[f]] = have_view_ ? faceImageArea(f) : 0.0f;
+    accumulate(f, 1.0f);
+  }
+  changes_.everything = true;
+}
+
+uint32_t AdaptiveMesh::allocSlot(uint32_t node) {
+  uint32_t slot;
+  if (!free_slots_.empty()) {
+    slot = free_slots_.back();
+    free_slots_.pop_back();
+  } else {
+    slot = slot_count_++;
+  }
+  slot_node_[slot] = node;
+  node_slot_[node] = slot;
+  slot_face_[slot] = kNone;
+  disp_[slot] = node_pos_[node];
+  slot_bounds_[slot] = bounds_[node];
+  morph_pos_[slot] = kNone;
+  ring_sum_[slot] = 0.0;
+  ring_cnt_[slot] = 0;
+  ++active_vertices_;
+  return slot;
+}
+
+void AdaptiveMesh::freeSlot(uint32_t slot) {
+  stopMorph(slot);
+  node_slot_[slot_node_[slot]] = kNone;
+  slot_node_[slot] = kNone;
+  slot_face_[slot] = kNone;
+  free_slots_.push_back(slot);
+  --active_vertices_;
+}
+
+void AdaptiveMesh::activateFace(uint32_t f) {
+  face_pos_[f] = static_cast<uint32_t>(active_faces_.size());
+  active_faces_.push_back(f);
+  active_fs_.push_back({kNone, kNone, kNone});
+  active_area_.push_back(0.0f);
+}
+
+void AdaptiveMesh::deactivateFace(uint32_t f) {
+  const uint32_t pos = face_pos_[f];
+  const uint32_t last = active_faces_.back();
+  active_faces_[pos] = last;
+  active_fs_[pos] = active_fs_.back();
+  active_area_[pos] = active_area_.back();
+  face_pos_[last] = pos;
+  active_faces_.pop_back();
+  active_fs_.pop_back();
+  active_area_.pop_back();
+  face_pos_[f] = kNone;
+}
+
+void AdaptiveMesh::markDirty(uint32_t slot) {
+  if (slot == kNone || dirty_stamp_[slot] == frame_) return;
+  dirty_stamp_[slot] = frame_;
+  changes_.dirty.push_back(slot);
+}
+
+void AdaptiveMesh::markMoved(uint32_t slot) {
+  if (moved_stamp_[slot] != frame_) {
+    moved_stamp_[slot] = frame_;
+    changes_.moved.push_back(slot);
+  }
+  markDirty(slot);
+}
+
+// ---------------------------------------------------------------------------------------
+// View and criterion
+
+Status AdaptiveMesh::setView(const Camera& camera, int width, int height,
+                             const DetailParams& params) {
+  if (width <= 0 || height <= 0)
+    return Error::usage("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                        " must be positive");
+  if (!(params.target_area > 0.0f) || !std::isfinite(params.target_area) ||
+      !(params.object_factor > 0.0f) || !std::isfinite(params.object_factor))
+    return Error::usage("target area and object factor must be positive");
+  if (!(params.t_c > 0.0f) || !(2.0f * params.t_c < params.t_s) || !std::isfinite(params.t_s))
+    return Error::usage("detail thresholds need 0 < 2·t_c < t_s (got t_c=" +
+                        std::to_string(params.t_c) + ", t_s=" + std::to_string(params.t_s) + ")");
+  if (!(params.morph_time >= 0.0f) || !(params.coarsen_time_factor >= 0.0f) ||
+      !(params.max_morph_speedup >= 1.0f))
+    return Error::usage("morph times must be ≥ 0 and max_morph_speedup ≥ 1");
+  if (const DetailMap* m = params.detail_map.get()) {
+    if (m->width <= 0 || m->height <= 0 ||
+        m->values.size() != static_cast<size_t>(m->width) * static_cast<size_t>(m->height))
+      return Error::usage("detail map: " + std::to_string(m->width) + "x" +
+                          std::to_string(m->height) + " needs width·height values, got " +
+                          std::to_string(m->values.size()));
+    for (float v : m->values)
+      if (!std::isfinite(v) || v < 0.0f)
+        return Error::usage("detail map: values must be finite and ≥ 0");
+  }
+  params_ = params;
+  camera_ = camera;
+  width_ = width;
+  height_ = height;
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  view_proj_ = camera.projection(aspect) * camera.view();
+  const glm::mat4& m = view_proj_;
+  auto row = [&](int i) { return glm::vec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
+  planes_ = {row(3) + row(0), row(3) - row(0), row(3) + row(1), row(3) - row(1), row(3) + row(2)};
+  for (auto& p : planes_) {
+    const float len = glm::length(glm::vec3(p));
+    if (len > 0.0f) p /= len;
+  }
+  eye_ = camera.eye;
+  forward_ = camera.forward();
+  k_ = pixelAreaFactor(camera, height);
+  t0_ = params.target_area * params.object_factor;
+  focus_dist_ = std::max(glm::length(camera.target - camera.eye), 1e-6f);
+  focal_px_ = 0.5f * static_cast<float>(height) / std::tan(0.5f * glm::radians(camera.fov_deg));
+  focus_ = params.focus_px;
+  if (focus_.x < 0.0f || focus_.y < 0.0f)
+    focus_ = glm::vec2(0.5f * static_cast<float>(width), 0.5f * static_cast<float>(height));
+  modifiers_ = params.detail_map != nullptr || params.depth_falloff != 0.0f ||
+               params.foveation != 0.0f;
+  have_view_ = true;
+  return Status::success();
+}
+
+float AdaptiveMesh::targetAt(const glm::vec3& p) const {
+  float t = t0_;
+  if (!modifiers_) return t;
+  if (params_.depth_falloff != 0.0f) {
+    const float d = camera_.orthographic ? glm::dot(p - eye_, forward_) : glm::length(p - eye_);
+    t *= std::pow(std::max(d / focus_dist_, 0.25f), params_.depth_falloff);
+  }
+  if (params_.detail_map || params_.foveation != 0.0f) {
+    const glm::vec4 clip = view_proj_ * glm::vec4(p, 1.0f);
+    if (clip.w <= 1e-9f) return t;
+    const float px = (clip.x / clip.w * 0.5f + 0.5f) * static_cast<float>(width_);
+    const float py = (0.5f - clip.y / clip.w * 0.5f) * static_cast<float>(height_);
+    if (const DetailMap* map = params_.detail_map.get()) {
+      const float u = clampf(px / static_cast<float>(width_), 0.0f, 1.0f) * map->width - 0.5f;
+      const float v = clampf(py / static_cast<float>(height_), 0.0f, 1.0f) * map->height - 0.5f;
+      const int x0 = std::clamp(static_cast<int>(std::floor(u)), 0, map->width - 1);
+      const int y0 = std::clamp(static_cast<int>(std::floor(v)), 0, map->height - 1);
+      const int x1 = std::min(x0 + 1, map->width - 1), y1 = std::min(y0 + 1, map->height - 1);
+      const float fx = clampf(u - static_cast<float>(x0), 0.0f, 1.0f);
+      const float fy = clampf(v - static_cast<float>(y0), 0.0f, 1.0f);
+      auto at = [&](int x, int y) { return map->values[static_cast<size_t>(y) * map->width + x]; };
+      const float val = (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x1, y0)) +
+                        fy * ((1 - fx) * at(x0, y1) + fx * at(x1, y1));
+      t *= std::max(val, params_.min_map_value);
+    }
+    if (params_.foveation != 0.0f) {
+      const float q = std::min(std::atan(glm::length(glm::vec2(px, py) - focus_) / focal_px_),
+                               glm::radians(80.0f));
+      const float f = static_cast<float>(M_PI_2) / (static_cast<float>(M_PI_2) - q);
+      t *= std::pow(f * f, params_.foveation);
+    }
+  }
+  return t;
+}
+
+float AdaptiveMesh::faceImageArea(uint32_t f) const {
+  const auto& c = active_fs_[face_pos_[f]];
+  const glm::vec3 &a = slot_bounds_[c[0]].pos, &b = slot_bounds_[c[1]].pos,
+                  &d = slot_bounds_[c[2]].pos;
+  const float area = 0.5f * glm::length(glm::cross(b - a, d - a));
+  if (camera_.orthographic) return k_ * area;
+  const glm::vec3 m = (a + b + d) * (1.0f / 3.0f) - eye_;
+  const float near2 = std::max(camera_.near_plane * camera_.near_plane, 1e-20f);
+  return k_ * area / std::max(glm::dot(m, m), near2);
+}
+
+float AdaptiveMesh::faceImageAreaWith(uint32_t f, uint32_t moved, const glm::vec3& p) const {
+  const auto& c = fv_[f];
+  const glm::vec3 a = c[0] == moved ? p : node_pos_[c[0]];
+  const glm::vec3 b = c[1] == moved ? p : node_pos_[c[1]];
+  const glm::vec3 d = c[2] == moved ? p : node_pos_[c[2]];
+  const float area = 0.5f * glm::length(glm::cross(b - a, d - a));
+  if (camera_.orthographic) return k_ * area;
+  const glm::vec3 m = (a + b + d) * (1.0f / 3.0f) - eye_;
+  const float near2 = std::max(camera_.near_plane * camera_.near_plane, 1e-20f);
+  return k_ * area / std::max(glm::dot(m, m), near2);
+}
+
+bool AdaptiveMesh::visible(const NodeBounds& nb) const {
+  if (!params_.cull) return true;
+  const glm::vec3 p = nb.pos;
+  const float r = nb.radius;
+  for (const glm::vec4& pl : planes_)
+    if (glm::dot(glm::vec3(pl), p) + pl.w < -r) return false;
+  if (nb.cone_cos <= 0.0f) return true;  // cone half-angle ≥ 90°
+  glm::vec3 dir = forward_;
+  float sin_b = 0.0f, cos_b = 1.0f;
+  if (!camera_.orthographic) {
+    dir = p - eye_;
+    const float d = glm::length(dir);
+    if (d <= r) return true;
+    dir /= d;
+    sin_b = r / d;
+    cos_b = std::sqrt(std::max(0.0f, 1.0f - sin_b * sin_b));
+  }
+  const float cos_ab = nb.cone_cos * cos_b - nb.cone_sin * sin_b;
+  if (cos_ab <= 0.0f) return true;
+  const float sin_ab = nb.cone_sin * cos_b + nb.cone_cos * sin_b;
+  return !(glm::dot(nb.axis, dir) > sin_ab);  // entirely back-facing → invisible
+}
+
+float AdaptiveMesh::ringMean(uint32_t v) const {
+  const uint32_t slot = node_slot_[v];
+  return ring_cnt_[slot] ? static_cast<float>(ring_sum_[slot] / ring_cnt_[slot]) : 0.0f;
+}
+
+void AdaptiveMesh::accumulate(uint32_t f, float sign) {
+  const double a = static_cast<double>(sign) * active_area_[face_pos_[f]];
+  const int32_t n = sign > 0.0f ? 1 : -1;
+  for (uint32_t slot : active_fs_[face_pos_[f]]) {
+    ring_sum_[slot] += a;
+    ring_cnt_[slot] += n;
+  }
+}
+
+bool AdaptiveMesh::collectFan(uint32_t v, uint32_t from, uint32_t to,
+                              std::vector<uint32_t>& out) const {
+  out.clear();
+  uint32_t f = from;
+  for (;;) {
+    const uint32_t i = cornerOf(f, v);
+    if (i == 3) return false;
+    out.push_back(f);
+    if (f == to) return true;
+    f = fnb_[f][prev3(i)];
+    if (f == kNone || f == from || out.size() >= kMaxFan) return false;
+  }
+}
+
+// The rings of vt and vu (sharing fl and fr) with the faces' current areas; fl and fr count
+// twice, like typical faces of the union. Only a prefilter for predictedMean().
+float AdaptiveMesh::estimatedMean(uint32_t st, uint32_t su) const {
+  const int32_t count = ring_cnt_[st] + ring_cnt_[su];
+  return count > 0 ? static_cast<float>((ring_sum_[st] + ring_sum_[su]) / count) : 0.0f;
+}
+
+float AdaptiveMesh::predictedMean(uint32_t p) const {
+  const VertexSplit& vs = pm_.split(p);
+  if (!collectFan(vs.vu, vs.fn[1], vs.fn[2], fan_u_) ||
+      !collectFan(vs.vt, vs.fn[3], vs.fn[0], fan_t_))
+    return 0.0f;
+  const glm::vec3 pp = node_pos_[p];
+  float sum = 0.0f;
+  for (uint32_t f : fan_u_) sum += faceImageAreaWith(f, vs.vu, pp);
+  for (uint32_t f : fan_t_) sum += active_area_[face_pos_[f]];
+  return sum / static_cast<float>(fan_u_.size() + fan_t_.size());
+}
+
+// ---------------------------------------------------------------------------------------
+// Legality and the two operations
+
+bool AdaptiveMesh::ecolLegal(uint32_t p) const {
+  if (pm_.isLeaf(p)) return false;
+  const VertexSplit& vs = pm_.split(p);
+  if (node_slot_[vs.vt] == kNone || node_slot_[vs.vu] == kNone) return false;
+  if (face_pos_[vs.fl] == kNone || face_pos_[vs.fr] == kNone) return false;
+  const auto &cl = fv_[vs.fl], &cr = fv_[vs.fr];
+  const auto &nl = fnb_[vs.fl], &nr = fnb_[vs.fr];
+  return cl[0] == vs.vu && cl[1] == vs.vt && cr[0] == vs.vt && cr[1] == vs.vu &&
+         nl[0] == vs.fr && nl[1] == vs.fn[0] && nl[2] == vs.fn[1] && nr[0] == vs.fl &&
+         nr[1] == vs.fn[2] && nr[2] == vs.fn[3];
+}
+
+namespace {
+inline bool facingOk(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                     const glm::vec3& ref) {
+  if (ref.x == 0.0f && ref.y == 0.0f && ref.z == 0.0f) return true;
+  return glm::dot(glm::cross(b - a, c - a), ref) > 0.0f;
+}
+inline void relink(std::array<uint32_t, 3>& nb, uint32_t from, uint32_t to) {
+  for (uint32_t& x : nb)
+    if (x == from) { x = to; return; }
+}
+}  // namespace
+
+bool AdaptiveMesh::doSplit(uint32_t s, bool check, bool morph) {
+  if (pm_.isLeaf(s) || node_slot_[s] == kNone) return false;
+  const VertexSplit& vs = pm_.split(s);
+  const uint32_t fn_tl = vs.fn[0], fn_ul = vs.fn[1], fn_ur = vs.fn[2], fn_rt = vs.fn[3];
+  for (uint32_t f : vs.fn)
+    if (face_pos_[f] == kNone) return false;
+  // l and r: the other ends of the edges (s, l) between fn_tl|fn_ul and (s, r) between
+  // fn_ur|fn_rt; the whole ring must be fn_ul..fn_ur (becomes u's), fn_rt..fn_tl (t's).
+  if (!collectFan(s, fn_ul, fn_ur, fan_u_)) return false;
+  if (fnb_[fn_ur][prev3(cornerOf(fn_ur, s))] != fn_rt) return false;
+  if (!collectFan(s, fn_rt, fn_tl, fan_t_)) return false;
+  if (fnb_[fn_tl][prev3(cornerOf(fn_tl, s))] != fn_ul) return false;
+  const uint32_t l = fv_[fn_ul][next3(cornerOf(fn_ul, s))];  // fn_ul = (s, l, ...)
+  const uint32_t r = fv_[fn_rt][next3(cornerOf(fn_rt, s))];  // fn_rt = (s, r, ...)
+  if (fv_[fn_tl][prev3(cornerOf(fn_tl, s))] != l || fv_[fn_ur][prev3(cornerOf(fn_ur, s))] != r)
+    return false;
+  const glm::vec3 pu = node_pos_[vs.vu], pt = node_pos_[vs.vt];
+  if (check) {
+    for (uint32_t f : fan_u_) {
+      const auto& c = fv_[f];
+      const uint32_t i = cornerOf(f, s);
+      glm::vec3 q[3] = {node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]]};
+      q[i] = pu;
+      if (!facingOk(q[0], q[1], q[2], ref_normal_[f])) return false;
+    }
+    if (!facingOk(pu, pt, node_pos_[l], ref_normal_[vs.fl]) ||
+        !facingOk(pt, pu, node_pos_[r], ref_normal_[vs.fr]))
+      return false;
+  }
+  // Pending collapses whose fl/fr are among fn0..3 would lose their neighbourhood: cancel.
+  for (uint32_t f : vs.fn) {
+    const uint32_t q = pm_.face_parent[f];
+    if (q != kNone && (node_state_[q] & kPending)) cancelCollapse(q);
+  }
+  if (node_state_[s] & kLocked) cancelCollapse(pm_.parent[s]);
+
+  for (uint32_t f : fan_u_) accumulate(f, -1.0f);  // these faces move to vu's ring
+  const uint32_t st = node_slot_[s];
+  const glm::vec3 parent_disp = disp_[st];
+  node_slot_[s] = kNone;
+  slot_node_[st] = vs.vt;
+  node_slot_[vs.vt] = st;
+  slot_bounds_[st] = bounds_[vs.vt];  // same position: vt keeps the parent's
+  const uint32_t su = allocSlot(vs.vu);
+  for (uint32_t f : fan_u_) {
+    const uint32_t i = cornerOf(f, s);
+    fv_[f][i] = vs.vu;
+    active_fs_[face_pos_[f]][i] = su;
+  }
+  for (uint32_t f : fan_t_) fv_[f][cornerOf(f, s)] = vs.vt;  // slot unchanged
+  relink(fnb_[fn_tl], fn_ul, vs.fl);
+  relink(fnb_[fn_ul], fn_tl, vs.fl);
+  relink(fnb_[fn_ur], fn_rt, vs.fr);
+  relink(fnb_[fn_rt], fn_ur, vs.fr);
+  fv_[vs.fl] = {vs.vu, vs.vt, l};
+  fnb_[vs.fl] = {vs.fr, fn_tl, fn_ul};
+  fv_[vs.fr] = {vs.vt, vs.vu, r};
+  fnb_[vs.fr] = {vs.fl, fn_ur, fn_rt};
+  activateFace(vs.fl);
+  activateFace(vs.fr);
+  active_fs_[face_pos_[vs.fl]] = {su, st, node_slot_[l]};
+  active_fs_[face_pos_[vs.fr]] = {st, su, node_slot_[r]};
+  slot_face_[st] = vs.fl;
+  slot_face_[su] = vs.fl;
+  if (morph && params_.morph_time > 0.0f) {
+    const float dur = params_.morph_time / split_speedup_;
+    startMorph(su, parent_disp, pu, dur);
+  }
+  if (have_view_) {
+    for (uint32_t f : fan_u_) active_area_[face_pos_[f]] = faceImageArea(f);
+    active_area_[face_pos_[vs.fl]] = faceImageArea(vs.fl);
+    active_area_[face_pos_[vs.fr]] = faceImageArea(vs.fr);
+  } else {
+    active_area_[face_pos_[vs.fl]] = active_area_[face_pos_[vs.fr]] = 0.0f;
+  }
+  for (uint32_t f : fan_u_) accumulate(f, 1.0f);
+  accumulate(vs.fl, 1.0f);
+  accumulate(vs.fr, 1.0f);
+  changes_.split.push_back(s);
+  markDirty(st);
+  markDirty(su);
+  markDirty(node_slot_[l]);
+  markDirty(node_slot_[r]);
+  ++stats_.splits;
+  ++ops_;
+  if (work_.size() + 2 <= work_.capacity()) {
+    work_.push_back(st);
+    work_.push_back(su);
+  }
+  return true;
+}
+
+bool AdaptiveMesh::doCollapse(uint32_t p, bool check) {
+  if (!ecolLegal(p)) return false;
+  const VertexSplit& vs = pm_.split(p);
+  const uint32_t fn_tl = vs.fn[0], fn_ul = vs.fn[1], fn_ur = vs.fn[2], fn_rt = vs.fn[3];
+  if (!collectFan(vs.vu, fn_ul, fn_ur, fan_u_) || !collectFan(vs.vt, fn_rt, fn_tl, fan_t_))
+    return false;
+  const glm::vec3 pp = node_pos_[p];
+  if (check) {
+    for (uint32_t f : fan_u_) {
+      const auto& c = fv_[f];
+      glm::vec3 q[3] = {node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]]};
+      q[cornerOf(f, vs.vu)] = pp;
+      if (!facingOk(q[0], q[1], q[2], ref_normal_[f])) return false;
+    }
+  }
+  if (node_state_[p] & kPending) {
+    const uint32_t pos = pending_pos_[p];
+    const uint32_t last = pending_.back();
+    pending_[pos] = last;
+    pending_pos_[last] = pos;
+    pending_.pop_back();
+    pending_pos_[p] = kNone;
+  }
+  node_state_[p] = 0;
+  node_state_[vs.vt] = 0;
+  node_state_[vs.vu] = 0;
+  for (uint32_t f : fan_u_) accumulate(f, -1.0f);
+  accumulate(vs.fl, -1.0f);
+  accumulate(vs.fr, -1.0f);
+  const uint32_t st = node_slot_[vs.vt], su = node_slot_[vs.vu];
+  for (uint32_t f : fan_u_) {
+    const uint32_t i = cornerOf(f, vs.vu);
+    fv_[f][i] = p;
+    active_fs_[face_pos_[f]][i] = st;
+  }
+  for (uint32_t f : fan_t_) fv_[f][cornerOf(f, vs.vt)] = p;  // slot unchanged
+  relink(fnb_[fn_tl], vs.fl, fn_ul);
+  relink(fnb_[fn_ul], vs.fl, fn_tl);
+  relink(fnb_[fn_ur], vs.fr, fn_rt);
+  relink(fnb_[fn_rt], vs.fr, fn_ur);
+  const uint32_t l = fv_[vs.fl][2], r = fv_[vs.fr][2];
+  deactivateFace(vs.fl);
+  deactivateFace(vs.fr);
+  freeSlot(su);
+  node_slot_[vs.vt] = kNone;
+  slot_node_[st] = p;
+  node_slot_[p] = st;
+  slot_bounds_[st] = bounds_[p];
+  slot_face_[st] = fn_tl;
+  const uint32_t sl = node_slot_[l], sr = node_slot_[r];
+  if (slot_face_[sl] == vs.fl) slot_face_[sl] = fn_tl;
+  if (slot_face_[sr] == vs.fr) slot_face_[sr] = fn_rt;
+  if (morph_pos_[st] == kNone) disp_[st] = pp;
+  if (have_view_)
+    for (uint32_t f : fan_u_) active_area_[face_pos_[f]] = faceImageArea(f);
+  for (uint32_t f : fan_u_) accumulate(f, 1.0f);
+  changes_.collapsed.push_back(p);
+  markDirty(st);
+  markDirty(su);
+  markDirty(sl);
+  markDirty(sr);
+  ++stats_.collapses;
+  ++ops_;
+  return true;
+}
+
+bool AdaptiveMesh::forceSplit(uint32_t v, bool check, bool morph) {
+  if (retry_frame_[v] > frame_) return false;  // failed recently: back off
+  stack_.clear();
+  stack_.push_back(v);
+  chain_.clear();
+  size_t iterations = 0;
+  bool ok = true;
+  while (!stack_.empty()) {
+    if (stack_.size() > kMaxStack || ++iterations > 4 * kMaxStack) { ok = false; break; }
+    const uint32_t x = stack_.back();
+    if (pm_.isLeaf(x)) { ok = false; break; }
+    if (splitDone(x)) {
+      stack_.pop_back();
+      continue;
+    }
+    if (node_slot_[x] == kNone) {
+      const uint32_t q = pm_.parent[x];
+      if (q == kNone) { ok = false; break; }
+      stack_.push_back(q);
+      continue;
+    }
+    bool ready = true;
+    for (uint32_t f : pm_.split(x).fn) {
+      if (face_pos_[f] != kNone) continue;
+      ready = false;
+      const uint32_t q = pm_.face_parent[f];
+      if (q == kNone) { ok = false; break; }
+      stack_.push_back(q);
+    }
+    if (!ok) break;
+    if (!ready) continue;
+    if (!doSplit(x, check, morph)) { ok = false; break; }
+    chain_.push_back(x);
+    stack_.pop_back();
+  }
+  if (ok) return true;
+  // A split of the chain was refused (it would fold a face over in this mixed-resolution
+  // neighbourhood): undo the forced splits already made, most recent first, so the mesh is
+  // unchanged, and retry this vertex only after a few frames.
+  for (size_t i = chain_.size(); i-- > 0;) {
+    if (!doCollapse(chain_[i], false)) break;
+    changes_.collapsed.pop_back();
+    --stats_.collapses;
+    --stats_.splits;
+    ops_ -= 2;
+    auto it = std::find(changes_.split.rbegin(), changes_.split.rend(), chain_[i]);
+    if (it != changes_.split.rend()) changes_.split.erase(std::next(it).base());
+  }
+  retry_frame_[v] = frame_ + kRetryFrames;
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------
+// Geomorphs (Jeong §3.2)
+
+void AdaptiveMesh::startMorph(uint32_t slot, const glm::vec3& from, const glm::vec3& to,
+                              float duration) {
+  if (!(duration > 0.0f)) {
+    stopMorph(slot);
+    disp_[slot] = to;
+    markMoved(slot);
+    return;
+  }
+  morph_from_[slot] = from;
+  morph_to_[slot] = to;
+  morph_t_[slot] = 0.0f;
+  morph_rate_[slot] = 1.0f / duration;
+  disp_[slot] = from;
+  if (morph_pos_[slot] == kNone) {
+    morph_pos_[slot] = static_cast<uint32_t>(morphing_.size());
+    morphing_.push_back(slot);
+  }
+  markMoved(slot);
+}
+
+void AdaptiveMesh::stopMorph(uint32_t slot) {
+  const uint32_t pos = morph_pos_[slot];
+  if (pos == kNone) return;
+  const uint32_t last = morphing_.back();
+  morphing_[pos] = last;
+  morph_pos_[last] = pos;
+  morphing_.pop_back();
+  morph_pos_[slot] = kNone;
+}
+
+void AdaptiveMesh::startCollapseMorph(uint32_t p, float speedup) {
+  const VertexSplit& vs = pm_.split(p);
+  node_state_[p] |= kPending;
+  node_state_[vs.vt] |= kLocked;
+  node_state_[vs.vu] |= kLocked;
+  pending_pos_[p] = static_cast<uint32_t>(pending_.size());
+  pending_.push_back(p);
+  const uint32_t su = node_slot_[vs.vu];
+  startMorph(su, disp_[su], node_pos_[p],
+             params_.morph_time * params_.coarsen_time_factor / speedup);
+}
+
+void AdaptiveMesh::cancelCollapse(uint32_t p) {
+  if (!(node_state_[p] & kPending)) return;
+  const VertexSplit& vs = pm_.split(p);
+  const uint32_t pos = pending_pos_[p];
+  const uint32_t last = pending_.back();
+  pending_[pos] = last;
+  pending_pos_[last] = pos;
+  pending_.pop_back();
+  pending_pos_[p] = kNone;
+  node_state_[p] &= static_cast<uint8_t>(~kPending);
+  node_state_[vs.vt] &= static_cast<uint8_t>(~kLocked);
+  node_state_[vs.vu] &= static_cast<uint8_t>(~kLocked);
+  const uint32_t su = node_slot_[vs.vu];
+  const float dur = params_.geomorphs ? params_.morph_time * params_.coarsen_time_factor : 0.0f;
+  startMorph(su, disp_[su], node_pos_[vs.vu], dur);
+}
+
+void AdaptiveMesh::advanceMorphs(float dt) {
+  for (size_t i = 0; i < morphing_.size();) {
+    const uint32_t slot = morphing_[i];
+    const float t = morph_t_[slot] + dt * morph_rate_[slot];
+    markMoved(slot);
+    if (t >= 1.0f || !params_.geomorphs) {
+      disp_[slot] = morph_to_[slot];
+      stopMorph(slot);  // swaps the last entry into i
+      continue;
+    }
+    morph_t_[slot] = t;
+    disp_[slot] = morph_from_[slot] + t * (morph_to_[slot] - morph_from_[slot]);
+    ++i;
+  }
+  done_pending_.clear();
+  for (uint32_t p : pending_) {
+    const VertexSplit& vs = pm_.split(p);
+    if (morph_pos_[node_slot_[vs.vu]] == kNone) done_pending_.push_back(p);  // vt may still
+                                                                            // be morphing
+  }
+  for (uint32_t p : done_pending_) {
+    if (!(node_state_[p] & kPending)) continue;
+    if (!doCollapse(p, true)) cancelCollapse(p);
+  }
+}
+
+void AdaptiveMesh::clearAllMorphs() {
+  while (!pending_.empty()) cancelCollapse(pending_.back());
+  while (!morphing_.empty()) {
+    const uint32_t slot = morphing_.back();
+    disp_[slot] = morph_to_[slot];
+    stopMorph(slot);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// The frame
+
+void AdaptiveMesh::evaluatePass() {
+  // The work list holds slots: the static data of an active vertex (position, bounds, parent)
+  // is copied into its slot, so this loop mostly reads slot arrays in order.
+  work_.clear();
+  for (uint32_t slot = 0; slot < slot_count_; ++slot)
+    if (slot_node_[slot] != kNone) work_.push_back(slot);
+  const float t_s = params_.t_s, t_c = params_.t_c;
+  const bool morph = params_.geomorphs && params_.morph_time > 0.0f;
+  for (size_t i = 0; i < work_.size(); ++i) {
+    if (params_.max_operations && ops_ >= params_.max_operations) break;
+    const uint32_t slot = work_[i];
+    const uint32_t v = slot_node_[slot];
+    if (v == kNone) continue;
+    const NodeBounds& nb = slot_bounds_[slot];
+    const uint32_t p = nb.parent;
+    const bool vis = visible(nb);
+    if (node_state_[v] & kLocked) {
+      // Off-screen: a pending collapse executes at once (p can only be invisible if v is).
+      if (!vis && nb.sibling != kNone && !visible(bounds_[p])) {
+        if (!doCollapse(p, true)) cancelCollapse(p);
+      }
+      continue;
+    }
+    if (vis && !pm_.isLeaf(v)) {
+      const float target = targetAt(nb.pos);
+      const float mean = ringMean(v);
+      if (mean > t_s * target) {
+        split_speedup_ = clampf(mean / (t_s * target), 1.0f, params_.max_morph_speedup);
+        // A morph that would end within this frame is not worth showing.
+        const bool show = morph && params_.morph_time / split_speedup_ > frame_dt_;
+        forceSplit(v, true, show);
+        continue;
+      }
+    }
+    const uint32_t vu = nb.sibling;  // collapses are evaluated from the vt child only
+    if (vu == kNone || (node_state_[p] & kPending)) continue;
+    const uint32_t su = node_slot_[vu];
+    if (su == kNone || (node_state_[vu] & kLocked)) continue;
+    // p's bounds contain v's, so p can only be invisible when v is.
+    if (!vis && !visible(bounds_[p])) {
+      if (ecolLegal(p) && doCollapse(p, true) && work_.size() < work_.capacity())
+        work_.push_back(slot);
+      continue;
+    }
+    const float target = targetAt(nb.pos);  // p has v's position
+    // Cheap estimate first; the decision itself uses the exact post-collapse mean, the same
+    // quantity the split of p compares with t_s·T, so a pair never flips back and forth.
+    if (!(estimatedMean(slot, su) < kEstimateMargin * t_c * target) || !ecolLegal(p)) continue;
+    const float mean = predictedMean(p);
+    if (!(mean < t_c * target)) continue;
+    // Coarsening speed grows with the square of the discrepancy: a collapse far below its
+    // threshold (fast zoom-out) finishes within a frame, which bounds the coarsening lag.
+    const float ratio = t_c * target / std::max(mean, 1e-12f);
+    const float speedup = clampf(ratio * ratio, 1.0f, params_.max_morph_speedup);
+    if (morph && params_.morph_time * params_.coarsen_time_factor / speedup > frame_dt_) {
+      if (collapseGeometryOk(p)) startCollapseMorph(p, speedup);
+    } else if (doCollapse(p, true) && work_.size() < work_.capacity()) {
+      work_.push_back(slot);
+    }
+  }
+}
+
+void AdaptiveMesh::adapt(float dt_seconds) {
+  ++frame_;
+  if (frame_ == 0) {  // stamp wrap-around
+    std::fill(retry_frame_.begin(), retry_frame_.end(), 0u);
+    std::fill(dirty_stamp_.begin(), dirty_stamp_.end(), 0u);
+    std::fill(moved_stamp_.begin(), moved_stamp_.end(), 0u);
+    frame_ = 1;
+  }
+  changes_.split.clear();
+  changes_.collapsed.clear();
+  changes_.moved.clear();
+  changes_.dirty.clear();
+  changes_.everything = false;
+  stats_.splits = stats_.collapses = 0;
+  ops_ = 0;
+  if (!have_view_) return;
+  stats_.target_area = t0_;
+
+  // 1. Image areas of all active faces (and the band statistics of the incoming mesh).
+  uint32_t visible = 0, in_band = 0;
+  const float near2 = std::max(camera_.near_plane * camera_.near_plane, 1e-20f);
+  std::fill(ring_sum_.begin(), ring_sum_.begin() + slot_count_, 0.0);
+  std::fill(ring_cnt_.begin(), ring_cnt_.begin() + slot_count_, 0);
+  for (size_t k = 0; k < active_faces_.size(); ++k) {
+    const auto& c = active_fs_[k];
+    const glm::vec3 &a = slot_bounds_[c[0]].pos, &b = slot_bounds_[c[1]].pos,
+                    &d = slot_bounds_[c[2]].pos;
+    const glm::vec3 n = glm::cross(b - a, d - a);
+    const float area = 0.5f * glm::length(n);
+    const glm::vec3 centre = (a + b + d) * (1.0f / 3.0f);
+    const glm::vec3 m = centre - eye_;
+    const float img = camera_.orthographic ? k_ * area : k_ * area / std::max(glm::dot(m, m), near2);
+    active_area_[k] = img;
+    for (uint32_t slot : c) {
+      ring_sum_[slot] += img;
+      ++ring_cnt_[slot];
+    }
+    const glm::vec3 view_dir = camera_.orthographic ? forward_ : m;
+    if (glm::dot(n, view_dir) >= 0.0f) continue;
+    bool inside = true;
+    for (const glm::vec4& pl : planes_) inside &= glm::dot(glm::vec3(pl), centre) + pl.w >= 0.0f;
+    if (!inside) continue;
+    ++visible;
+    const float t = modifiers_ ? targetAt(centre) : t0_;
+    if (img >= 0.5f * params_.t_c * t && img <= 2.0f * params_.t_s * t) ++in_band;
+  }
+  stats_.visible_faces = visible;
+  stats_.band_fraction = visible ? static_cast<float>(in_band) / static_cast<float>(visible) : 1.0f;
+
+  // Geomorphs switched off: finish what is in flight.
+  if (!params_.geomorphs && (!morphing_.empty() || !pending_.empty())) advanceMorphs(0.0f);
+
+  // 2. Evaluate every active vertex (children of this frame's splits are appended). Another
+  // pass follows while a pass changes much (cascades of collapses that wait on each other).
+  frame_dt_ = std::max(dt_seconds, 0.0f);
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    const uint32_t ops_before = ops_;
+    evaluatePass();
+    const uint32_t done = ops_ - ops_before;
+    if (done <= std::max<uint32_t>(16, active_vertices_ / 64)) break;
+    if (params_.max_operations && ops_ >= params_.max_operations) break;
+  }
+
+  // 3. Geomorphs.
+  advanceMorphs(std::max(dt_seconds, 0.0f));
+
+  stats_.active_vertices = active_vertices_;
+  stats_.active_faces = static_cast<uint32_t>(active_faces_.size());
+  stats_.morphing = static_cast<uint32_t>(morphing_.size());
+  stats_.pending_collapses = static_cast<uint32_t>(pending_.size());
+}
+
+bool AdaptiveMesh::collapseGeometryOk(uint32_t p) const {
+  const VertexSplit& vs = pm_.split(p);
+  if (!collectFan(vs.vu, vs.fn[1], vs.fn[2], fan_u_)) return false;
+  const glm::vec3 pp = node_pos_[p];
+  for (uint32_t f : fan_u_) {
+    const auto& c = fv_[f];
+    glm::vec3 q[3] = {node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]]};
+    q[cornerOf(f, vs.vu)] = pp;
+    if (!facingOk(q[0], q[1], q[2], ref_normal_[f])) return false;
+  }
+  return true;
+}
+
+void AdaptiveMesh::fullyRefine() {
+  clearAllMorphs();
+  std::fill(retry_frame_.begin(), retry_frame_.end(), 0u);
+  for (;;) {  // work_ holds slots; splits append their children's slots
+    work_.clear();
+    for (uint32_t slot = 0; slot < slot_count_; ++slot) {
+      const uint32_t v = slot_node_[slot];
+      if (v != kNone && !pm_.isLeaf(v)) work_.push_back(slot);
+    }
+    if (work_.empty()) break;
+    bool progress = false;
+    for (size_t i = 0; i < work_.size(); ++i) {
+      const uint32_t v = slot_node_[work_[i]];
+      if (v == kNone || pm_.isLeaf(v)) continue;
+      progress |= forceSplit(v, false, false);
+    }
+    if (!progress) break;
+  }
+  changes_.everything = true;
+}
+
+void AdaptiveMesh::fullyCoarsen() {
+  clearAllMorphs();
+  for (;;) {
+    work_.clear();
+    for (uint32_t slot = 0; slot < slot_count_; ++slot)
+      if (slot_node_[slot] != kNone) work_.push_back(slot);
+    bool progress = false;
+    for (size_t i = 0; i < work_.size(); ++i) {
+      const uint32_t slot = work_[i];
+      const uint32_t v = slot_node_[slot];
+      if (v == kNone) continue;
+      const uint32_t p = pm_.parent[v];
+      if (p == kNone || v != pm_.split(p).vt) continue;
+      if (doCollapse(p, false)) {
+        progress = true;
+        if (work_.size() < work_.capacity()) work_.push_back(slot);  // now holds p
+      }
+    }
+    if (!progress) break;
+  }
+  changes_.everything = true;
+}
+
+// ---------------------------------------------------------------------------------------
+// Output and checks
+
+void AdaptiveMesh::exportFaces(std::vector<std::array<uint32_t, 3>>& out) const {
+  out.resize(active_faces_.size());
+  for (size_t k = 0; k < active_faces_.size(); ++k) {
+    const auto& c = fv_[active_faces_[k]];
+    out[k] = {node_slot_[c[0]], node_slot_[c[1]], node_slot_[c[2]]};
+  }
+}
+
+void AdaptiveMesh::exportCompact(TriMesh& out, std::vector<uint32_t>& node_ids) const {
+  std::vector<uint32_t>& index = compact_index_;
+  index.assign(slot_count_, kNone);
+  out.positions.clear();
+  out.faces.clear();
+  out.marked_edges.clear();
+  node_ids.clear();
+  for (uint32_t slot = 0; slot < slot_count_; ++slot) {
+    if (slot_node_[slot] == kNone) continue;
+    index[slot] = static_cast<uint32_t>(out.positions.size());
+    out.positions.push_back(disp_[slot]);
+    node_ids.push_back(slot_node_[slot]);
+  }
+  out.faces.reserve(active_faces_.size());
+  for (uint32_t f : active_faces_) {
+    const auto& c = fv_[f];
+    out.faces.push_back({index[node_slot_[c[0]]], index[node_slot_[c[1]]], index[node_slot_[c[2]]]});
+  }
+}
+
+void AdaptiveMesh::measureBand(float& band_fraction, uint32_t& visible_faces) const {
+  uint32_t visible = 0, in_band = 0;
+  for (uint32_t f : active_faces_) {
+    const auto& c = fv_[f];
+    const glm::vec3 &a = node_pos_[c[0]], &b = node_pos_[c[1]], &d = node_pos_[c[2]];
+    const glm::vec3 n = glm::cross(b - a, d - a);
+    const glm::vec3 centre = (a + b + d) * (1.0f / 3.0f);
+    const glm::vec3 view_dir = camera_.orthographic ? forward_ : centre - eye_;
+    if (glm::dot(n, view_dir) >= 0.0f) continue;
+    bool inside = true;
+    for (const glm::vec4& pl : planes_) inside &= glm::dot(glm::vec3(pl), centre) + pl.w >= 0.0f;
+    if (!inside) continue;
+    ++visible;
+    const float img = faceImageArea(f);
+    const float t = modifiers_ ? targetAt(centre) : t0_;
+    if (img >= 0.5f * params_.t_c * t && img <= 2.0f * params_.t_s * t) ++in_band;
+  }
+  visible_faces = visible;
+  band_fraction = visible ? static_cast<float>(in_band) / static_cast<float>(visible) : 1.0f;
+}
+
+std::string AdaptiveMesh::checkInvariants() const {
+  auto str = [](uint32_t x) { return std::to_string(x); };
+  // Faces: list/positions, corners, adjacency.
+  for (size_t k = 0; k < active_faces_.size(); ++k)
+    if (face_pos_[active_faces_[k]] != k) return "face list position mismatch at " + str(k);
+  size_t active_count = 0;
+  std::vector<uint32_t> incident(n_nodes_, 0);
+  for (uint32_t f = 0; f < n_faces_; ++f) {
+    if (face_pos_[f] == kNone) continue;
+    ++active_count;
+    const auto& c = fv_[f];
+    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) return "face " + str(f) + " is degenerate";
+    for (int i = 0; i < 3; ++i) {
+      if (c[i] >= n_nodes_ || node_slot_[c[i]] == kNone)
+        return "face " + str(f) + " has inactive corner " + str(c[i]);
+      ++incident[c[i]];
+      const uint32_t g = fnb_[f][i];
+      if (g == kNone) continue;
+      if (face_pos_[g] == kNone) return "face " + str(f) + " has inactive neighbour " + str(g);
+      const uint32_t j = cornerOf(g, c[next3(i)]);
+      if (j == 3 || fv_[g][next3(j)] != c[i] || fnb_[g][j] != f)
+        return "faces " + str(f) + " and " + str(g) + " disagree about their shared edge";
+    }
+  }
+  if (active_count != active_faces_.size()) return "face list size mismatch";
+  // Slots and free list.
+  std::vector<uint8_t> is_free(slot_count_, 0);
+  for (uint32_t s : free_slots_) {
+    if (s >= slot_count_ || is_free[s]) return "free list holds a bad or repeated slot";
+    if (slot_node_[s] != kNone) return "free slot " + str(s) + " holds a vertex";
+    is_free[s] = 1;
+  }
+  uint32_t used = 0;
+  for (uint32_t s = 0; s < slot_count_; ++s) {
+    const uint32_t v = slot_node_[s];
+    if (v == kNone) {
+      if (!is_free[s]) return "slot " + str(s) + " is neither used nor free";
+      continue;
+    }
+    ++used;
+    if (node_slot_[v] != s) return "slot " + str(s) + " and node " + str(v) + " disagree";
+    const uint32_t f = slot_face_[s];
+    if (incident[v] == 0) {
+      if (f != kNone) return "isolated vertex " + str(v) + " has a face";
+      continue;
+    }
+    if (f == kNone || face_pos_[f] == kNone || cornerOf(f, v) == 3)
+      return "vertex " + str(v) + " has a bad incident face";
+    if (morph_pos_[s] == kNone && disp_[s] != node_pos_[v])
+      return "vertex " + str(v) + " is displaced without a morph";
+  }
+  if (used != active_vertices_) return "active vertex count mismatch";
+  for (uint32_t v = 0; v < n_nodes_; ++v)
+    if (node_slot_[v] != kNone && (node_slot_[v] >= slot_count_ || slot_node_[node_slot_[v]] != v))
+      return "node " + str(v) + " points to a wrong slot";
+  // The active front: no active node has an active ancestor; every leaf has one.
+  for (uint32_t v = 0; v < pm_.vertexCount(); ++v) {
+    uint32_t a = v, found = kNone, depth = 0;
+    for (; a != kNone; a = pm_.parent[a], ++depth) {
+      if (node_slot_[a] == kNone) continue;
+      if (found != kNone) return "nodes " + str(found) + " and its ancestor " + str(a) + " both active";
+      found = a;
+    }
+    if (found == kNone) return "leaf " + str(v) + " has no active ancestor";
+  }
+  // Manifold rings: rotation around each vertex meets every incident face exactly once.
+  for (uint32_t s = 0; s < slot_count_; ++s) {
+    const uint32_t v = slot_node_[s];
+    if (v == kNone || incident[v] == 0) continue;
+    if (pm_.vertex_flags[pm_.origin[v]] & kPmFrozen) continue;
+    uint32_t count = 0;
+    const uint32_t f0 = slot_face_[s];
+    uint32_t f = f0;
+    bool open = false;
+    do {
+      ++count;
+      f = fnb_[f][prev3(cornerOf(f, v))];
+      if (f == kNone) { open = true; break; }
+    } while (f != f0 && count <= incident[v]);
+    if (open) {
+      f = fnb_[f0][cornerOf(f0, v)];
+      while (f != kNone && count <= incident[v]) {
+        ++count;
+        f = fnb_[f][cornerOf(f, v)];
+      }
+    }
+    if (count != incident[v])
+      return "vertex " + str(v) + ": ring of " + str(count) + " faces, " + str(incident[v]) +
+             " incident (not a manifold fan)";
+  }
+  // Face corners are the active ancestors of the input corners (up to rotation).
+  auto activeAncestor = [&](uint32_t leaf) {
+    uint32_t a = leaf;
+    while (a != kNone && node_slot_[a] == kNone) a = pm_.parent[a];
+    return a;
+  };
+  for (uint32_t f : active_faces_) {
+    const auto& in = pm_.faces[f];
+    const std::array<uint32_t, 3> want = {activeAncestor(in[0]), activeAncestor(in[1]),
+                                          activeAncestor(in[2])};
+    const auto& c = fv_[f];
+    bool match = false;
+    for (int r = 0; r < 3; ++r)
+      match |= c[0] == want[r] && c[1] == want[(r + 1) % 3] && c[2] == want[(r + 2) % 3];
+    if (!match) return "face " + str(f) + " corners are not the active ancestors of its input corners";
+  }
+  // Ring accumulators (sum and count of the areas of the faces around each slot).
+  {
+    std::vector<double> sum(slot_count_, 0.0);
+    std::vector<int32_t> cnt(slot_count_, 0);
+    for (uint32_t f : active_faces_)
+      for (uint32_t v : fv_[f]) {
+        sum[node_slot_[v]] += active_area_[face_pos_[f]];
+        ++cnt[node_slot_[v]];
+      }
+    for (uint32_t s = 0; s < slot_count_; ++s) {
+      if (slot_node_[s] == kNone) continue;
+      if (cnt[s] != ring_cnt_[s]) return "ring face count of slot " + str(s) + " is stale";
+      if (std::abs(sum[s] - ring_sum_[s]) > 1e-3 * (std::abs(sum[s]) + 1.0))
+        return "ring area sum of slot " + str(s) + " is stale";
+    }
+  }
+  // Pending collapses.
+  for (size_t k = 0; k < pending_.size(); ++k) {
+    const uint32_t p = pending_[k];
+    if (pending_pos_[p] != k || !(node_state_[p] & kPending)) return "pending list inconsistent";
+    const VertexSplit& vs = pm_.split(p);
+    if (!(node_state_[vs.vt] & kLocked) || !(node_state_[vs.vu] & kLocked) || !ecolLegal(p))
+      return "pending collapse " + str(p) + " is not locked/legal";
+  }
+  // No face flipped relative to its full-detail normal.
+  for (uint32_t f : active_faces_) {
+    const auto& c = fv_[f];
+    if (!facingOk(node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]], ref_normal_[f]))
+      return "face " + str(f) + " is flipped relative to its full-detail normal";
+  }
+  return "";
+}
+
+}  // namespace lodline

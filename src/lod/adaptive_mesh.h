@@ -1,0 +1,294 @@
+// View-dependent selective refinement of a progressive mesh with image-space area control and
+// real-time geomorphs.
+//
+//   Hoppe 1997, "View-dependent refinement of progressive meshes", §4-5 (legal vsplit/ecol,
+//     force_vsplit through a stack, the adapt loop over the active vertices, bounding spheres
+//     and normal cones for view-frustum and back-face tests).
+//   Hoppe 1998, "Efficient implementation of progressive meshes", §5 (active vertices and faces
+//     in flat arrays with free lists).
+//   Jeong, Ni, Lee, Markosian 2005, "Detail control in line drawings of 3D meshes", §3.1 (the
+//     criterion: mean image-space area of the active faces around a vertex, split above
+//     t_s·T, collapse below t_c·T; varying T) and §3.2 (real-time geomorphs).
+//
+// Typical frame loop:
+//
+//   AdaptiveMesh lod(pm);                      // starts at the base mesh
+//   DetailParams detail;                       // T = 16 px², t_c = 0.7, t_s = 1.42, ...
+//   for (;;) {
+//     if (Status s = lod.setView(camera, width, height, detail); !s.ok()) ...;
+//     lod.adapt(dt_seconds);                   // refine/coarsen + advance geomorphs
+//     const LodChanges& ch = lod.changes();    // what the shape stage must update
+//     lod.positions(); lod.exportFaces(faces); // draw (slot-indexed arrays)
+//   }
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "core/camera.h"
+#include "core/mesh.h"
+#include "core/result.h"
+#include "pm/progressive_mesh.h"
+
+namespace lodline {
+
+/// A grayscale image that scales the target area T per pixel (Jeong §3.1, "detail map").
+/// Row-major, top row first, `width × height` values; sampled bilinearly in normalised image
+/// coordinates, so its size need not match the rendered image.
+struct DetailMap {
+  int width = 0;
+  int height = 0;
+  std::vector<float> values;  ///< width·height factors (1: T unchanged, 4: 4× larger faces)
+};
+
+/// How much detail to show. Filled identically by CLI, scene file and viewer.
+struct DetailParams {
+  /// Target image-space triangle area T, px². 16 px² (edges of ~6 px) keeps contours and
+  /// suggestive contours smooth at 1280x720 while a model filling the image needs only
+  /// ~50-70k active faces.
+  float target_area = 16.0f;
+  float t_c = 0.7f;             ///< collapse when the mean area falls below t_c·T (Jeong §3.1)
+  float t_s = 1.42f;            ///< split when it exceeds t_s·T (needs 2·t_c < t_s)
+  float object_factor = 1.0f;   ///< per-object factor on T (e.g. 3 for a background object)
+  /// Optional detail map (null: none). The value at a vertex's pixel multiplies T.
+  std::shared_ptr<const DetailMap> detail_map;
+  float min_map_value = 0.0625f;  ///< detail-map values are clamped to at least this
+  /// Depth-dependent T (the paper's terrain figure): T·(d/d_focus)^depth_falloff, d the
+  /// distance to the eye, d_focus the eye-target distance, ratio clamped to ≥ 0.25. 0: off.
+  float depth_falloff = 0.0f;
+  /// Foveation: T·((90°/(90°−q))²)^foveation, q the angle between the vertex and the gaze
+  /// point focus_px (q clamped to 80°). 0: off; 1: Pan et al.'s factor.
+  float foveation = 0.0f;
+  glm::vec2 focus_px{-1.0f, -1.0f};  ///< gaze point, pixels; negative: the image centre
+  bool geomorphs = true;       ///< Jeong §3.2 geomorphs; false: changes show at once
+  float morph_time = 0.5f;     ///< seconds a split's children take to morph out
+  float coarsen_time_factor = 0.5f;  ///< collapse morphs take morph_time × this (bounds lag)
+  /// Morphs run up to this much faster when the area is far from its threshold: splits at
+  /// speed ∝ (mean / t_s·T), collapses ∝ (t_c·T / mean)²; a morph shorter than the frame is
+  /// executed at once.
+  float max_morph_speedup = 16.0f;
+  bool cull = true;            ///< coarsen freely outside the frustum and where back-facing
+  /// Budget of splits+collapses per adapt() call (0: unlimited). Checked before each vertex,
+  /// so a forced split chain may overshoot it a little; the rest waits for later frames.
+  uint32_t max_operations = 0;
+};
+
+/// Cheap per-frame statistics (exposed as "lod" in --stats).
+struct LodStats {
+  uint32_t active_vertices = 0;
+  uint32_t active_faces = 0;
+  uint32_t visible_faces = 0;  ///< active faces in the frustum and facing the camera
+  uint32_t splits = 0;         ///< this frame
+  uint32_t collapses = 0;      ///< this frame (executed; pending morphs are not counted)
+  uint32_t morphing = 0;       ///< vertices in a geomorph after this frame
+  uint32_t pending_collapses = 0;  ///< collapses morphing towards their parent
+  /// Fraction of visible active faces whose image area lies in [t_c·T/2, 2·t_s·T] (T with
+  /// all modifiers at the face). Measured on the mesh that entered this adapt() call (the
+  /// mesh drawn last frame) under the current view; see measureBand() for the current one.
+  float band_fraction = 0.0f;
+  float target_area = 0.0f;    ///< T·object_factor used this frame, px²
+};
+
+/// What changed in the last adapt() call, for incremental downstream stages. Slot indices
+/// refer to positions()/slotVertices(). Each slot appears at most once per list.
+struct LodChanges {
+  std::vector<uint32_t> split;      ///< PM nodes that were split (parents)
+  std::vector<uint32_t> collapsed;  ///< PM nodes that became active by a collapse (parents)
+  std::vector<uint32_t> moved;      ///< slots whose displayed position changed by a morph
+  /// Slots whose vertex, incident faces or displayed position changed (a superset of
+  /// `moved`); may hold slots that are now free. Consumers expand this to the k-ring they
+  /// need (normals: 1-ring, curvature: 2-ring).
+  std::vector<uint32_t> dirty;
+  bool everything = false;          ///< set after fullyRefine/fullyCoarsen: recompute all
+};
+
+/// The selectively refined mesh. Holds a reference to `pm`, which must outlive it.
+/// Memory is allocated in the constructor (about 180 bytes per PM node, e.g. 240 MB for a
+/// 1.3M-face model); adapt() allocates nothing after the first frames.
+class AdaptiveMesh {
+ public:
+  explicit AdaptiveMesh(const ProgressiveMesh& pm);
+
+  /// Sets camera, image size (px) and detail parameters for the next adapt(). Errors: image
+  /// size ≤ 0, T ≤ 0, t_c/t_s not 0 < 2·t_c < t_s, a detail map whose values are not
+  /// width·height finite numbers ≥ 0.
+  Status setView(const Camera& camera, int width, int height, const DetailParams& params);
+
+  /// One frame: evaluates every active vertex (split above t_s·T, collapse below t_c·T, forced
+  /// splits of ancestors as needed), starts/ends geomorphs and advances them by `dt_seconds`.
+  void adapt(float dt_seconds);
+
+  /// Refines to the input mesh / coarsens to the base mesh (no geomorphs).
+  void fullyRefine();
+  void fullyCoarsen();
+
+  // ---- output (slot-indexed; a slot keeps its index while its vertex stays active) ----
+  /// Displayed (morphed) position per slot, size slotCount(); free slots hold stale values.
+  std::span<const glm::vec3> positions() const { return {disp_.data(), slot_count_}; }
+  /// PM node per slot, kPmNone for a free slot.
+  std::span<const uint32_t> slotVertices() const { return {slot_node_.data(), slot_count_}; }
+  uint32_t slotCount() const { return slot_count_; }
+  /// Active faces as slot triples (counter-clockwise); `out` is resized to activeFaceCount().
+  void exportFaces(std::vector<std::array<uint32_t, 3>>& out) const;
+  /// Active faces as PM face ids (ids of the input faces they stand for).
+  std::span<const uint32_t> activeFaceIds() const { return active_faces_; }
+  /// The active mesh with compact (renumbered) vertices and displayed positions;
+  /// `node_ids[i]` is the PM node of vertex i (pm().origin[] maps it to an input vertex).
+  void exportCompact(TriMesh& out, std::vector<uint32_t>& node_ids) const;
+
+  uint32_t activeVertexCount() const { return active_vertices_; }
+  uint32_t activeFaceCount() const { return static_cast<uint32_t>(active_faces_.size()); }
+  bool isActive(uint32_t node) const { return node_slot_[node] != kPmNone; }
+  const LodStats& stats() const { return stats_; }
+  const LodChanges& changes() const { return changes_; }
+  const ProgressiveMesh& pm() const { return pm_; }
+
+  /// Band fraction and visible faces of the current mesh under the current view.
+  void measureBand(float& band_fraction, uint32_t& visible_faces) const;
+
+  /// Full consistency check (tests and debugging; O(n·depth)): manifold rings, face adjacency,
+  /// slot/free-list consistency, the active front of the hierarchy, face corners equal to the
+  /// active ancestors of their input corners, no face flipped relative to its full-detail
+  /// normal (logical positions). Returns "" or a description of the first violation.
+  std::string checkInvariants() const;
+
+ private:
+  // Node state bits.
+  static constexpr uint8_t kLocked = 1;   // child of a pending collapse
+  static constexpr uint8_t kPending = 2;  // parent whose collapse is morphing
+
+  void resetToBase();
+  uint32_t allocSlot(uint32_t node);
+  void freeSlot(uint32_t slot);
+  void activateFace(uint32_t f);
+  void deactivateFace(uint32_t f);
+  uint32_t cornerOf(uint32_t f, uint32_t v) const {
+    const auto& c = fv_[f];
+    return c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : 3;
+  }
+  float faceImageArea(uint32_t f) const;
+  float faceImageAreaWith(uint32_t f, uint32_t moved, const glm::vec3& p) const;
+  float targetAt(const glm::vec3& p) const;
+  /// Static per-node data for the view tests, also copied into each active vertex's slot.
+  struct NodeBounds {
+    glm::vec3 pos{0.0f};        // position (model units)
+    float radius = 0.0f;        // bounding sphere of the node's region, around pos
+    glm::vec3 axis{0.0f};       // normal cone of the region
+    float cone_sin = 0.0f, cone_cos = -1.0f;  // of the cone's half-angle
+    uint32_t parent = kPmNone;  // parent node
+    uint32_t sibling = kPmNone;  // vu of the parent's split if this node is its vt
+  };
+  /// In the frustum and not entirely back-facing (Hoppe 1997 §4).
+  bool visible(const NodeBounds& nb) const;
+  /// Mean image area of the faces around active vertex v (0 if none).
+  float ringMean(uint32_t v) const;
+  /// Mean image area around p if p's children were collapsed now (children active).
+  float predictedMean(uint32_t p) const;
+  /// Cheap estimate from the ring accumulators of the children's slots (prefilter).
+  float estimatedMean(uint32_t st, uint32_t su) const;
+  /// Adds (sign 1) or removes (sign -1) face f's area to/from its corners' accumulators.
+  void accumulate(uint32_t f, float sign);
+  bool splitDone(uint32_t node) const {
+    return !pm_.isLeaf(node) && face_pos_[pm_.split(node).fl] != kPmNone;
+  }
+  bool ecolLegal(uint32_t p) const;
+  /// Executes the split of active node s (legal, fn active). False (nothing changed) if the
+  /// neighbourhood is not the recorded one or, with `check`, a face would flip.
+  bool doSplit(uint32_t s, bool check, bool morph);
+  bool doCollapse(uint32_t p, bool check);
+  /// Hoppe's force_vsplit: splits ancestors and the creators of missing fn faces first.
+  bool forceSplit(uint32_t v, bool check, bool morph);
+  /// No face around vu would flip if p's children were collapsed now (ecol legal).
+  bool collapseGeometryOk(uint32_t p) const;
+  void startCollapseMorph(uint32_t p, float speedup);
+  void cancelCollapse(uint32_t p);
+  void startMorph(uint32_t slot, const glm::vec3& from, const glm::vec3& to, float duration);
+  void stopMorph(uint32_t slot);
+  void advanceMorphs(float dt);
+  /// One pass of the selective refinement over all active vertices.
+  void evaluatePass();
+  void markDirty(uint32_t slot);
+  void markMoved(uint32_t slot);
+  void clearAllMorphs();
+  /// Collects the faces around v counter-clockwise from `from` up to and including `to`.
+  bool collectFan(uint32_t v, uint32_t from, uint32_t to, std::vector<uint32_t>& out) const;
+
+  const ProgressiveMesh& pm_;
+  uint32_t n_nodes_ = 0, n_faces_ = 0;
+
+  // Static per node / per face.
+  std::vector<glm::vec3> node_pos_;
+  std::vector<NodeBounds> bounds_;
+  std::vector<glm::vec3> ref_normal_;  // unit full-detail normal per face (0: degenerate)
+
+  // Dynamic per node.
+  std::vector<uint32_t> node_slot_;
+  std::vector<uint8_t> node_state_;
+  std::vector<uint32_t> pending_pos_;
+  std::vector<uint32_t> retry_frame_;  // frame before which a refused split is not retried
+  // Dynamic per face.
+  std::vector<std::array<uint32_t, 3>> fv_;   // corner nodes
+  std::vector<std::array<uint32_t, 3>> fnb_;  // neighbour across (c[i], c[i+1])
+  std::vector<uint32_t> face_pos_;            // index in active_faces_, kPmNone if inactive
+  // Per active face, by position in the active list (swap-removed together, read in order by
+  // the per-frame pass): face id, corner slots, image area in px² (logical positions).
+  std::vector<uint32_t> active_faces_;
+  std::vector<std::array<uint32_t, 3>> active_fs_;
+  std::vector<float> active_area_;
+  // Slots.
+  uint32_t slot_count_ = 0;
+  uint32_t active_vertices_ = 0;
+  std::vector<uint32_t> slot_node_;
+  std::vector<uint32_t> slot_face_;
+  std::vector<glm::vec3> disp_, morph_from_, morph_to_;
+  std::vector<float> morph_t_, morph_rate_;
+  std::vector<uint32_t> morph_pos_;
+  std::vector<uint32_t> dirty_stamp_, moved_stamp_;
+  std::vector<NodeBounds> slot_bounds_;  // copy of bounds_ of the slot's node
+  std::vector<double> ring_sum_;   // per slot: sum of the image areas of the incident faces
+  std::vector<int32_t> ring_cnt_;  // per slot: number of incident active faces
+  std::vector<uint32_t> free_slots_;
+  std::vector<uint32_t> morphing_;
+  std::vector<uint32_t> pending_;
+
+  // Scratch (reserved once).
+  std::vector<uint32_t> work_;
+  std::vector<uint32_t> stack_;
+  std::vector<uint32_t> chain_;  // splits made by the current forceSplit
+  mutable std::vector<uint32_t> fan_u_, fan_t_;
+  std::vector<uint32_t> done_pending_;
+  mutable std::vector<uint32_t> compact_index_;  // exportCompact's slot → vertex map
+
+  // View.
+  bool have_view_ = false;
+  DetailParams params_;
+  Camera camera_;
+  int width_ = 0, height_ = 0;
+  glm::mat4 view_proj_{1.0f};
+  std::array<glm::vec4, 5> planes_{};
+  glm::vec3 eye_{0.0f}, forward_{0.0f, 0.0f, -1.0f};
+  float k_ = 1.0f;
+  float t0_ = 16.0f;
+  float focus_dist_ = 1.0f;
+  float focal_px_ = 1.0f;
+  glm::vec2 focus_{0.0f};
+  bool modifiers_ = false;
+
+  float split_speedup_ = 1.0f;
+  float frame_dt_ = 0.0f;  // morph speed-up of the split being executed
+  uint32_t frame_ = 1;
+  uint32_t ops_ = 0;
+  LodStats stats_;
+  LodChanges changes_;
+};
+
+}  // namespace lodline

@@ -1,0 +1,524 @@
+// Selective refinement: exact full refinement/coarsening, validity along random camera paths,
+// convergence without oscillation, the image-area band, detail modifiers, geomorphs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "lod/adaptive_mesh.h"
+#include "pm/pm_file.h"
+#include "pm/pm_test_meshes.h"
+#include "pm/progressive_mesh.h"
+#include "test_util.h"
+
+namespace lodline {
+namespace {
+
+constexpr int kW = 1280, kH = 720;
+
+struct Model {
+  TriMesh mesh;
+  ProgressiveMesh pm;
+  Bounds bounds;
+};
+
+/// Builds (once per name) the progressive mesh of a named test model.
+const Model& model(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<Model>> cache;
+  auto& slot = cache[name];
+  if (slot) return *slot;
+  slot = std::make_unique<Model>();
+  Model& m = *slot;
+  if (name == "sphere") m.mesh = makeIcoSphere(1.0f, 4);
+  else if (name == "noisy") { m.mesh = makeIcoSphere(1.0f, 4); test::perturbRadially(m.mesh, 0.02f); }
+  else if (name == "fine_sphere") m.mesh = makeIcoSphere(1.0f, 6);
+  else if (name == "torus") m.mesh = makeTorus(1.0f, 0.35f, 96, 48);
+  else if (name == "fine_torus") m.mesh = makeTorus(1.0f, 0.35f, 320, 128);
+  else if (name == "grid") m.mesh = makeGrid(2.0f, 40);
+  else if (name == "cylinder") m.mesh = makeCylinder(0.5f, 2.0f, 48, 24);
+  else if (name == "knot") m.mesh = makeTorusKnot(2, 3, 1.0f, 0.25f, 256, 24, 0.1f);
+  else {
+    const auto path = test::dataMesh(name);
+    if (path.empty() || !test::readOff(path, m.mesh)) m.mesh = TriMesh{};
+  }
+  if (m.mesh.faces.empty()) return m;
+  auto pm = buildProgressiveMesh(m.mesh);
+  EXPECT_TRUE(pm.ok()) << name << ": " << (pm.ok() ? "" : pm.error().message);
+  if (pm.ok()) m.pm = std::move(pm).value();
+  m.bounds = computeBounds(m.mesh.positions);
+  return m;
+}
+
+Camera cameraAt(const Bounds& b, float az, float el, float dist_radii) {
+  OrbitView v;
+  v.azimuth_deg = az;
+  v.elevation_deg = el;
+  v.distance = dist_radii;
+  Camera cam = orbitCamera(b, v, 35.0f, static_cast<float>(kW) / kH);
+  cam.near_plane = 0.01f * b.radius;
+  cam.far_plane = 100.0f * b.radius;
+  return cam;
+}
+
+void expectRefinesToInput(const Model& m) {
+  AdaptiveMesh lod(m.pm);
+  ASSERT_EQ(lod.checkInvariants(), "");
+  lod.fullyRefine();
+  ASSERT_EQ(lod.checkInvariants(), "");
+  TriMesh out;
+  std::vector<uint32_t> ids;
+  lod.exportCompact(out, ids);
+  ASSERT_EQ(out.faceCount(), m.mesh.faceCount());
+  std::vector<std::array<uint32_t, 3>> faces = out.faces;
+  for (auto& f : faces)
+    for (auto& v : f) {
+      ASSERT_TRUE(m.pm.isLeaf(ids[v]));
+      v = ids[v];
+    }
+  EXPECT_EQ(test::sortedFaces(faces), test::sortedFaces(m.mesh.faces));
+  for (size_t i = 0; i < ids.size(); ++i) EXPECT_EQ(out.positions[i], m.mesh.positions[ids[i]]);
+
+  lod.fullyCoarsen();
+  ASSERT_EQ(lod.checkInvariants(), "");
+  std::vector<uint32_t> got(lod.activeFaceIds().begin(), lod.activeFaceIds().end());
+  std::vector<uint32_t> want = m.pm.base_faces;
+  std::sort(got.begin(), got.end());
+  std::sort(want.begin(), want.end());
+  EXPECT_EQ(got, want);
+  EXPECT_EQ(lod.activeVertexCount(), m.pm.roots.size());
+  lod.exportCompact(out, ids);
+  std::vector<std::array<uint32_t, 3>> base = out.faces;
+  for (auto& f : base)
+    for (auto& v : f) v = ids[v];
+  EXPECT_EQ(test::sortedFaces(base), test::sortedFaces(m.pm.base_corners));
+  // And back up again.
+  lod.fullyRefine();
+  EXPECT_EQ(lod.activeFaceCount(), m.mesh.faceCount());
+  EXPECT_EQ(lod.checkInvariants(), "");
+}
+
+TEST(AdaptiveMesh, FullyRefineReproducesInputAndCoarsenGivesBase) {
+  for (const char* name : {"sphere", "noisy", "torus", "grid", "cylinder", "knot"}) {
+    SCOPED_TRACE(name);
+    expectRefinesToInput(model(name));
+  }
+}
+
+TEST(AdaptiveMesh, FullyRefineCgalMeshes) {
+  bool any = false;
+  for (const char* name : {"bunny00.off", "armadillo.off"}) {
+    const Model& m = model(name);
+    if (m.mesh.faces.empty()) continue;
+    any = true;
+    SCOPED_TRACE(name);
+    expectRefinesToInput(m);
+  }
+  if (!any) GTEST_SKIP() << "CGAL meshes not found";
+}
+
+TEST(AdaptiveMesh, NonManifoldInputRefinesExactly) {
+  Model m;
+  TriMesh a = makeIcoSphere(1.0f, 2);
+  m.mesh = a;
+  const uint32_t off = static_cast<uint32_t>(a.positions.size());
+  for (auto p : a.positions) m.mesh.positions.push_back(p + glm::vec3(2.0f, 0.0f, 0.0f));
+  for (auto f : a.faces) {
+    for (auto& v : f) v = (v == 0 ? 0u : v + off);
+    m.mesh.faces.push_back(f);
+  }
+  m.mesh.positions.push_back({9.0f, 9.0f, 9.0f});  // isolated
+  auto pm = buildProgressiveMesh(m.mesh);
+  ASSERT_TRUE(pm.ok());
+  m.pm = std::move(pm).value();
+  expectRefinesToInput(m);
+  AdaptiveMesh lod(m.pm);
+  m.bounds = computeBounds(m.mesh.positions);
+  DetailParams d;
+  for (int i = 0; i < 100; ++i) {
+    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 10.0f * i, 10.0f, 1.0f + 0.05f * i), kW, kH, d).ok());
+    lod.adapt(1.0f / 30);
+  }
+  EXPECT_EQ(lod.checkInvariants(), "");
+}
+
+/// Random camera path: orbit, zoom, jumps, T changes, ortho phases, geomorphs on/off.
+void randomPath(const Model& m, int frames, uint32_t seed, int check_every) {
+  AdaptiveMesh lod(m.pm);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+  float az = 0.0f, el = 10.0f, dist = 3.0f;
+  DetailParams d;
+  d.target_area = 8.0f;
+  for (int frame = 0; frame < frames; ++frame) {
+    az += 3.0f;
+    el = 40.0f * std::sin(0.01f * frame);
+    dist *= std::exp(0.05f * (u01(rng) - 0.5f));
+    if (u01(rng) < 0.02f) dist = 0.6f + 6.0f * u01(rng);  // jump (zoom in/out at once)
+    if (u01(rng) < 0.02f) az += 180.0f * u01(rng);
+    if (u01(rng) < 0.01f) d.target_area = 2.0f + 60.0f * u01(rng);
+    if (u01(rng) < 0.01f) d.geomorphs = !d.geomorphs;
+    dist = std::clamp(dist, 0.4f, 10.0f);
+    Camera cam = cameraAt(m.bounds, az, el, dist);
+    if ((frame / 300) % 4 == 3) {
+      cam.orthographic = true;
+      cam.ortho_height = dist * m.bounds.radius;
+    }
+    ASSERT_TRUE(lod.setView(cam, kW, kH, d).ok());
+    lod.adapt(u01(rng) < 0.05f ? 0.5f : 1.0f / 30.0f);
+    if (frame % check_every == 0 || frame == frames - 1) {
+      const std::string err = lod.checkInvariants();
+      ASSERT_EQ(err, "") << "frame " << frame;
+    }
+    // The change list only names valid slots, each once.
+    const auto& ch = lod.changes();
+    std::vector<uint32_t> dirty = ch.dirty;
+    std::sort(dirty.begin(), dirty.end());
+    ASSERT_TRUE(std::adjacent_find(dirty.begin(), dirty.end()) == dirty.end());
+    for (uint32_t s : dirty) ASSERT_LT(s, lod.slotCount());
+  }
+}
+
+TEST(AdaptiveMesh, RandomCameraPathsKeepTheMeshValid) {
+  randomPath(model("noisy"), 3000, 1, 7);
+  randomPath(model("torus"), 2000, 2, 11);
+  randomPath(model("grid"), 1000, 3, 5);
+  randomPath(model("knot"), 1500, 4, 13);
+}
+
+TEST(AdaptiveMesh, RandomCameraPathsCgal) {
+  const Model& m = model("bunny00.off");
+  if (m.mesh.faces.empty()) GTEST_SKIP() << "bunny00.off not found";
+  randomPath(m, 1500, 5, 50);
+}
+
+TEST(AdaptiveMesh, StaticCameraConvergesWithoutOscillation) {
+  for (const char* name : {"fine_sphere", "torus", "knot"}) {
+    SCOPED_TRACE(name);
+    const Model& m = model(name);
+    AdaptiveMesh lod(m.pm);
+    DetailParams d;
+    d.geomorphs = false;
+    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 30.0f, 20.0f, 2.5f), kW, kH, d).ok());
+    // Converged: 20 frames in a row without a split or collapse (refused splits are retried
+    // every few frames, and a retry must not change the mesh).
+    int frame = 0, quiet = 0;
+    for (; frame < 400 && quiet < 20; ++frame) {
+      lod.adapt(1.0f / 30);
+      quiet = (lod.stats().splits == 0 && lod.stats().collapses == 0) ? quiet + 1 : 0;
+    }
+    EXPECT_LT(frame, 400) << "did not converge";
+    EXPECT_GT(lod.activeFaceCount(), m.pm.base_faces.size());
+    const uint32_t faces = lod.activeFaceCount();
+    for (int i = 0; i < 100; ++i) {
+      lod.adapt(1.0f / 30);
+      ASSERT_EQ(lod.stats().splits + lod.stats().collapses, 0u) << "oscillation at frame " << i;
+    }
+    EXPECT_EQ(lod.activeFaceCount(), faces);
+    EXPECT_EQ(lod.checkInvariants(), "");
+  }
+}
+
+float convergedBand(const Model& m, float dist, float target, uint32_t* visible = nullptr) {
+  AdaptiveMesh lod(m.pm);
+  DetailParams d;
+  d.geomorphs = false;
+  d.target_area = target;
+  EXPECT_TRUE(lod.setView(cameraAt(m.bounds, 30.0f, 20.0f, dist), kW, kH, d).ok());
+  for (int i = 0; i < 300; ++i) {
+    lod.adapt(1.0f / 30);
+    if (lod.stats().splits == 0 && lod.stats().collapses == 0) break;
+  }
+  float band = 0.0f;
+  uint32_t vis = 0;
+  lod.measureBand(band, vis);
+  if (visible) *visible = vis;
+  return band;
+}
+
+TEST(AdaptiveMesh, BandFractionAfterConvergence) {
+  for (const char* name : {"fine_sphere", "fine_torus"}) {
+    SCOPED_TRACE(name);
+    uint32_t visible = 0;
+    // At 6 radii the full-detail faces are ~8 px² (finer than T), so the band is reachable.
+    const float band = convergedBand(model(name), 6.0f, 16.0f, &visible);
+    EXPECT_GE(band, 0.9f) << "visible faces " << visible;
+    EXPECT_GT(visible, 1000u);
+  }
+}
+
+TEST(AdaptiveMesh, VisibleFacesTrackImageAreaOverT) {
+  const Model& m = model("fine_sphere");
+  uint32_t near_vis = 0, far_vis = 0;
+  convergedBand(m, 6.0f, 16.0f, &near_vis);
+  convergedBand(m, 12.0f, 16.0f, &far_vis);
+  // Twice the distance: a quarter of the image area, about a quarter of the faces.
+  const float ratio = static_cast<float>(near_vis) / static_cast<float>(far_vis);
+  EXPECT_GT(ratio, 2.5f);
+  EXPECT_LT(ratio, 6.0f);
+}
+
+uint32_t convergedFaces(const Model& m, const DetailParams& d0, const Camera& cam) {
+  AdaptiveMesh lod(m.pm);
+  DetailParams d = d0;
+  d.geomorphs = false;
+  EXPECT_TRUE(lod.setView(cam, kW, kH, d).ok());
+  for (int i = 0; i < 300; ++i) {
+    lod.adapt(1.0f / 30);
+    if (lod.stats().splits == 0 && lod.stats().collapses == 0) break;
+  }
+  EXPECT_EQ(lod.checkInvariants(), "");
+  return lod.activeFaceCount();
+}
+
+TEST(AdaptiveMesh, DetailModifiers) {
+  const Model& m = model("fine_sphere");
+  const Camera cam = cameraAt(m.bounds, 30.0f, 20.0f, 6.0f);
+  DetailParams d;
+  const uint32_t base = convergedFaces(m, d, cam);
+  d.object_factor = 4.0f;
+  const uint32_t object = convergedFaces(m, d, cam);
+  EXPECT_LT(object, base / 2);
+  d.object_factor = 1.0f;
+  auto map = std::make_shared<DetailMap>();
+  map->width = 8;
+  map->height = 4;
+  map->values.assign(32, 4.0f);
+  d.detail_map = map;
+  const uint32_t mapped = convergedFaces(m, d, cam);
+  EXPECT_LT(mapped, base / 2);
+  d.detail_map = nullptr;
+  d.depth_falloff = 2.0f;
+  const uint32_t falloff = convergedFaces(m, d, cam);
+  EXPECT_NE(falloff, base);
+  d.depth_falloff = 0.0f;
+  d.foveation = 1.0f;
+  d.focus_px = {0.0f, 0.0f};  // gaze at the corner: the model gets coarser
+  const uint32_t fov = convergedFaces(m, d, cam);
+  EXPECT_LT(fov, base);
+}
+
+TEST(AdaptiveMesh, DetailMapScalesLocally) {
+  const Model& m = model("fine_sphere");
+  AdaptiveMesh lod(m.pm);
+  auto map = std::make_shared<DetailMap>();
+  map->width = 2;
+  map->height = 1;
+  map->values = {1.0f, 8.0f};  // right half: 8× larger triangles
+  DetailParams d;
+  d.geomorphs = false;
+  d.detail_map = map;
+  const Camera cam = cameraAt(m.bounds, 0.0f, 0.0f, 3.0f);
+  ASSERT_TRUE(lod.setView(cam, kW, kH, d).ok());
+  for (int i = 0; i < 200; ++i) lod.adapt(1.0f / 30);
+  TriMesh out;
+  std::vector<uint32_t> ids;
+  lod.exportCompact(out, ids);
+  int left = 0, right = 0;
+  for (const auto& f : out.faces) {
+    const glm::vec3 c = (out.positions[f[0]] + out.positions[f[1]] + out.positions[f[2]]) / 3.0f;
+    const glm::vec2 px = projectToPixels(cam, c, kW, kH);
+    if (px.x < 0.4f * kW) ++left;
+    if (px.x > 0.6f * kW) ++right;
+  }
+  EXPECT_GT(left, 3 * right);
+}
+
+TEST(AdaptiveMesh, BadParametersAreErrors) {
+  const Model& m = model("sphere");
+  AdaptiveMesh lod(m.pm);
+  const Camera cam = cameraAt(m.bounds, 0.0f, 0.0f, 3.0f);
+  DetailParams d;
+  EXPECT_FALSE(lod.setView(cam, 0, kH, d).ok());
+  d.t_c = 0.8f;  // 2·t_c > t_s: would oscillate
+  EXPECT_FALSE(lod.setView(cam, kW, kH, d).ok());
+  d = DetailParams{};
+  d.target_area = -1.0f;
+  EXPECT_FALSE(lod.setView(cam, kW, kH, d).ok());
+  d = DetailParams{};
+  auto map = std::make_shared<DetailMap>();
+  map->width = 4;
+  map->height = 4;
+  map->values.assign(15, 1.0f);
+  d.detail_map = map;
+  auto st = lod.setView(cam, kW, kH, d);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().message.find("detail map"), std::string::npos);
+}
+
+TEST(AdaptiveMesh, OffScreenAndBackFacingCoarsen) {
+  const Model& m = model("fine_sphere");
+  AdaptiveMesh lod(m.pm);
+  DetailParams d;
+  d.geomorphs = false;
+  Camera cam = cameraAt(m.bounds, 0.0f, 0.0f, 3.0f);
+  ASSERT_TRUE(lod.setView(cam, kW, kH, d).ok());
+  for (int i = 0; i < 100; ++i) lod.adapt(1.0f / 30);
+  const uint32_t seen = lod.activeFaceCount();
+  // Front half refined more than the back half: count faces by facing direction.
+  TriMesh out;
+  std::vector<uint32_t> ids;
+  lod.exportCompact(out, ids);
+  int front = 0, back = 0;
+  for (const auto& f : out.faces) {
+    const glm::vec3 c = (out.positions[f[0]] + out.positions[f[1]] + out.positions[f[2]]) / 3.0f;
+    (glm::dot(c, cam.eye) > 0.0f ? front : back) += 1;
+  }
+  EXPECT_GT(front, 4 * back);
+  // Look away: coarsens to (nearly) the base mesh at once, without geomorphs too.
+  cam.target = cam.eye + (cam.eye - m.bounds.center);
+  d.geomorphs = true;
+  ASSERT_TRUE(lod.setView(cam, kW, kH, d).ok());
+  for (int i = 0; i < 5; ++i) lod.adapt(1.0f / 30);
+  EXPECT_LT(lod.activeFaceCount(), seen / 20);
+  EXPECT_EQ(lod.checkInvariants(), "");
+}
+
+TEST(AdaptiveMesh, GeomorphsMorphOutAndCollapseAfterMorphing) {
+  const Model& m = model("fine_sphere");
+  AdaptiveMesh lod(m.pm);
+  DetailParams d;
+  d.morph_time = 0.5f;
+  const Camera cam = cameraAt(m.bounds, 0.0f, 0.0f, 3.0f);
+  ASSERT_TRUE(lod.setView(cam, kW, kH, d).ok());
+  lod.adapt(0.0f);
+  ASSERT_GT(lod.stats().splits, 0u);
+  // New children start at the parent position and are morphing.
+  EXPECT_GT(lod.stats().morphing, 0u);
+  bool displaced = false;
+  auto pos = lod.positions();
+  auto nodes = lod.slotVertices();
+  for (uint32_t s = 0; s < lod.slotCount(); ++s)
+    if (nodes[s] != kPmNone && pos[s] != m.pm.nodePosition(nodes[s])) displaced = true;
+  EXPECT_TRUE(displaced);
+  EXPECT_FALSE(lod.changes().moved.empty());
+  for (int i = 0; i < 200; ++i) lod.adapt(1.0f / 30);
+  for (int i = 0; i < 60 && lod.stats().morphing; ++i) lod.adapt(1.0f / 30);
+  EXPECT_EQ(lod.stats().morphing, 0u);
+  pos = lod.positions();
+  nodes = lod.slotVertices();
+  for (uint32_t s = 0; s < lod.slotCount(); ++s) {
+    if (nodes[s] != kPmNone) {
+      ASSERT_EQ(pos[s], m.pm.nodePosition(nodes[s]));
+    }
+  }
+  // Zoom out: collapses are first pending (morphing), executed later.
+  ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 0.0f, 0.0f, 6.0f), kW, kH, d).ok());
+  lod.adapt(1.0f / 30);
+  EXPECT_GT(lod.stats().pending_collapses, 0u);
+  EXPECT_EQ(lod.checkInvariants(), "");
+}
+
+/// Frames (at 30 fps) until the face count after a 4× zoom-out comes within 10% of what the
+/// same zoom-out reaches without geomorphs (the coarsening lag the geomorphs add).
+int coarseningLagFrames(const Model& m, const DetailParams& d, uint32_t* final_faces = nullptr) {
+  const Camera near_cam = cameraAt(m.bounds, 0.0f, 0.0f, 3.0f);
+  const Camera far_cam = cameraAt(m.bounds, 0.0f, 0.0f, 12.0f);
+  DetailParams instant = d;
+  instant.geomorphs = false;
+  AdaptiveMesh ref(m.pm);
+  EXPECT_TRUE(ref.setView(near_cam, kW, kH, instant).ok());
+  for (int i = 0; i < 200; ++i) ref.adapt(1.0f / 30);
+  EXPECT_TRUE(ref.setView(far_cam, kW, kH, instant).ok());
+  for (int i = 0; i < 200; ++i) ref.adapt(1.0f / 30);
+  const uint32_t want = ref.activeFaceCount();
+  AdaptiveMesh lod(m.pm);
+  EXPECT_TRUE(lod.setView(near_cam, kW, kH, d).ok());
+  for (int i = 0; i < 200; ++i) lod.adapt(1.0f / 30);
+  EXPECT_TRUE(lod.setView(far_cam, kW, kH, d).ok());
+  int lag = 300;
+  for (int frame = 1; frame <= 300; ++frame) {
+    lod.adapt(1.0f / 30);
+    if (lod.activeFaceCount() <= 1.1f * want) { lag = frame; break; }
+  }
+  for (int i = 0; i < 100; ++i) lod.adapt(1.0f / 30);
+  if (final_faces) *final_faces = lod.activeFaceCount();
+  EXPECT_EQ(lod.checkInvariants(), "");
+  return lag;
+}
+
+TEST(AdaptiveMesh, CoarseningLagAfterZoomOutIsBounded) {
+  const Model& m = model("fine_sphere");
+  DetailParams d;
+  uint32_t faces = 0;
+  const int lag = coarseningLagFrames(m, d, &faces);
+  std::printf("coarsening lag after a 4x zoom-out: %d frames at 30 fps (%u faces after)\n", lag,
+              faces);
+  EXPECT_LE(lag, 20) << "more than 2/3 s to coarsen after a 4x zoom-out";
+}
+
+TEST(AdaptiveMesh, OperationBudgetSpreadsWorkOverFrames) {
+  const Model& m = model("fine_sphere");
+  AdaptiveMesh lod(m.pm);
+  DetailParams d;
+  d.geomorphs = false;
+  d.max_operations = 200;
+  ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 0.0f, 0.0f, 6.0f), kW, kH, d).ok());
+  int frames = 0, quiet = 0;
+  for (; frames < 500 && quiet < 20; ++frames) {
+    lod.adapt(1.0f / 30);
+    const uint32_t ops = lod.stats().splits + lod.stats().collapses;
+    EXPECT_LE(ops, 200u + 64u);  // a forced chain may overshoot a little
+    quiet = ops == 0 ? quiet + 1 : 0;
+  }
+  EXPECT_GT(frames, 10);  // the budget did spread the work
+  EXPECT_LT(frames, 500);
+  d.max_operations = 0;
+  EXPECT_NEAR(static_cast<double>(lod.activeFaceCount()),
+              static_cast<double>(convergedFaces(m, d, cameraAt(m.bounds, 0.0f, 0.0f, 6.0f))),
+              0.1 * lod.activeFaceCount());
+  EXPECT_EQ(lod.checkInvariants(), "");
+}
+
+TEST(AdaptiveMesh, WorksOnALoadedCacheFile) {
+  const Model& m = model("knot");
+  test::TempDir dir;
+  auto loaded = loadOrBuildPm(m.mesh, meshContentHash(m.mesh), dir.path());
+  ASSERT_TRUE(loaded.ok());
+  auto again = loadOrBuildPm(m.mesh, meshContentHash(m.mesh), dir.path());  // from the file
+  ASSERT_TRUE(again.ok());
+  Model copy;
+  copy.mesh = m.mesh;
+  copy.pm = std::move(again).value();
+  copy.bounds = m.bounds;
+  expectRefinesToInput(copy);
+}
+
+TEST(AdaptiveMesh, ChangeListAndExports) {
+  const Model& m = model("sphere");
+  AdaptiveMesh lod(m.pm);
+  DetailParams d;
+  d.geomorphs = false;
+  ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 0.0f, 0.0f, 2.0f), kW, kH, d).ok());
+  lod.adapt(1.0f / 30);
+  const auto& ch = lod.changes();
+  ASSERT_FALSE(ch.split.empty());
+  EXPECT_EQ(ch.split.size(), lod.stats().splits);
+  // Every active vertex created this frame is dirty.
+  std::vector<uint8_t> dirty(lod.slotCount(), 0);
+  for (uint32_t s : ch.dirty) dirty[s] = 1;
+  for (uint32_t s = 0; s < lod.slotCount(); ++s) {
+    const uint32_t v = lod.slotVertices()[s];
+    if (v == kPmNone || m.pm.parent[v] == kPmNone) continue;
+    if (std::find(ch.split.begin(), ch.split.end(), m.pm.parent[v]) != ch.split.end()) {
+      EXPECT_TRUE(dirty[s]) << "slot " << s;
+    }
+  }
+  std::vector<std::array<uint32_t, 3>> faces;
+  lod.exportFaces(faces);
+  EXPECT_EQ(faces.size(), lod.activeFaceCount());
+  for (const auto& f : faces)
+    for (uint32_t s : f) {
+      ASSERT_LT(s, lod.slotCount());
+      ASSERT_NE(lod.slotVertices()[s], kPmNone);
+    }
+  EXPECT_EQ(lod.stats().active_faces, lod.activeFaceCount());
+  EXPECT_EQ(lod.stats().active_vertices, lod.activeVertexCount());
+}
+
+}  // namespace
+}  // namespace lodline
