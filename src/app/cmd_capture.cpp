@@ -161,10 +161,15 @@ int runCapture(const CaptureOptions& o) {
   // One step of the simulation at frame k (time k/fps): the state every later frame builds
   // on. Level of detail and temporal smoothing will keep state here; with full detail a
   // frame depends on its camera only.
+  // Smoothing at the capture's frame rate (Jeong §3.3: f is the capture rate when capturing).
+  const float smoothing_w = detail->smoothing.enabled
+                                ? smoothingWeight(detail->smoothing.alpha, detail->smoothing.seconds, static_cast<float>(o.fps))
+                                : 1.0f;
   // Errors from the detail parameters were ruled out by resolveDetailOptions.
   auto simulate = [&](int64_t k) -> Camera {
     const Camera cam = cam_path->at(static_cast<double>(k) / o.fps, drawing.bounds());
-    (void)lod_drawing.frame(cam, rp.width, rp.height, detail->params, static_cast<float>(1.0 / o.fps), enabled);
+    (void)lod_drawing.frame(cam, rp.width, rp.height, detail->params, static_cast<float>(1.0 / o.fps), enabled,
+                            smoothing_w);
     return cam;
   };
   auto line_mask = [&](const Camera& cam, LineMask& m) {

@@ -169,6 +169,7 @@ int runView(const ViewOptions& o, const DetailOptions& d) {
     if (s.params.msaa > 1) glEnable(GL_MULTISAMPLE);
 
     Stopwatch fps_clock, frame_clock;
+    float mean_dt = 1.0f / 20.0f;
     int frames = 0;
     while (!glfwWindowShouldClose(w)) {
       glfwPollEvents();
@@ -185,7 +186,12 @@ int runView(const ViewOptions& o, const DetailOptions& d) {
       if (s.dirty || lod_drawing.detailControlled()) {
         std::array<bool, kLineKindCount> enabled{};
         for (int k = 0; k < kLineKindCount; ++k) enabled[k] = s.params.lines.kinds[k].enabled;
-        if (Status st = lod_drawing.frame(cam, fb_w, fb_h, s.detail, dt, enabled); !st)
+        // Smoothing at the measured frame rate (Jeong §3.3), from a running mean of dt.
+        mean_dt = 0.9f * mean_dt + 0.1f * std::max(dt, 1e-3f);
+        const float w = detail->smoothing.enabled
+                            ? smoothingWeight(detail->smoothing.alpha, detail->smoothing.seconds, 1.0f / mean_dt)
+                            : 1.0f;
+        if (Status st = lod_drawing.frame(cam, fb_w, fb_h, s.detail, dt, enabled, w); !st)
           return reportError(st.error());
         if (lod_drawing.meshChanged())
           renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);

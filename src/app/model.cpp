@@ -38,6 +38,14 @@ void addDetailOptions(CLI::App& cmd, DetailOptions& o) {
   cmd.add_option("--geomorphs", o.geomorphs, "Real-time geomorphs (Jeong et al. 2005 §3.2): on or off")
       ->capture_default_str();
   cmd.add_option("--morph-time", o.morph_time, "Geomorph transition time in seconds")->capture_default_str();
+  cmd.add_option("--smoothing", o.smoothing,
+                 "Temporal smoothing of normals, kr and Dw kr over frames (Jeong et al. 2005 §3.3): on or off "
+                 "(view and capture; a still render uses the current frame's values)")
+      ->capture_default_str();
+  cmd.add_option("--smoothing-alpha", o.smoothing_alpha, "Fraction of a new value reached within --smoothing-time")
+      ->capture_default_str();
+  cmd.add_option("--smoothing-time", o.smoothing_time, "Seconds to reach --smoothing-alpha of a new value")
+      ->capture_default_str();
   cmd.add_option("--cache-dir", o.cache_dir,
                  "Where progressive meshes are cached (default $XDG_CACHE_HOME/lodline or ~/.cache/lodline)");
 }
@@ -92,6 +100,10 @@ Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
     }
     p.detail_map = std::move(map);
   }
+  if (o.smoothing != "on" && o.smoothing != "off") return Error::usage("--smoothing: expected on or off");
+  if (!(o.smoothing_alpha > 0.0f && o.smoothing_alpha < 1.0f)) return Error::usage("--smoothing-alpha: must be in (0, 1)");
+  if (!(o.smoothing_time > 0.0f && o.smoothing_time <= 60.0f)) return Error::usage("--smoothing-time: must be in (0, 60] s");
+  r.smoothing = {o.smoothing == "on", o.smoothing_alpha, o.smoothing_time};
   r.cache_dir = o.cache_dir.empty() ? defaultCacheDir() : std::filesystem::path(o.cache_dir);
   return r;
 }

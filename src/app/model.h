@@ -11,6 +11,7 @@
 
 #include "core/result.h"
 #include "frame/lod_drawing.h"
+#include "frame/temporal_smoothing.h"
 #include "lod/adaptive_mesh.h"
 
 namespace lodline {
@@ -31,9 +32,13 @@ struct DetailOptions {
   float morph_time = DetailParams{}.morph_time;
   std::string cache_dir;
   int max_adapt_frames = 300;
+  std::string smoothing = "on";
+  float smoothing_alpha = SmoothingParams{}.alpha;
+  float smoothing_time = SmoothingParams{}.seconds;
 };
 
 struct ResolvedDetail {
+  SmoothingParams smoothing;
   bool full_detail = false;
   DetailParams params;
   std::filesystem::path cache_dir;

@@ -44,6 +44,10 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
   cmd.add_option("--chamfer-shininess", o.chamfer_shininess,
                  "Blinn-Phong exponent of the shaded faces and highlights (1-127)")
       ->capture_default_str();
+  cmd.add_option("--chamfer-compose", o.chamfer_compose,
+                 "How highlights meet the faces: replace (the strip replaces the face bands it "
+                 "rounds off) or alpha (the paper's blend with W = K*r_e/(d*r_max))")
+      ->capture_default_str();
 }
 
 Result<OrbitView> parseOrbitView(const std::string& s) {
@@ -124,6 +128,13 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   if (!(o.chamfer_shininess >= 1.0f && o.chamfer_shininess <= 127.0f))
     return Error::usage("--chamfer-shininess: must be in [1, 127]");
   ch.shininess = o.chamfer_shininess;
+  if (o.chamfer_compose == "replace")
+    ch.compose = ChamferCompose::kReplace;
+  else if (o.chamfer_compose == "alpha")
+    ch.compose = ChamferCompose::kAlpha;
+  else
+    return Error::usage("--chamfer-compose: unknown value '" + o.chamfer_compose +
+                        "' (expected replace or alpha)");
   for (auto& k : r.render.lines.kinds) k.enabled = false;
   std::stringstream ss(o.lines);
   std::string item;

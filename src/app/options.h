@@ -31,6 +31,7 @@ struct ViewOptions {
   float chamfer_k = 0.0f;         ///< K, pixels; 0 = auto (focal length in px)
   float chamfer_angle = 30.0f;    ///< sharp-edge threshold, degrees
   float chamfer_shininess = 32.0f;  ///< Blinn–Phong exponent n
+  std::string chamfer_compose = "replace";  ///< replace or alpha (the paper's blend)
 };
 
 /// Everything a frame needs that does not depend on the model.

@@ -1,11 +1,13 @@
 #include "frame/line_drawing.h"
 
+#include <cmath>
+
 #include "core/timer.h"
 
 namespace lodline {
 
-LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params)
-    : mesh_(std::move(mesh)), params_(params) {
+LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapeParams& shape_params)
+    : mesh_(std::move(mesh)), params_(params), shape_(shape_params) {
   bounds_ = computeBounds(mesh_.positions);
   Stopwatch sw;
   shape_.compute(mesh_);
@@ -24,9 +26,11 @@ void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
   timings_.shape = sw.lap();
 }
 
-std::span<const glm::vec3> LineDrawing::normals() const { return shape_.normals(); }
+std::span<const glm::vec3> LineDrawing::normals() const {
+  return shading_normals_.size() == mesh_.positions.size() ? shading_normals_ : shape_.normals();
+}
 
-void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled) {
+void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled, float smoothing) {
   LineParams p = params_;
   p.contours = p.contours && enabled[static_cast<int>(LineKind::kContour)];
   p.suggestive = p.suggestive && enabled[static_cast<int>(LineKind::kSuggestive)];
@@ -34,10 +38,24 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   p.marked_edges = p.marked_edges && p.creases;
   p.boundaries = p.boundaries && enabled[static_cast<int>(LineKind::kBoundary)];
 
-  extractor_.extract(mesh_, shape_, ViewSpec::fromCamera(camera), p, feature_size_, segments_);
-  timings_.view = extractor_.lastViewMs();
-  timings_.extract = extractor_.lastExtractMs();
   Stopwatch sw;
+  SurfaceFields fields = shape_.fields(mesh_);
+  if (!p.suggestive) fields.dcurv = {};
+  const bool smooth = smoothing < 1.0f;
+  if (smooth) {
+    fields.normals = smoother_.blendNormals(shape_.normals(), smoothing);
+    shading_normals_ = fields.normals;
+  } else {
+    smoother_.reset();
+    shading_normals_ = {};
+  }
+  const float fs = feature_size_ > 0.0f && std::isfinite(feature_size_) ? feature_size_ : 1.0f;
+  const float sc_threshold = p.suggestive_threshold / (fs * fs);
+  computeViewQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, view_);
+  if (smooth) smoother_.blendView(view_, smoothing, sc_threshold);
+  timings_.view = sw.lap();
+  extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_);
+  timings_.extract = sw.lap();
   chainStrokes(segments_, strokes_, chain_scratch_);
   timings_.chain = sw.lap();
 

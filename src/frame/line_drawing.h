@@ -11,6 +11,7 @@
 #include "core/mesh.h"
 #include "lines/lines.h"
 #include "lines/strokes.h"
+#include "frame/temporal_smoothing.h"
 #include "shape/shape_cache.h"
 
 namespace lodline {
@@ -28,7 +29,7 @@ class LineDrawing {
   /// Takes the full-detail mesh and computes its shape quantities (normals, curvature,
   /// derivatives), its bounds and its feature size (which stay those of the full-detail model
   /// when level of detail later replaces the mesh).
-  explicit LineDrawing(TriMesh mesh, const LineParams& params = {});
+  explicit LineDrawing(TriMesh mesh, const LineParams& params = {}, const ShapeParams& shape_params = {});
 
   /// Replaces the mesh by an adapted one (level of detail): `positions` per vertex slot,
   /// `faces` indexing them; `changed` lists the vertices whose position or incident faces
@@ -38,13 +39,19 @@ class LineDrawing {
                   std::span<const uint32_t> changed);
 
   /// Recomputes the lines for `camera`. Kinds disabled in `enabled` are not extracted.
-  void update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled);
+  /// `smoothing` < 1 blends normals, kr and Dw kr with the previous frames' values by that
+  /// weight (Jeong et al. 2005 §3.3, see temporal_smoothing.h); 1 uses this frame's values.
+  void update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled, float smoothing = 1.0f);
+
+  /// The smoothing state (level of detail moves it along the vertex hierarchy).
+  TemporalSmoother& smoother() { return smoother_; }
 
   void setParams(const LineParams& params) { params_ = params; }
   const LineParams& params() const { return params_; }
 
   const TriMesh& mesh() const { return mesh_; }
   const Bounds& bounds() const { return bounds_; }
+  /// Vertex normals for shading: the temporally smoothed ones after a smoothed update().
   std::span<const glm::vec3> normals() const;
   const LineBuffer& lines() const { return buffer_; }
   /// The extracted segments (all enabled kinds), as the lines stage produced them.
@@ -61,7 +68,10 @@ class LineDrawing {
   LineParams params_;
   ShapeCache shape_;
   float feature_size_ = 1.0f;
-  LineExtractor extractor_;
+  TemporalSmoother smoother_;
+  std::span<const glm::vec3> shading_normals_;
+  ViewQuantities view_;
+  LineScratch scratch_;
   LineSet segments_;
   StrokeSet strokes_;
   ChainScratch chain_scratch_;

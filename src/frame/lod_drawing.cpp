@@ -8,8 +8,19 @@ namespace lodline {
 
 LodDrawing::LodDrawing(TriMesh full, const LineParams& params) : drawing_(std::move(full), params) {}
 
+namespace {
+// Geomorphs start a split's new vertex at its parent's position, so adapted meshes routinely
+// hold near-zero-length edges; Max's weights (∝ 1/(|a|·|b|)) let such slivers dominate a
+// vertex normal, area weights give them none. Full detail keeps the more accurate default.
+ShapeParams adaptiveShapeParams() {
+  ShapeParams p;
+  p.normal_weighting = NormalWeighting::kArea;
+  return p;
+}
+}  // namespace
+
 LodDrawing::LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params)
-    : drawing_(std::move(full), params), pm_(std::move(pm)), lod_(std::make_unique<AdaptiveMesh>(*pm_)) {}
+    : drawing_(std::move(full), params, adaptiveShapeParams()), pm_(std::move(pm)), lod_(std::make_unique<AdaptiveMesh>(*pm_)) {}
 
 Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const DetailParams& detail,
                              float dt) {
@@ -21,6 +32,7 @@ Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const 
   Stopwatch sw;
   if (Status s = lod_->setView(camera, width, height, detail); !s) return s;
   lod_->adapt(dt);
+  drawing_.smoother().followHierarchy(*lod_);
   adapt_ms_ = sw.lap();
   const LodChanges& ch = lod_->changes();
   if (!first_ && !ch.everything && ch.dirty.empty()) return {};
@@ -38,9 +50,9 @@ Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const 
 }
 
 Status LodDrawing::frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
-                         const std::array<bool, kLineKindCount>& enabled) {
+                         const std::array<bool, kLineKindCount>& enabled, float smoothing) {
   if (Status s = adaptStep(camera, width, height, detail, dt); !s) return s;
-  drawing_.update(camera, enabled);
+  drawing_.update(camera, enabled, smoothing);
   return {};
 }
 

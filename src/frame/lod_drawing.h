@@ -26,8 +26,10 @@ class LodDrawing {
   /// One frame: adapts the mesh to the view (advancing geomorphs by `dt` seconds), updates
   /// the shape quantities of what changed and extracts the lines. Errors come only from
   /// invalid detail parameters.
+  /// `smoothing`: weight of this frame's values in the temporal blend (1 = no smoothing;
+  /// smoothingWeight() gives it from α, t and the frame rate).
   Status frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
-               const std::array<bool, kLineKindCount>& enabled);
+               const std::array<bool, kLineKindCount>& enabled, float smoothing = 1.0f);
 
   /// Adapts with geomorphs and `dt` per step until a step changes nothing (no split, collapse
   /// or running morph) or `max_steps` steps ran; then extracts the lines. Returns the steps.
