@@ -149,6 +149,16 @@ int runRender(const RenderOptions& o) {
     nlohmann::json j;
     j["model"] = {{"path", resolved->model.string()}, {"vertices", model_vertices}, {"faces", model_faces}};
     j["image"] = {{"width", rp.width}, {"height", rp.height}};
+    // Pixels the model covers (differ from the background): the image area detail control
+    // divides by T.
+    size_t coverage = 0;
+    for (size_t i = 0; i < image.rgba.size(); i += 4) {
+      const int dr = std::abs(image.rgba[i] - static_cast<int>(std::lround(rp.background.r * 255.0f)));
+      const int dg = std::abs(image.rgba[i + 1] - static_cast<int>(std::lround(rp.background.g * 255.0f)));
+      const int db = std::abs(image.rgba[i + 2] - static_cast<int>(std::lround(rp.background.b * 255.0f)));
+      coverage += std::max({dr, dg, db}) > 8;
+    }
+    j["image"]["coverage_px"] = coverage;
     if (soft) {
       j["context"] = {{"backend", "soft"}, {"gl", "none"}};
       j["faces_drawn"] = soft_renderer.faceCount();

@@ -12,6 +12,19 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
   Stopwatch sw;
   shape_.compute(mesh_);
   feature_size_ = computeFeatureSize(shape_.k1(), shape_.k2(), bounds_.radius);
+  // Crease vertices of the full-detail mesh: the same edge lines the extractor would draw.
+  {
+    LineParams creases_only;
+    creases_only.contours = creases_only.suggestive = creases_only.boundaries = false;
+    creases_only.creases = true;
+    creases_only.crease_angle_deg = params_.crease_angle_deg;
+    creases_only.marked_edges = params_.marked_edges;
+    LineSet edges;
+    LineScratch scratch;
+    extractEdgeLines(mesh_, shape_.adjacency(), shape_.faceNormals(), creases_only, scratch, edges);
+    full_crease_vertices_.assign(mesh_.positions.size(), 0);
+    for (size_t i = 0; i < edges.point_ids.size(); ++i) full_crease_vertices_[edges.point_ids[i]] = 1;
+  }
   timings_.shape = sw.lap();
 }
 
@@ -54,7 +67,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   computeViewQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, view_);
   if (smooth) smoother_.blendView(view_, smoothing, sc_threshold);
   timings_.view = sw.lap();
-  extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_);
+  extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_);
   timings_.extract = sw.lap();
   chainStrokes(segments_, strokes_, chain_scratch_);
   timings_.chain = sw.lap();

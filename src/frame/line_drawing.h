@@ -43,6 +43,13 @@ class LineDrawing {
   /// weight (Jeong et al. 2005 §3.3, see temporal_smoothing.h); 1 uses this frame's values.
   void update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled, float smoothing = 1.0f);
 
+  /// Vertices of the full-detail mesh that lie on a crease there (dihedral angle above
+  /// LineParams::crease_angle_deg, marked or non-manifold edges): one byte per input vertex.
+  std::span<const uint8_t> fullDetailCreaseVertices() const { return full_crease_vertices_; }
+  /// Per vertex of the current mesh, whether a dihedral crease may pass through it (empty:
+  /// everywhere). Level of detail sets it from fullDetailCreaseVertices().
+  std::vector<uint8_t>& creaseMask() { return crease_mask_; }
+
   /// The smoothing state (level of detail moves it along the vertex hierarchy).
   TemporalSmoother& smoother() { return smoother_; }
 
@@ -68,6 +75,7 @@ class LineDrawing {
   LineParams params_;
   ShapeCache shape_;
   float feature_size_ = 1.0f;
+  std::vector<uint8_t> full_crease_vertices_, crease_mask_;
   TemporalSmoother smoother_;
   std::span<const glm::vec3> shading_normals_;
   ViewQuantities view_;

@@ -43,6 +43,15 @@ Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const 
   } else {
     changed_.assign(ch.dirty.begin(), ch.dirty.end());
   }
+  // Dihedral creases on the adapted mesh only where the full-detail mesh has them.
+  {
+    const auto nodes = lod_->slotVertices();
+    const auto full = drawing_.fullDetailCreaseVertices();
+    auto& mask = drawing_.creaseMask();
+    mask.resize(nodes.size());
+    for (size_t s = 0; s < nodes.size(); ++s)
+      mask[s] = nodes[s] != kPmNone && full[pm_->origin[nodes[s]]];
+  }
   drawing_.updateMesh(lod_->positions(), faces_, changed_);
   mesh_changed_ = true;
   first_ = false;

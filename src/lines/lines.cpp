@@ -147,7 +147,8 @@ void extractZeroSet(std::span<const glm::vec3> positions,
 
 void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
                       std::span<const glm::vec3> face_normals, const LineParams& params,
-                      LineScratch& scratch, LineSet& out) {
+                      LineScratch& scratch, LineSet& out, std::span<const uint8_t> crease_vertices) {
+  const bool masked = crease_vertices.size() == mesh.positions.size();
   const size_t ne = adj.edges.size();
   if (adj.vertex_count != mesh.positions.size() || face_normals.size() != adj.face_count) return;
   const bool want_creases = params.creases;
@@ -167,6 +168,7 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
       scratch.edge_mark[e] = params.boundaries ? 2 : scratch.edge_mark[e];
     } else if (count == 2) {
       if (!want_creases || scratch.edge_mark[e]) continue;
+      if (masked && (!crease_vertices[adj.edges[e][0]] || !crease_vertices[adj.edges[e][1]])) continue;
       const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
       const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
       if (glm::dot(n1, n1) == 0.0f || glm::dot(n2, n2) == 0.0f) continue;
@@ -187,7 +189,7 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
 void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
                   std::span<const glm::vec3> face_normals, const ViewQuantities& view,
                   const LineParams& params, float feature_size, LineScratch& scratch,
-                  LineSet& out) {
+                  LineSet& out, std::span<const uint8_t> crease_vertices) {
   out.clear();
   scratch.next_interior_id = 0;
   const float fs = feature_size > 0.0f && std::isfinite(feature_size) ? feature_size : 1.0f;
@@ -207,7 +209,7 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
     in.fade = params.suggestive_fade / (fs * fs);
     extractZeroSet(mesh.positions, mesh.faces, adj, in, LineType::kSuggestive, scratch, out);
   }
-  extractEdgeLines(mesh, adj, face_normals, params, scratch, out);
+  extractEdgeLines(mesh, adj, face_normals, params, scratch, out, crease_vertices);
 }
 
 void LineExtractor::extract(const TriMesh& mesh, const ShapeCache& shape, const ViewSpec& view,

@@ -106,16 +106,20 @@ void extractZeroSet(std::span<const glm::vec3> positions,
 /// Appends creases (dihedral angle, marked and non-manifold edges) and boundaries, as
 /// enabled in `params`. `face_normals` holds faceCount unit normals (zero: degenerate, never
 /// a crease).
+/// `crease_vertices` (optional, vertexCount bytes): a dihedral-angle crease needs both ends
+/// non-zero. Level of detail passes the vertices that lie on a crease at full detail, so the
+/// sharp dihedral angles a coarse mesh has on smooth curved parts draw no false creases.
 void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adjacency,
                       std::span<const glm::vec3> face_normals, const LineParams& params,
-                      LineScratch& scratch, LineSet& out);
+                      LineScratch& scratch, LineSet& out,
+                      std::span<const uint8_t> crease_vertices = {});
 
 /// Clears `out` and extracts every enabled line type from precomputed view quantities.
 /// `feature_size` (model units, > 0) scales the suggestive thresholds by 1/fs².
 void extractLines(const TriMesh& mesh, const MeshAdjacency& adjacency,
                   std::span<const glm::vec3> face_normals, const ViewQuantities& view,
                   const LineParams& params, float feature_size, LineScratch& scratch,
-                  LineSet& out);
+                  LineSet& out, std::span<const uint8_t> crease_vertices = {});
 
 /// Stateful convenience: view quantities + extraction with reused buffers.
 ///

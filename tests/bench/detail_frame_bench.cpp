@@ -1,0 +1,150 @@
+// Cost of a detail-controlled frame (DESIGN.md "Figures to reach"; issue: "a frame of a
+// 1M-triangle model with controlled detail must cost no more than rendering its adapted mesh
+// statically plus 10 ms, and far less than the full mesh"). Side by side in one run, 1280x720,
+// slow orbit (1 degree per frame), EGL surfaceless, median ms per stage over the frames:
+//   controlled: adapt + shape update + lines (view, extract, chain) + upload + draw
+//   static:     drawing the same adapted mesh and lines again (no CPU stages)
+//   full:       full-detail mesh: lines (view, extract, chain) + draw
+//   ./build/tests/bench/detail_frame_bench --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include <glad/gl.h>
+
+#include "core/timer.h"
+#include "frame/lod_drawing.h"
+#include "gl/context.h"
+#include "gl/renderer.h"
+#include "io/generate.h"
+#include "io/load_mesh.h"
+#include "pm/pm_file.h"
+#include "test_util.h"
+
+namespace lodline {
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+struct Model {
+  TriMesh mesh;
+  std::shared_ptr<const ProgressiveMesh> pm;
+};
+
+// Loads (or generates) a model and its progressive mesh (cached under build/bench-cache).
+std::shared_ptr<Model> loadModel(const std::string& name) {
+  static std::map<std::string, std::shared_ptr<Model>> models;
+  if (auto it = models.find(name); it != models.end()) return it->second;
+  auto m = std::make_shared<Model>();
+  if (name == "knot1m") {
+    m->mesh = makeTorusKnot(2, 3, 1.0f, 0.16f, 2900, 193, 0.18f);
+  } else {
+    const auto p = test::dataMesh(name);
+    if (p.empty()) return nullptr;
+    auto mesh = loadMesh(p);
+    if (!mesh) return nullptr;
+    m->mesh = std::move(mesh.value());
+  }
+  auto pm = loadOrBuildPm(m->mesh, meshContentHash(m->mesh), std::filesystem::temp_directory_path() / "lodline-bench-cache");
+  if (!pm) return nullptr;
+  m->pm = std::make_shared<const ProgressiveMesh>(std::move(pm.value()));
+  models[name] = m;
+  return m;
+}
+
+void detailFrame(benchmark::State& state, const std::string& name) {
+  auto model = loadModel(name);
+  if (!model) {
+    state.SkipWithError(("cannot load " + name + " (run scripts/setup.sh)").c_str());
+    return;
+  }
+  auto ctx = createHeadlessContext(ContextBackend::kEgl);
+  if (!ctx) {
+    state.SkipWithError(ctx.error().message.c_str());
+    return;
+  }
+  RenderParams rp;
+  rp.msaa = 1;
+  auto renderer = Renderer::create();
+  auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
+  LodDrawing controlled(model->mesh, model->pm);
+  LodDrawing full(model->mesh);
+  std::array<bool, kLineKindCount> enabled{};
+  enabled.fill(true);
+  DetailParams detail;
+  const float aspect = 1280.0f / 720.0f;
+  // Converge at the first camera, as captures do.
+  (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), rp.width,
+                            rp.height, [&] { DetailParams d = detail; d.geomorphs = false; return d; }(),
+                            1.0f / 30.0f, 300, enabled);
+  std::vector<double> adapt, shape, lines, upload, draw, static_draw, full_lines, full_draw, faces;
+  float az = 0.0f;
+  for (auto _ : state) {
+    const Camera cam = orbitCamera(controlled.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
+    az += 1.0f;
+    Stopwatch sw;
+    (void)controlled.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f, enabled);
+    const double cpu = sw.lap();
+    adapt.push_back(controlled.adaptMs());
+    const CpuTimings& t = controlled.drawing().timings();
+    shape.push_back(controlled.meshChanged() ? t.shape : 0.0);
+    lines.push_back(t.view + t.extract + t.chain);
+    (void)cpu;
+    renderer->setMesh(controlled.drawing().mesh().positions, controlled.drawing().normals(),
+                      controlled.drawing().mesh().faces);
+    renderer->setLines(controlled.drawing().lines());
+    upload.push_back(sw.lap());
+    target->bind();
+    renderer->draw(cam, rp, rp.width, rp.height);
+    glFinish();
+    draw.push_back(sw.lap());
+    faces.push_back(static_cast<double>(controlled.drawing().mesh().faceCount()));
+    // The same adapted mesh drawn again: the static cost of what controlled detail draws.
+    renderer->draw(cam, rp, rp.width, rp.height);
+    glFinish();
+    static_draw.push_back(sw.lap());
+    // Full detail: lines on the full mesh, full mesh drawn.
+    (void)full.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f, enabled);
+    full_lines.push_back(sw.lap());
+    renderer->setMesh(full.drawing().mesh().positions, full.drawing().normals(), full.drawing().mesh().faces);
+    renderer->setLines(full.drawing().lines());
+    renderer->draw(cam, rp, rp.width, rp.height);
+    glFinish();
+    full_draw.push_back(sw.lap());
+  }
+  const double controlled_total = median(adapt) + median(shape) + median(lines) + median(upload) + median(draw);
+  state.counters["model_faces"] = static_cast<double>(model->mesh.faceCount());
+  state.counters["active_faces"] = median(faces);
+  state.counters["adapt_ms"] = median(adapt);
+  state.counters["shape_ms"] = median(shape);
+  state.counters["lines_ms"] = median(lines);
+  state.counters["upload_ms"] = median(upload);
+  state.counters["draw_ms"] = median(draw);
+  state.counters["controlled_ms"] = controlled_total;
+  state.counters["static_ms"] = median(static_draw);
+  state.counters["full_lines_ms"] = median(full_lines);
+  state.counters["full_draw_ms"] = median(full_draw);
+  state.counters["full_ms"] = median(full_lines) + median(full_draw);
+}
+
+}  // namespace
+}  // namespace lodline
+
+int main(int argc, char** argv) {
+  for (const char* name : {"armadillo.off", "knot1m"})
+    benchmark::RegisterBenchmark((std::string("detail_frame/") + name).c_str(),
+                                 [name](benchmark::State& s) { lodline::detailFrame(s, name); })
+        ->Iterations(30)
+        ->Unit(benchmark::kMillisecond);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
