@@ -163,6 +163,9 @@ int runRender(const RenderOptions& o) {
       j["context"] = {{"backend", "soft"}, {"gl", "none"}};
       j["faces_drawn"] = soft_renderer.faceCount();
       j["line_segments"] = soft_renderer.segmentsDrawn();
+      const SoftTimes& st = soft_renderer.times();
+      j["soft_ms"] = {{"transform", st.transform}, {"setup", st.setup}, {"raster", st.raster},
+                      {"shade", st.shade}, {"lines", st.lines}};
     } else {
       j["context"] = {{"backend", backendName((*headless)->context().backend())},
                       {"gl", (*headless)->context().description()}};

@@ -188,10 +188,10 @@ int runView(const ViewOptions& o, const DetailOptions& d) {
         for (int k = 0; k < kLineKindCount; ++k) enabled[k] = s.params.lines.kinds[k].enabled;
         // Smoothing at the measured frame rate (Jeong §3.3), from a running mean of dt.
         mean_dt = 0.9f * mean_dt + 0.1f * std::max(dt, 1e-3f);
-        const float w = detail->smoothing.enabled
+        const float smooth_w = detail->smoothing.enabled
                             ? smoothingWeight(detail->smoothing.alpha, detail->smoothing.seconds, 1.0f / mean_dt)
                             : 1.0f;
-        if (Status st = lod_drawing.frame(cam, fb_w, fb_h, s.detail, dt, enabled, w); !st)
+        if (Status st = lod_drawing.frame(cam, fb_w, fb_h, s.detail, dt, enabled, smooth_w); !st)
           return reportError(st.error());
         if (lod_drawing.meshChanged())
           renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);

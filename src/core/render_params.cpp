@@ -23,10 +23,18 @@ void LineStyles::scaleWidths(float s) {
 Result<Style> parseStyle(const std::string& s) {
   if (s == "toon") return Style::kToon;
   if (s == "lines") return Style::kLines;
-  return Error::usage("--style: unknown style '" + s + "' (expected lines or toon)");
+  if (s == "shaded") return Style::kShaded;
+  return Error::usage("--style: unknown style '" + s + "' (expected lines, toon or shaded)");
 }
 
-const char* styleName(Style s) { return s == Style::kToon ? "toon" : "lines"; }
+const char* styleName(Style s) {
+  switch (s) {
+    case Style::kLines: return "lines";
+    case Style::kToon: return "toon";
+    case Style::kShaded: return "shaded";
+  }
+  return "?";
+}
 
 Result<glm::vec4> parseColor(const std::string& s) {
   std::string t = s;

@@ -16,6 +16,7 @@ namespace lodline {
 enum class Style {
   kLines,  ///< lines only, on the background (faces only hide hidden lines)
   kToon,   ///< toon-shaded faces + lines (default)
+  kShaded, ///< Blinn–Phong faces + chamfer edge highlights + lines
 };
 
 /// Line kinds, in drawing order; indexes LineStyles::kinds.
@@ -55,6 +56,52 @@ struct ToonParams {
   std::array<float, 2> thresholds{0.18f, 0.55f};
 };
 
+/// Chamfer edge highlights (Wei, Shi, Yong, "Rendering chamfering structures of sharp edges",
+/// Visual Computer 2014; DESIGN.md §2): sharp edges drawn as rounded strips of radius r_e,
+/// blended with W = K·r_e/(d·r_max). Also holds the Blinn–Phong material and light of the
+/// shaded style, since a highlight integrates that same model over its strip.
+/// How the chamfer layer is composed with the faces (docs/chamfer.md compares both with the
+/// rounded-geometry ground truth).
+enum class ChamferCompose {
+  /// The paper's: the strip's mean colour I blended over the 1-px edge line with alpha W.
+  kAlpha,
+  /// The strip replaces the bands the two faces lose to the rounding: each pixel near the
+  /// edge gets the strip's colour integrated over the part of the strip inside it (same
+  /// closed form on a sub-arc) minus the faces' colours over the area they no longer cover.
+  /// Needs the faces' own colours: shaded style only (over toon the alpha blend is used).
+  kReplace,
+};
+
+struct ChamferParams {
+  /// Draw the highlights with the shaded style. Default on (`--chamfer off` clears it).
+  bool enabled = true;
+  /// Also draw them over toon faces. Default off (`--chamfer on` sets it).
+  bool over_toon = false;
+  /// An edge is sharp when the angle between its two face normals is at least this, degrees.
+  /// Default 30. Edges in TriMesh::marked_edges always are.
+  float threshold_deg = 30.0f;
+  /// Constant edge radius r_e in model units; 0 = auto, 0.004 × the model's bounding radius
+  /// (default). A per-vertex radius given to ChamferLayer::setMesh overrides it.
+  float radius = 0.0f;
+  /// K of the blend weight, pixels; 0 = auto, the focal length in pixels
+  /// (0.5·height/tan(fov/2)), which makes W the fraction of the 1-px edge line the strip
+  /// covers (default). Orthographic: K·r_e is taken as pixels per model unit·r_e, d = 1.
+  float k = 0.0f;
+  /// Blinn–Phong exponent n (faces and highlights), 1..127 (the table covers n + 1 ≤ 128).
+  float shininess = 32.0f;
+  glm::vec3 ambient{0.20f, 0.19f, 0.17f};    ///< ambient colour
+  glm::vec3 diffuse{0.70f, 0.65f, 0.57f};    ///< diffuse colour (warm paper-like tone)
+  glm::vec3 specular{0.55f, 0.55f, 0.55f};   ///< specular colour
+  /// Towards the light in eye space (normalised before use); the toon light by default.
+  glm::vec3 light_dir_eye{-0.45f, 0.6f, 0.65f};
+  /// Crease lines mark the same edges the highlights render: skip them while highlights are
+  /// drawn. Default on.
+  bool replace_creases = true;
+  /// Composition with the faces. Default kReplace (2–10× closer to the rounded ground truth
+  /// than the unhighlighted model; kAlpha, the paper's, is not always closer).
+  ChamferCompose compose = ChamferCompose::kReplace;
+};
+
 struct RenderParams {
   int width = 1280;   ///< image width, px
   int height = 720;   ///< image height, px
@@ -62,10 +109,11 @@ struct RenderParams {
   glm::vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< RGBA; alpha 0 = transparent PNG
   int msaa = 4;  ///< multisample count (1 = off); Mesa's llvmpipe supports up to 4
   ToonParams toon;
+  ChamferParams chamfer;
   LineStyles lines;
 };
 
-/// Parses "toon" or "lines".
+/// Parses "lines", "toon" or "shaded".
 Result<Style> parseStyle(const std::string& s);
 const char* styleName(Style s);
 /// Parses a colour: "#rgb", "#rrggbb", "#rrggbbaa", "transparent", or a name (white, black,

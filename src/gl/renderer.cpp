@@ -38,6 +38,9 @@ Result<Renderer> Renderer::create() {
   r.toon_ = std::move(toon.value());
   r.depth_only_ = std::move(depth.value());
   r.line_ = std::move(line.value());
+  auto chamfer = ChamferLayer::create();
+  if (!chamfer) return chamfer.error();
+  r.chamfer_ = std::move(chamfer.value());
 
   r.mesh_vao_ = makeVertexArray();
   r.positions_ = makeBuffer();
@@ -68,7 +71,9 @@ Result<Renderer> Renderer::create() {
 }
 
 void Renderer::setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
-                       std::span<const std::array<uint32_t, 3>> faces) {
+                       std::span<const std::array<uint32_t, 3>> faces,
+                       std::span<const EdgeKey> marked_edges) {
+  chamfer_.setMesh(positions, faces, marked_edges);
   glBindVertexArray(0);
   uploadArray(GL_ARRAY_BUFFER, positions_, positions);
   uploadArray(GL_ARRAY_BUFFER, normals_, normals);
@@ -128,17 +133,43 @@ void Renderer::draw(const Camera& camera, const RenderParams& params, int width,
     glUniform3fv(glGetUniformLocation(toon_.id(), "u_base_color"), 1, glm::value_ptr(t.base_color));
     const glm::vec3 l = glm::normalize(t.light_dir_eye);
     glUniform3fv(glGetUniformLocation(toon_.id(), "u_light_eye"), 1, glm::value_ptr(l));
+  } else if (params.style == Style::kShaded) {
+    glUseProgram(0);
   } else {
     glUseProgram(depth_only_.id());
     setMatrices(depth_only_.id(), camera, aspect);
     glUniform4fv(glGetUniformLocation(depth_only_.id(), "u_color"), 1,
                  glm::value_ptr(params.background));
   }
-  glBindVertexArray(mesh_vao_.id());
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(face_count_ * 3), GL_UNSIGNED_INT, nullptr);
+  if (params.style == Style::kShaded) {
+    // Blinn–Phong with crease-aware corner normals (the chamfer layer's material).
+    chamfer_.drawShadedFaces(camera, params.chamfer, width, height);
+  } else {
+    glBindVertexArray(mesh_vao_.id());
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(face_count_ * 3), GL_UNSIGNED_INT, nullptr);
+  }
   glDisable(GL_POLYGON_OFFSET_FILL);
 
-  // 2. Lines: depth-tested against the faces, no depth writes, blended for faded lines.
+  // 2. Chamfer highlights on sharp edges, blended over the faces (depth-tested against them).
+  chamfer_drawn_ = 0;
+  const ChamferParams& ch = params.chamfer;
+  if (ch.enabled && (params.style == Style::kShaded || (params.style == Style::kToon && ch.over_toon))) {
+    if (params.style == Style::kShaded) {
+      chamfer_.draw(camera, ch, width, height, true, glm::vec3(params.background));
+    } else {
+      // Over toon: a Blinn–Phong whose range matches the ramp (darkest tone in the shade,
+      // brightest fully lit) under the toon light, so highlights sit on the toon tones.
+      ChamferParams over = ch;
+      const ToonParams& t = params.toon;
+      over.ambient = t.base_color * t.tones[0];
+      over.diffuse = t.base_color * (t.tones[2] - t.tones[0]);
+      over.light_dir_eye = t.light_dir_eye;
+      chamfer_.draw(camera, over, width, height, false);
+    }
+    chamfer_drawn_ = chamfer_.edgesDrawn();
+  }
+
+  // 3. Lines: depth-tested against the faces, no depth writes, blended for faded lines.
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
   glEnable(GL_BLEND);
@@ -153,6 +184,8 @@ void Renderer::draw(const Camera& camera, const RenderParams& params, int width,
   for (int k = 0; k < kLineKindCount; ++k) {
     const LineStyle& s = params.lines.kinds[k];
     if (!s.enabled || count_[k] == 0) continue;
+    // Highlighted sharp edges replace the crease lines drawn on them.
+    if (k == static_cast<int>(LineKind::kCrease) && chamfer_drawn_ > 0 && ch.replace_creases) continue;
     glLineWidth(std::clamp(s.width_px, width_range[0], width_range[1]));
     glUniform4fv(color_loc, 1, glm::value_ptr(s.color));
     glDrawArrays(GL_LINES, static_cast<GLint>(first_[k]), static_cast<GLsizei>(count_[k]));

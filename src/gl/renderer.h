@@ -1,5 +1,6 @@
-// The OpenGL stage (DESIGN.md pipeline: gl): toon-shaded (or background-coloured) faces
-// drawn first with a polygon offset, then lines with depth test LEQUAL and depth writes off
+// The OpenGL stage (DESIGN.md pipeline: gl): toon-shaded, Blinn–Phong-shaded (or
+// background-coloured) faces drawn first with a polygon offset, then the chamfer highlights
+// of sharp edges (ChamferLayer, Wei, Shi, Yong 2014) blended over them, then lines with depth test LEQUAL and depth writes off
 // so hidden parts of lines are removed and visible ones never z-fight with their faces.
 // The renderer only consumes arrays; it never computes geometry.
 #pragma once
@@ -15,6 +16,7 @@
 #include "core/render_params.h"
 #include "core/result.h"
 #include "export/visibility.h"
+#include "gl/chamfer_layer.h"
 #include "gl/gl_objects.h"
 #include "io/image.h"
 
@@ -26,9 +28,12 @@ class Renderer {
   static Result<Renderer> create();
 
   /// Uploads the surface: `positions` and `normals` hold one entry per vertex, `faces`
-  /// indexes them. Buffers are reused when the sizes fit.
+  /// indexes them. Buffers are reused when the sizes fit. `marked_edges` (vertex index pairs,
+  /// e.g. TriMesh::marked_edges) always get chamfer highlights; other sharp edges are found
+  /// by dihedral angle (ChamferParams::threshold_deg) at the first draw that needs them.
   void setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
-               std::span<const std::array<uint32_t, 3>> faces);
+               std::span<const std::array<uint32_t, 3>> faces,
+               std::span<const EdgeKey> marked_edges = {});
   /// Uploads the lines, grouped by kind.
   void setLines(const LineBuffer& lines);
 
@@ -38,6 +43,10 @@ class Renderer {
   size_t faceCount() const { return face_count_; }
   /// Segments drawn by the last draw() (enabled kinds only).
   size_t segmentsDrawn() const { return segments_drawn_; }
+  /// Sharp edges highlighted by the last draw() (0 when the chamfer layer was off).
+  size_t chamferEdgesDrawn() const { return chamfer_drawn_; }
+  /// The chamfer layer (per-vertex radii: chamfer().setMesh(...) after setMesh()).
+  ChamferLayer& chamfer() { return chamfer_; }
 
  private:
   Renderer() = default;
@@ -45,7 +54,8 @@ class Renderer {
   GlVertexArray mesh_vao_, line_vao_;
   GlBuffer positions_, normals_, indices_, line_vertices_;
   GlTexture ramp_;
-  size_t face_count_ = 0, segments_drawn_ = 0;
+  ChamferLayer chamfer_;
+  size_t face_count_ = 0, segments_drawn_ = 0, chamfer_drawn_ = 0;
   std::array<uint32_t, kLineKindCount> first_{}, count_{};
   std::array<float, 5> ramp_key_{};  // tones + thresholds the ramp texture was built from
 };

@@ -182,3 +182,74 @@ TriMesh makeTorusKnot(int p, int q, float R, float tube, int segments, int sides
 }
 
 }  // namespace lodline
+
+namespace lodline {
+
+TriMesh makeRoundedBox(glm::vec3 half, float r, int arc_segments, int flat_segments) {
+  TriMesh m;
+  r = std::clamp(r, 0.0f, std::min({half.x, half.y, half.z}));
+  flat_segments = std::max(flat_segments, 1);
+  const int arc_half = r > 0.0f ? std::max(arc_segments / 2, 1) : 0;
+  // Per axis: coordinates of the grid on the outer cube; those beyond the inner box
+  // (|q| > h − r) map onto the arcs at angles spaced evenly (tan spacing), ±h exactly.
+  std::array<std::vector<float>, 3> coords;
+  for (int a = 0; a < 3; ++a) {
+    const float h = half[a], inner = h - r;
+    std::vector<float>& c = coords[a];
+    c.push_back(-h);
+    for (int k = arc_half - 1; k >= 1; --k)
+      c.push_back(-inner - r * std::tan(0.25f * kPi * static_cast<float>(k) / arc_half));
+    if (arc_half > 0) c.push_back(-inner);
+    for (int k = 1; k < flat_segments; ++k)
+      c.push_back(-inner + 2.0f * inner * static_cast<float>(k) / flat_segments);
+    if (arc_half > 0) c.push_back(inner);
+    for (int k = 1; k <= arc_half - 1; ++k)
+      c.push_back(inner + r * std::tan(0.25f * kPi * static_cast<float>(k) / arc_half));
+    c.push_back(h);
+    // With r = 0 or a thin box, ±inner may coincide with neighbours: drop repeats.
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+  }
+  std::map<std::array<float, 3>, uint32_t> index;
+  auto vertex = [&](glm::vec3 q) -> uint32_t {
+    const glm::vec3 inner = half - glm::vec3(r);
+    glm::vec3 c;
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(q[k], -inner[k], inner[k]);
+    const glm::vec3 d = q - c;
+    const float len = glm::length(d);
+    const glm::vec3 p = (r > 0.0f && len > 0.0f) ? c + d * (r / len) : q;
+    const std::array<float, 3> key{p.x, p.y, p.z};
+    auto [it, inserted] = index.emplace(key, static_cast<uint32_t>(m.positions.size()));
+    if (inserted) m.positions.push_back(p);
+    return it->second;
+  };
+  for (int a = 0; a < 3; ++a)
+    for (int sign = -1; sign <= 1; sign += 2) {
+      // Grid axes b, c with (b × c) = outward normal.
+      int b = (a + 1) % 3, c = (a + 2) % 3;
+      if (sign < 0) std::swap(b, c);
+      const auto& cb = coords[b];
+      const auto& cc = coords[c];
+      const int nb = static_cast<int>(cb.size()), nc = static_cast<int>(cc.size());
+      std::vector<uint32_t> ids(static_cast<size_t>(nb) * nc);
+      for (int i = 0; i < nb; ++i)
+        for (int j = 0; j < nc; ++j) {
+          glm::vec3 q;
+          q[a] = static_cast<float>(sign) * half[a];
+          q[b] = cb[i];
+          q[c] = cc[j];
+          ids[static_cast<size_t>(i) * nc + j] = vertex(q);
+        }
+      for (int i = 0; i + 1 < nb; ++i)
+        for (int j = 0; j + 1 < nc; ++j) {
+          const uint32_t v00 = ids[static_cast<size_t>(i) * nc + j];
+          const uint32_t v10 = ids[static_cast<size_t>(i + 1) * nc + j];
+          const uint32_t v11 = ids[static_cast<size_t>(i + 1) * nc + j + 1];
+          const uint32_t v01 = ids[static_cast<size_t>(i) * nc + j + 1];
+          m.faces.push_back({v00, v10, v11});
+          m.faces.push_back({v00, v11, v01});
+        }
+    }
+  return m;
+}
+
+}  // namespace lodline

@@ -36,3 +36,15 @@ TriMesh makeGrid(float size, int n);
 TriMesh makeTorusKnot(int p, int q, float R, float tube, int segments, int sides, float bumps);
 
 }  // namespace lodline
+
+namespace lodline {
+
+/// Box of half-extents `half` (> 0 each) whose 12 edges and 8 corners are rounded with radius
+/// `r` (0 ≤ r ≤ min(half)): the Minkowski sum of the inner box (half − r) and a sphere of
+/// radius r, made of many small patches. Each 90° edge arc has `arc_segments` segments (even,
+/// ≥ 2; ignored when r = 0), each flat part `flat_segments` (≥ 1). With r = 0 it is the sharp
+/// box (12 triangles when flat_segments = 1). Closed, welded, counter-clockwise outward. The
+/// ground truth of the chamfer highlights (Wei, Shi, Yong 2014, their Fig. 5; DESIGN.md §2).
+TriMesh makeRoundedBox(glm::vec3 half, float r, int arc_segments, int flat_segments);
+
+}  // namespace lodline

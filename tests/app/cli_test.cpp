@@ -190,5 +190,70 @@ TEST_F(Cli, GenerateWritesLoadableMesh) {
   EXPECT_EQ(lodline("generate sphere --resolution 30 -o " + out).code, 2);
 }
 
+// --backend soft: the software rasteriser (docs/softraster.md) needs no OpenGL at all. With
+// libglvnd pointed at no EGL vendor, GL rendering fails but the soft backend still works.
+TEST_F(Cli, SoftBackendRendersWithoutOpenGl) {
+  const std::string out = (dir_ / "soft.png").string(), stats = (dir_ / "soft.json").string();
+  const std::string no_egl = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json ";
+  auto run = [&](const std::string& args) {
+    CliRun r;
+    FILE* pipe = popen((no_egl + LODLINE_BINARY + " " + args + " 2>&1").c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof(buf), pipe)) > 0) r.output.append(buf, n);
+    const int status = pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return r;
+  };
+  EXPECT_EQ(run("render " + sphere_ + " -o " + out + " --context egl").code, 1);
+  CliRun r = run("render " + sphere_ + " -o " + out + " --size 320x200 --backend soft --stats " + stats);
+  ASSERT_EQ(r.code, 0) << r.output;
+  auto img = readPng(out);
+  ASSERT_TRUE(img.ok()) << img.error().message;
+  EXPECT_EQ(img->width, 320);
+  EXPECT_EQ(img->height, 200);
+  // Toon-shaded sphere in the middle, white page in the corner.
+  EXPECT_LT(img->pixel(160, 100)[2], 250);
+  EXPECT_EQ(img->pixel(0, 0)[0], 255);
+  std::ifstream in(stats);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["context"]["backend"], "soft");
+  EXPECT_GT(j["faces_drawn"].get<int>(), 100);
+  EXPECT_GT(j["line_segments"].get<int>(), 10);
+  EXPECT_EQ(lodline("render " + sphere_ + " -o " + out + " --backend vulkan").code, 2);
+  EXPECT_NE(lodline("render --help").output.find("--backend"), std::string::npos);
+}
+
+// The SVG written with --backend soft (visibility from the software depth buffer) matches
+// the OpenGL render of the same lines (GL depth test).
+void checkSoftSvgAgainstGl(const std::filesystem::path& dir, const std::string& model, const std::string& view) {
+  if (std::system("command -v rsvg-convert >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "rsvg-convert not installed (scripts/setup.sh installs librsvg2-bin)";
+  const std::string png = (dir / "gl.png").string(), svg = (dir / "soft.svg").string(),
+                    raster = (dir / "soft-svg.png").string();
+  const std::string common = " --size 400x300 --style lines --msaa 1 " + view;
+  CliRun g = lodline("render " + model + " -o " + png + common);
+  ASSERT_EQ(g.code, 0) << g.output;
+  CliRun r = lodline("render " + model + " --svg " + svg + " --backend soft" + common);
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(std::system(("rsvg-convert " + svg + " -o " + raster).c_str()), 0);
+  auto gl = readPng(png);
+  auto sv = readPng(raster);
+  ASSERT_TRUE(gl.ok() && sv.ok());
+  EXPECT_GT(coveredFraction(*sv, *gl, 2), 0.95) << "soft-SVG lines without a GL line nearby";
+  EXPECT_GT(coveredFraction(*gl, *sv, 2), 0.95) << "GL lines missing from the soft SVG";
+}
+
+TEST_F(Cli, SoftSvgMatchesGlRenderSphereScene) {
+  checkSoftSvgAgainstGl(dir_.path(), sphere_, "--view 30,20,3");
+}
+
+TEST_F(Cli, SoftSvgMatchesGlRenderArmadillo) {
+  const auto p = test::dataMesh("armadillo.off");
+  if (p.empty()) GTEST_SKIP() << "data/meshes/armadillo.off missing (run scripts/setup.sh)";
+  checkSoftSvgAgainstGl(dir_.path(), p.string(), "--view 200,10,2.9");
+}
+
 }  // namespace
 }  // namespace lodline

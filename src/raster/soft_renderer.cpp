@@ -1,0 +1,271 @@
+// Toon shading in software (Lake et al. 2000, as in shaders/toon.frag) over the
+// constant-depth-scanline rasteriser of Han & Wang 2011 (J. CAD & CG 23(6), §3–4).
+#include "raster/soft_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
+#include "core/timer.h"
+
+namespace lodline {
+namespace {
+
+int threadCount(int requested) {
+  const int t = requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency());
+  return std::clamp(t, 1, 16);
+}
+
+// Runs body(begin, end) over [0, n) split into `threads` contiguous parts.
+template <class F>
+void parallelRanges(int n, int threads, F&& body) {
+  threads = std::clamp(threads, 1, std::max(n, 1));
+  if (threads == 1) {
+    body(0, n);
+    return;
+  }
+  std::vector<std::jthread> pool;
+  pool.reserve(threads - 1);
+  for (int t = 1; t < threads; ++t)
+    pool.emplace_back([&, t] { body(n * t / threads, n * (t + 1) / threads); });
+  body(0, n / threads);
+}
+
+uint8_t toByte(float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+
+// Blends `rgba` (alpha = coverage) over the pixel like glBlendFuncSeparate(SRC_ALPHA,
+// ONE_MINUS_SRC_ALPHA, ONE, ONE_MINUS_SRC_ALPHA) on an RGBA8 target.
+void blend(uint8_t* px, const glm::vec4& c) {
+  const float a = std::clamp(c.a, 0.0f, 1.0f);
+  for (int k = 0; k < 3; ++k) px[k] = toByte(c[k] * a + (px[k] / 255.0f) * (1.0f - a));
+  px[3] = toByte(a + (px[3] / 255.0f) * (1.0f - a));
+}
+
+}  // namespace
+
+glm::vec4 sampleTexture(const Image& image, float u, float v, TextureFilter filter) {
+  const int w = image.width, h = image.height;
+  auto texel = [&](int x, int y) {
+    x %= w;
+    y %= h;
+    if (x < 0) x += w;
+    if (y < 0) y += h;
+    const uint8_t* p = image.pixel(x, y);
+    return glm::vec4(p[0], p[1], p[2], p[3]) * (1.0f / 255.0f);
+  };
+  if (!std::isfinite(u) || !std::isfinite(v)) return texel(0, 0);
+  const float x = u * static_cast<float>(w), y = v * static_cast<float>(h);
+  if (filter == TextureFilter::kNearest)
+    return texel(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)));
+  const float fx = x - 0.5f, fy = y - 0.5f;
+  const float x0 = std::floor(fx), y0 = std::floor(fy);
+  const float ax = fx - x0, ay = fy - y0;
+  const int ix = static_cast<int>(x0), iy = static_cast<int>(y0);
+  const glm::vec4 top = texel(ix, iy) * (1.0f - ax) + texel(ix + 1, iy) * ax;
+  const glm::vec4 bottom = texel(ix, iy + 1) * (1.0f - ax) + texel(ix + 1, iy + 1) * ax;
+  return top * (1.0f - ay) + bottom * ay;
+}
+
+size_t drawWideLines(std::span<const LineVertex> vertices, const glm::mat4& view_projection,
+                     const LineStyle& style, const DepthImage& depth, Image& image, int threads) {
+  const int W = depth.width, H = depth.height;
+  // OpenGL rounds the width of aliased wide lines to an integer.
+  const int width = std::max(1, static_cast<int>(std::lround(style.width_px)));
+  const float half = 0.5f * static_cast<float>(width);
+  const size_t segments = vertices.size() / 2;
+  struct Screen {
+    float x, y, z, alpha;
+  };
+  auto draw_band = [&](int row_begin, int row_end) {
+    for (size_t s = 0; s < segments; ++s) {
+      glm::vec4 c0 = view_projection * glm::vec4(vertices[2 * s].position, 1.0f);
+      glm::vec4 c1 = view_projection * glm::vec4(vertices[2 * s + 1].position, 1.0f);
+      float a0 = vertices[2 * s].alpha, a1 = vertices[2 * s + 1].alpha;
+      // Clip to the near (z ≥ −w) and far (z ≤ w) planes.
+      bool visible = true;
+      for (int p = 0; p < 2 && visible; ++p) {
+        const float d0 = p == 0 ? c0.z + c0.w : c0.w - c0.z, d1 = p == 0 ? c1.z + c1.w : c1.w - c1.z;
+        if (!(d0 >= 0.0f) && !(d1 >= 0.0f)) {
+          visible = false;
+        } else if (!(d0 >= 0.0f) || !(d1 >= 0.0f)) {
+          const float t = d0 / (d0 - d1);
+          const glm::vec4 c = c0 + t * (c1 - c0);
+          const float a = a0 + t * (a1 - a0);
+          if (d0 < 0.0f) {
+            c0 = c;
+            a0 = a;
+          } else {
+            c1 = c;
+            a1 = a;
+          }
+        }
+      }
+      if (!visible) continue;
+      auto to_screen = [&](const glm::vec4& c, float a) {
+        const glm::vec3 n = glm::vec3(c) / c.w;
+        return Screen{(n.x * 0.5f + 0.5f) * W, (0.5f - n.y * 0.5f) * H, n.z * 0.5f + 0.5f, a};
+      };
+      const Screen p0 = to_screen(c0, a0), p1 = to_screen(c1, a1);
+      // Non-finite or absurdly far endpoints (bad input) are skipped, not converted to int.
+      constexpr float kFar = 1e7f;
+      if (!(std::abs(p0.x) < kFar && std::abs(p0.y) < kFar && std::abs(p1.x) < kFar && std::abs(p1.y) < kFar))
+        continue;
+      const float dx = p1.x - p0.x, dy = p1.y - p0.y;
+      const bool x_major = std::abs(dx) >= std::abs(dy);
+      const float major0 = x_major ? p0.x : p0.y, major1 = x_major ? p1.x : p1.y;
+      const float len = major1 - major0;
+      if (!(std::abs(len) > 0.0f)) continue;
+      // Pixel centres c + 0.5 in [min, max) along the major axis.
+      const float lo = std::min(major0, major1), hi = std::max(major0, major1);
+      int m_lo = static_cast<int>(std::ceil(lo - 0.5f)), m_hi = static_cast<int>(std::ceil(hi - 0.5f)) - 1;
+      const int major_size = x_major ? W : H;
+      m_lo = std::max(m_lo, 0);
+      m_hi = std::min(m_hi, major_size - 1);
+      if (x_major) {
+        // Columns: only rows in this band.
+        for (int x = m_lo; x <= m_hi; ++x) {
+          const float t = ((x + 0.5f) - p0.x) / len;
+          const float yc = p0.y + t * dy;
+          const int y_lo = std::max(static_cast<int>(std::ceil(yc - half - 0.5f)), row_begin);
+          const int y_hi = std::min(static_cast<int>(std::ceil(yc + half - 0.5f)) - 1, row_end - 1);
+          if (y_lo > y_hi) continue;
+          const float z = p0.z + t * (p1.z - p0.z);
+          const glm::vec4 col(glm::vec3(style.color), style.color.a * (p0.alpha + t * (p1.alpha - p0.alpha)));
+          for (int y = y_lo; y <= y_hi; ++y)
+            if (z <= depth.at(x, y)) blend(image.pixel(x, y), col);
+        }
+      } else {
+        const int y_lo = std::max(m_lo, row_begin), y_hi = std::min(m_hi, row_end - 1);
+        for (int y = y_lo; y <= y_hi; ++y) {
+          const float t = ((y + 0.5f) - p0.y) / len;
+          const float xc = p0.x + t * dx;
+          const int x_lo = std::max(static_cast<int>(std::ceil(xc - half - 0.5f)), 0);
+          const int x_hi = std::min(static_cast<int>(std::ceil(xc + half - 0.5f)) - 1, W - 1);
+          const float z = p0.z + t * (p1.z - p0.z);
+          const glm::vec4 col(glm::vec3(style.color), style.color.a * (p0.alpha + t * (p1.alpha - p0.alpha)));
+          for (int x = x_lo; x <= x_hi; ++x)
+            if (z <= depth.at(x, y)) blend(image.pixel(x, y), col);
+        }
+      }
+    }
+  };
+  parallelRanges(H, threads, draw_band);
+  return segments;
+}
+
+void SoftRenderer::setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                           std::span<const std::array<uint32_t, 3>> faces) {
+  positions_.assign(positions.begin(), positions.end());
+  normals_.assign(normals.begin(), normals.end());
+  faces_.assign(faces.begin(), faces.end());
+}
+
+void SoftRenderer::setTexture(Image texture, std::span<const glm::vec2> uvs) {
+  texture_ = std::move(texture);
+  uvs_.assign(uvs.begin(), uvs.end());
+}
+
+void SoftRenderer::setLines(const LineBuffer& lines) { lines_ = lines; }
+
+void SoftRenderer::draw(const Camera& camera, const RenderParams& params) {
+  Stopwatch sw;
+  const int W = params.width, H = params.height;
+  const bool textured = !texture_.rgba.empty() && uvs_.size() == positions_.size();
+  const int N = textured ? 5 : 3;
+  const glm::mat4 view = camera.view();
+  const glm::mat4 view_proj = camera.projection(static_cast<float>(W) / static_cast<float>(H)) * view;
+  const glm::mat3 normal_matrix(view);  // as mesh.vert: mat3(u_view) * a_normal
+  const size_t nv = positions_.size();
+  clip_.resize(nv);
+  attributes_.resize(nv * N);
+  for (size_t v = 0; v < nv; ++v) {
+    clip_[v] = view_proj * glm::vec4(positions_[v], 1.0f);
+    const glm::vec3 n = v < normals_.size() ? normal_matrix * normals_[v] : glm::vec3(0.0f, 0.0f, 1.0f);
+    float* a = &attributes_[v * N];
+    a[0] = n.x;
+    a[1] = n.y;
+    a[2] = n.z;
+    if (textured) {
+      a[3] = uvs_[v].x;
+      a[4] = uvs_[v].y;
+    }
+  }
+  times_.transform = sw.lap();
+
+  // 1. Faces, pushed back like glPolygonOffset(1, 2) so visible lines pass the depth test.
+  if (target_.width != W || target_.height != H || target_.attribute_count != N)
+    target_.resize(W, H, N);
+  else
+    target_.clear();
+  RasterParams rp = params_;
+  rp.depth_test = true;
+  rp.cull_back_faces = false;  // open meshes show their inside; both sides are drawn
+  rp.depth_offset_factor = 1.0f;
+  rp.depth_offset_units = 2.0f;
+  RasterInput in;
+  in.clip = clip_;
+  in.attributes = attributes_;
+  in.attribute_count = N;
+  in.faces = faces_;
+  rasterizer_.draw(in, rp, target_);
+  times_.setup = rasterizer_.stats().ms_setup;
+  times_.raster = rasterizer_.stats().ms_raster;
+  sw.lap();
+
+  // 2. Shading: the ramp of shaders/toon.frag (256 texels over n·l ∈ [0, 1], nearest).
+  if (image_.width != W || image_.height != H) image_ = Image(W, H);
+  const ToonParams& toon = params.toon;
+  std::array<float, 256> ramp;
+  for (int i = 0; i < 256; ++i) {
+    const float x = (static_cast<float>(i) + 0.5f) / 256.0f;
+    ramp[i] = x < toon.thresholds[0] ? toon.tones[0] : x < toon.thresholds[1] ? toon.tones[1] : toon.tones[2];
+  }
+  const glm::vec3 light = glm::normalize(toon.light_dir_eye);
+  const uint8_t bg[4] = {toByte(params.background.r), toByte(params.background.g), toByte(params.background.b),
+                         toByte(params.background.a)};
+  const size_t plane = static_cast<size_t>(W) * H;
+  const int threads = threadCount(params_.threads);
+  parallelRanges(H, threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < W; ++x) {
+        const size_t i = target_.index(x, y);
+        uint8_t* px = image_.pixel(x, y);
+        if (target_.face_id[i] == kNoFace || params.style != Style::kToon) {
+          std::copy(bg, bg + 4, px);
+          continue;
+        }
+        glm::vec3 n(target_.attributes[i], target_.attributes[plane + i], target_.attributes[2 * plane + i]);
+        const float len = glm::length(n);
+        n = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+        if (!target_.front_facing[i]) n = -n;  // two-sided, like gl_FrontFacing
+        const float ndotl = std::clamp(glm::dot(n, light), 0.0f, 1.0f);
+        const float tone = ramp[std::min(static_cast<int>(ndotl * 256.0f), 255)];
+        glm::vec3 c = toon.base_color * tone;
+        if (textured) {
+          const glm::vec4 t = sampleTexture(texture_, target_.attributes[3 * plane + i],
+                                            target_.attributes[4 * plane + i], TextureFilter::kBilinear);
+          c *= glm::vec3(t);
+        }
+        px[0] = toByte(c.r);
+        px[1] = toByte(c.g);
+        px[2] = toByte(c.b);
+        px[3] = 255;
+      }
+  });
+  times_.shade = sw.lap();
+
+  // 3. Lines: depth LEQUAL against the faces, no depth writes, blended.
+  segments_drawn_ = 0;
+  for (int k = 0; k < kLineKindCount; ++k) {
+    const LineStyle& s = params.lines.kinds[k];
+    if (!s.enabled || lines_.count[k] == 0) continue;
+    const std::span<const LineVertex> v(lines_.vertices.data() + lines_.first[k], lines_.count[k]);
+    segments_drawn_ += drawWideLines(v, view_proj, s, target_.depth, image_, threads);
+  }
+  times_.lines = sw.lap();
+}
+
+}  // namespace lodline
