@@ -10,6 +10,13 @@ namespace lodline::test {
 /// path when it is not there (tests then GTEST_SKIP with a message).
 std::filesystem::path dataMesh(const std::string& name);
 
+/// Runs `command` through the shell with EGL_PLATFORM=surfaceless, stderr merged into
+/// `output` (optional); returns the exit status (128 + signal when killed).
+int runCommand(const std::string& command, std::string* output = nullptr);
+
+/// Runs the built `lodline` binary with `args` (as runCommand).
+int runLodline(const std::string& args, std::string* output = nullptr);
+
 /// A fresh empty directory under the system temp dir, removed by the destructor.
 class TempDir {
  public:

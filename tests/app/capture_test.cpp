@@ -16,17 +16,7 @@
 namespace lodline {
 namespace {
 
-int shell(const std::string& cmd, std::string* output = nullptr) {
-  FILE* pipe = popen(("EGL_PLATFORM=surfaceless " + cmd + " 2>&1").c_str(), "r");
-  if (!pipe) return -1;
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), pipe)) > 0) out.append(buf, n);
-  const int status = pclose(pipe);
-  if (output) *output = out;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
+int shell(const std::string& cmd, std::string* output = nullptr) { return test::runCommand(cmd, output); }
 
 std::string readAll(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -128,7 +118,7 @@ TEST_F(Capture, MissingFfmpegIsAClearError) {
 }
 
 TEST_F(Capture, BadOptions) {
-  for (const std::string args : {"--frames 5:2 -o " + (dir_ / "s").string() + "/",
+  for (const std::string& args : {"--frames 5:2 -o " + (dir_ / "s").string() + "/",
                                  "--path spiral -o " + (dir_ / "s").string() + "/",
                                  "-o " + (dir_ / "v.avi").string(), "--fps 0 -o " + (dir_ / "s").string() + "/"}) {
     std::string out;

@@ -24,15 +24,8 @@ struct CliRun {
 };
 
 CliRun lodline(const std::string& args) {
-  const std::string cmd = std::string("EGL_PLATFORM=surfaceless ") + LODLINE_BINARY + " " + args + " 2>&1";
   CliRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), pipe)) > 0) r.output.append(buf, n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.code = test::runLodline(args, &r.output);
   return r;
 }
 

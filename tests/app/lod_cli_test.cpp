@@ -14,17 +14,7 @@
 namespace lodline {
 namespace {
 
-int run(const std::string& args, std::string* output = nullptr) {
-  FILE* pipe = popen(("EGL_PLATFORM=surfaceless " + std::string(LODLINE_BINARY) + " " + args + " 2>&1").c_str(), "r");
-  if (!pipe) return -1;
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), pipe)) > 0) out.append(buf, n);
-  const int status = pclose(pipe);
-  if (output) *output = out;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
+int run(const std::string& args, std::string* output = nullptr) { return test::runLodline(args, output); }
 
 nlohmann::json readJson(const std::filesystem::path& p) {
   std::ifstream in(p);
