@@ -4,12 +4,15 @@
 // Mouse: left-drag orbits, right- or middle-drag pans, wheel zooms.
 // Keys: arrows orbit, +/- (or PageUp/PageDown) zoom, T toggles toon/lines, 1-4 toggle
 // contour/suggestive/crease/boundary lines, [ and ] halve/double the target triangle area
-// (detail control), G toggles geomorphs, R resets the view, P saves lodline-view.png, Esc
-// or Q quits.
+// (detail control), G toggles geomorphs, C starts/stops recording the camera to a path file
+// (lodline-path.json, replayable with --play or `capture --path`), R resets the view, P
+// saves lodline-view.png, Esc or Q quits. --play FILE.json plays a camera path (looping).
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include <glad/gl.h>
 #include <glm/geometric.hpp>
@@ -19,6 +22,7 @@
 #include "app/options.h"
 #include "core/timer.h"
 #include "app/model.h"
+#include "frame/camera_path.h"
 
 #ifdef LODLINE_HAVE_VIEWER
 #include "gl/glfw_window.h"
@@ -42,6 +46,13 @@ struct ViewerState {
   double last_x = 0.0, last_y = 0.0;
   bool screenshot = false;
   Bounds bounds;
+  // Camera-path recording (key C) and playback (--play).
+  bool recording = false;
+  bool toggle_recording = false;
+  std::vector<CameraKey> recorded;
+  Stopwatch record_clock;
+  std::optional<CameraPath> playing;
+  Stopwatch play_clock;
 };
 
 Camera viewerCamera(const ViewerState& s, float aspect) {
@@ -90,6 +101,7 @@ void onKey(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_G: s.detail.geomorphs = !s.detail.geomorphs; break;
     case GLFW_KEY_R: s.orbit = s.initial; s.pan = glm::vec3(0.0f); s.dirty = true; break;
     case GLFW_KEY_P: s.screenshot = true; break;
+    case GLFW_KEY_C: s.toggle_recording = true; break;
     default: break;
   }
 }
@@ -131,7 +143,28 @@ void onScroll(GLFWwindow* w, double, double dy) {
   zoom(s, static_cast<float>(std::pow(1.1, -dy)));
 }
 
-int runView(const ViewOptions& o, const DetailOptions& d) {
+// Starts or stops recording; on stop, writes the keys as lodline-path.json.
+void toggleRecording(ViewerState& s) {
+  s.toggle_recording = false;
+  if (!s.recording) {
+    s.recorded.clear();
+    s.record_clock = Stopwatch();
+    s.recording = true;
+    std::cerr << "lodline: recording the camera (C again to stop)\n";
+    return;
+  }
+  s.recording = false;
+  if (s.recorded.size() < 2) {
+    std::cerr << "lodline: recording too short, nothing written\n";
+    return;
+  }
+  if (Status st = saveCameraPath("lodline-path.json", CameraPath(s.recorded)); !st) reportError(st.error());
+  else
+    std::cerr << "lodline: wrote lodline-path.json (" << s.recorded.size() << " keys, "
+              << s.recorded.back().time << " s)\n";
+}
+
+int runView(const ViewOptions& o, const DetailOptions& d, const std::string& play) {
   auto resolved = resolveViewOptions(o);
   if (!resolved) return reportError(resolved.error());
   auto detail = resolveDetailOptions(d);
@@ -153,6 +186,11 @@ int runView(const ViewOptions& o, const DetailOptions& d) {
     s.orbit.distance = glm::length(c.eye - c.target) / std::max(s.bounds.radius, 1e-6f);
   }
   s.initial = s.orbit;
+  if (!play.empty()) {
+    auto path = loadCameraPath(play);
+    if (!path) return reportError(path.error());
+    s.playing = std::move(path.value());
+  }
 
   auto window = GlfwWindow::create(s.params.width, s.params.height,
                                    "lodline - " + resolved->model.filename().string(), s.params.msaa);
@@ -179,7 +217,20 @@ int runView(const ViewOptions& o, const DetailOptions& d) {
         glfwWaitEvents();
         continue;
       }
-      const Camera cam = viewerCamera(s, static_cast<float>(fb_w) / static_cast<float>(fb_h));
+      Camera cam = viewerCamera(s, static_cast<float>(fb_w) / static_cast<float>(fb_h));
+      if (s.playing) {
+        const double duration = std::max(s.playing->duration(), 1e-3);
+        cam = s.playing->at(s.playing->keys().front().time + std::fmod(s.play_clock.elapsed() / 1000.0, duration),
+                            s.bounds);
+        s.dirty = true;
+      }
+      if (s.toggle_recording) toggleRecording(s);
+      if (s.recording) {
+        const double t = s.record_clock.elapsed() / 1000.0;
+        // Keys every 0.1 s (times must increase strictly).
+        if (s.recorded.empty() || t - s.recorded.back().time >= 0.1)
+          s.recorded.push_back({t, cam.eye, cam.target, cam.up, cam.fov_deg});
+      }
       // Detail control adapts every frame (geomorphs run on while the camera rests); full
       // detail recomputes lines only when the view or the line selection changed.
       const float dt = std::min(0.1f, static_cast<float>(frame_clock.lap() / 1000.0));
@@ -194,7 +245,8 @@ int runView(const ViewOptions& o, const DetailOptions& d) {
         if (Status st = lod_drawing.frame(cam, fb_w, fb_h, s.detail, dt, enabled, smooth_w); !st)
           return reportError(st.error());
         if (lod_drawing.meshChanged())
-          renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
+          renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces,
+                            drawing.mesh().marked_edges);
         renderer->setLines(drawing.lines());
         s.dirty = false;
       }
@@ -239,6 +291,7 @@ Command addViewCommand(CLI::App& parent) {
   struct Opts {
     ViewOptions view;
     DetailOptions detail;
+    std::string play;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = parent.add_subcommand(
@@ -247,11 +300,13 @@ Command addViewCommand(CLI::App& parent) {
       "  Mouse: left-drag orbit, right/middle-drag pan, wheel zoom.\n"
       "  Keys: arrows orbit, +/- zoom, T toon/lines, 1-4 toggle contour/suggestive/crease/boundary,\n"
       "        [ ] halve/double the target triangle area, G geomorphs on/off,\n"
+      "        C start/stop recording the camera to lodline-path.json,\n"
       "        R reset view, P save lodline-view.png, Esc/Q quit.");
   addViewOptions(*cmd, o->view);
   addDetailOptions(*cmd, o->detail);
+  cmd->add_option("--play", o->play, "Play a camera path file (.json, e.g. one recorded with C), looping");
 #ifdef LODLINE_HAVE_VIEWER
-  return {cmd, [o] { return runView(o->view, o->detail); }};
+  return {cmd, [o] { return runView(o->view, o->detail, o->play); }};
 #else
   return {cmd, [] { return reportError(Error::runtime("this build has no viewer (built with LODLINE_BUILD_VIEWER=OFF)")); }};
 #endif

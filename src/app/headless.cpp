@@ -21,7 +21,8 @@ Result<HeadlessRenderer> HeadlessRenderer::create(ContextBackend backend, const 
 }
 
 void HeadlessRenderer::setMesh(const LineDrawing& drawing) {
-  renderer_->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
+  renderer_->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces,
+                     drawing.mesh().marked_edges);
 }
 
 void HeadlessRenderer::draw(const LineDrawing& drawing, const Camera& camera, const RenderParams& params,

@@ -25,6 +25,9 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
       ->capture_default_str();
   cmd.add_option("--msaa", o.msaa, "Multisample count for antialiasing (1 = off, up to 4 on llvmpipe)")
       ->capture_default_str();
+  cmd.add_option("--line-style", o.line_styles,
+                 "Colour and width of one line kind, KIND=COLOUR[:WIDTH], e.g. suggestive=#804020:1.2 "
+                 "(repeatable; applied after --line-width)");
   cmd.add_option("--lines", o.lines,
                  "Comma-separated line kinds to draw: contour, suggestive, crease, boundary (or none)")
       ->capture_default_str();
@@ -135,6 +138,31 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   else
     return Error::usage("--chamfer-compose: unknown value '" + o.chamfer_compose +
                         "' (expected replace or alpha)");
+  for (const std::string& spec : o.line_styles) {
+    const auto bad = Error::usage("--line-style: invalid value '" + spec +
+                                  "' (expected KIND=COLOUR[:WIDTH], KIND one of contour, suggestive, crease, boundary)");
+    const auto eq = spec.find('=');
+    if (eq == std::string::npos) return bad;
+    const std::string kind = spec.substr(0, eq);
+    std::string colour = spec.substr(eq + 1), width;
+    if (const auto colon = colour.find(':'); colon != std::string::npos) {
+      width = colour.substr(colon + 1);
+      colour = colour.substr(0, colon);
+    }
+    int index = -1;
+    for (int k = 0; k < kLineKindCount; ++k)
+      if (kind == lineKindName(static_cast<LineKind>(k))) index = k;
+    if (index < 0) return bad;
+    auto c = parseColor(colour);
+    if (!c) return Error::usage("--line-style: " + c.error().message);
+    r.render.lines.kinds[index].color = *c;
+    if (!width.empty()) {
+      float w = 0.0f;
+      auto [p, ec] = std::from_chars(width.data(), width.data() + width.size(), w);
+      if (ec != std::errc() || p != width.data() + width.size() || !(w > 0.0f && w <= 64.0f)) return bad;
+      r.render.lines.kinds[index].width_px = w;
+    }
+  }
   for (auto& k : r.render.lines.kinds) k.enabled = false;
   std::stringstream ss(o.lines);
   std::string item;

@@ -25,6 +25,7 @@ struct ViewOptions {
   std::string background = "white";
   int msaa = 4;
   std::string lines = "contour,suggestive,crease,boundary";
+  std::vector<std::string> line_styles;  ///< "KIND=COLOUR[:WIDTH]", repeatable
   // Chamfer edge highlights (ChamferParams; Wei, Shi, Yong 2014).
   std::string chamfer = "auto";   ///< auto (with the shaded style), on (also over toon), off
   float chamfer_radius = 0.0f;    ///< r_e, model units; 0 = auto

@@ -29,7 +29,9 @@ Result<VideoWriter> VideoWriter::open(const std::filesystem::path& path, const V
   w.path_ = path;
   w.params_ = params;
   const auto dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
-  w.tmp_ = dir / ("." + path.filename().string() + ".part" + std::to_string(getpid()) + ".mp4");
+  std::string tmp_name(".");  // append(): see io/atomic_file.cpp on GCC 12's -Wrestrict
+  tmp_name.append(path.filename().string()).append(".part").append(std::to_string(getpid())).append(".mp4");
+  w.tmp_ = dir / tmp_name;
 
   int pipe_fds[2];
   if (pipe(pipe_fds) != 0) return Error::runtime(path.string() + ": pipe failed: " + std::strerror(errno));

@@ -35,9 +35,11 @@ Status writeFileAtomically(const std::filesystem::path& path,
                            const std::function<Status(std::ostream&)>& write) {
   if (Status s = checkWritable(path); !s) return s;
   std::random_device rd;
-  const auto tmp = directoryOf(path) /
-                   ("." + path.filename().string() + ".tmp" + std::to_string(getpid()) + "-" +
-                    std::to_string(rd() & 0xffffff));
+  // Built with append(): GCC 12 warns falsely (-Wrestrict, PR 105329) on "." + std::string.
+  std::string tmp_name(".");
+  tmp_name.append(path.filename().string()).append(".tmp").append(std::to_string(getpid()));
+  tmp_name.append("-").append(std::to_string(rd() & 0xffffff));
+  const auto tmp = directoryOf(path) / tmp_name;
   Status result;
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

@@ -95,6 +95,38 @@ Status checkOffHeader(const std::filesystem::path& path, uintmax_t file_size) {
   return {};
 }
 
+// OBJ polylines ("l a b c ...", 1-based or negative indices) mark sharp edges: OpenMesh's
+// reader ignores them, so they are read here. Vertices keep the order of the "v" lines.
+Status readObjMarkedEdges(const std::filesystem::path& path, size_t vertex_count, std::vector<EdgeKey>& out) {
+  std::ifstream in(path);
+  std::string line;
+  size_t line_no = 0, v_count = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.size() > 1 && line[0] == 'v' && (line[1] == ' ' || line[1] == '\t')) ++v_count;
+    if (line.size() < 2 || line[0] != 'l' || (line[1] != ' ' && line[1] != '\t')) continue;
+    std::istringstream ls(line.substr(2));
+    std::string tok;
+    long long prev = -1;
+    while (ls >> tok) {
+      long long idx = 0;
+      try {
+        idx = std::stoll(tok.substr(0, tok.find('/')));
+      } catch (const std::exception&) {
+        return Error::runtime(path.string() + ": line " + std::to_string(line_no) + ": bad index '" + tok + "'");
+      }
+      const long long resolved = idx < 0 ? static_cast<long long>(v_count) + idx : idx - 1;
+      if (idx == 0 || resolved < 0 || resolved >= static_cast<long long>(vertex_count))
+        return Error::runtime(path.string() + ": line " + std::to_string(line_no) + ": edge vertex " + tok +
+                              " out of range (" + std::to_string(vertex_count) + " vertices)");
+      if (prev >= 0 && prev != resolved)
+        out.push_back({static_cast<uint32_t>(prev), static_cast<uint32_t>(resolved)});
+      prev = resolved;
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 Status validateMesh(const TriMesh& mesh, const std::string& what) {
@@ -179,6 +211,8 @@ Result<TriMesh> loadMesh(const std::filesystem::path& path) {
   if (mesh.faces.empty() && countOccurrences(messages, "equal vertices") > 0)
     return Error::runtime(name + ": no usable faces (every face repeats a vertex)");
   if (Status s = validateMesh(mesh, name); !s) return s.error();
+  if (ext == ".obj")
+    if (Status s = readObjMarkedEdges(path, mesh.positions.size(), mesh.marked_edges); !s) return s.error();
   return mesh;
 }
 

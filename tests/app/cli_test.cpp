@@ -164,6 +164,26 @@ TEST_F(Cli, SvgMatchesGlRenderArmadillo) {
   checkSvgAgainstGl(dir_.path(), p.string(), "--view 200,10,2.9");
 }
 
+TEST_F(Cli, PerKindLineStyle) {
+  const std::string out = (dir_ / "red.png").string();
+  CliRun r = lodline("render " + sphere_ + " -o " + out + " --size 160x120 --style lines --full-detail " +
+                     "--line-style contour=#ff0000:3");
+  ASSERT_EQ(r.code, 0) << r.output;
+  auto img = readPng(out);
+  ASSERT_TRUE(img.ok());
+  int red = 0, black = 0;
+  for (int y = 0; y < img->height; ++y)
+    for (int x = 0; x < img->width; ++x) {
+      const uint8_t* p = img->pixel(x, y);
+      red += p[0] > 200 && p[1] < 80 && p[2] < 80;
+      black += p[0] < 60 && p[1] < 60 && p[2] < 60;
+    }
+  EXPECT_GT(red, 100);
+  EXPECT_EQ(black, 0);  // the contour is the only line kind on a sphere
+  EXPECT_EQ(lodline("render " + sphere_ + " -o " + out + " --line-style blob=#fff").code, 2);
+  EXPECT_EQ(lodline("render " + sphere_ + " -o " + out + " --line-style contour=#fff:0").code, 2);
+}
+
 TEST_F(Cli, ContextChoiceOsMesa) {
   const std::string out = (dir_ / "m.png").string(), stats = (dir_ / "m.json").string();
   CliRun r = lodline("render " + sphere_ + " -o " + out + " --size 64x64 --context osmesa --stats " + stats);

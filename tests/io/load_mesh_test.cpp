@@ -48,6 +48,21 @@ TEST(LoadMesh, ObjQuadIsTriangulated) {
   for (const auto& fn : n) EXPECT_GT(fn.z, 0.99f);
 }
 
+TEST(LoadMesh, ObjLinesMarkSharpEdges) {
+  TempDir dir;
+  writeText(dir / "m.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\nl 1 2 3\nl -1 -4\n");
+  auto m = loadMesh(dir / "m.obj");
+  ASSERT_TRUE(m.ok()) << m.error().message;
+  ASSERT_EQ(m->marked_edges.size(), 3u);
+  EXPECT_EQ(m->marked_edges[0], (EdgeKey{0, 1}));
+  EXPECT_EQ(m->marked_edges[1], (EdgeKey{1, 2}));
+  EXPECT_EQ(m->marked_edges[2], (EdgeKey{3, 0}));
+  writeText(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\nl 1 9\n");
+  auto bad = loadMesh(dir / "bad.obj");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("line 5"), std::string::npos) << bad.error().message;
+}
+
 TEST(LoadMesh, PlyAscii) {
   TempDir dir;
   writeText(dir / "sq.ply",
