@@ -164,6 +164,14 @@ TEST_F(Cli, SvgMatchesGlRenderArmadillo) {
   checkSvgAgainstGl(dir_.path(), p.string(), "--view 200,10,2.9");
 }
 
+TEST_F(Cli, ViewWithoutDisplayIsAClearError) {
+  CliRun r = lodline("view " + sphere_ + " --full-detail");  // tests run with DISPLAY unset
+  if (std::getenv("DISPLAY")) GTEST_SKIP() << "a display is available";
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_TRUE(r.output.find("window") != std::string::npos || r.output.find("viewer") != std::string::npos)
+      << r.output;
+}
+
 TEST_F(Cli, PerKindLineStyle) {
   const std::string out = (dir_ / "red.png").string();
   CliRun r = lodline("render " + sphere_ + " -o " + out + " --size 160x120 --style lines --full-detail " +
