@@ -18,6 +18,8 @@ Command addBuildCommand(CLI::App& parent) {
     std::string output;
     std::string cache_dir;
     bool force = false;
+    std::string pre_simplify;  ///< E% of the diagonal; empty: off
+    std::string mesh_out;      ///< where the pre-simplified mesh is written (.off)
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = parent.add_subcommand(
@@ -27,10 +29,33 @@ Command addBuildCommand(CLI::App& parent) {
   cmd->add_option("--cache-dir", o->cache_dir,
                   "Cache directory (default $XDG_CACHE_HOME/lodline or ~/.cache/lodline)");
   cmd->add_flag("--force", o->force, "Rebuild even if the cache is valid");
+  cmd->add_option("--pre-simplify", o->pre_simplify,
+                  "First simplify within E% of the bounding-box diagonal (Pan/Zhou/Shi E_s, e.g. 0.02%) and build "
+                  "the progressive mesh of the result; needs --mesh-out");
+  cmd->add_option("--mesh-out", o->mesh_out,
+                  "With --pre-simplify: write the simplified mesh here (.off); render/view it to use the cache");
   return {cmd, [o]() -> int {
             Stopwatch sw;
             auto mesh = loadMesh(o->model);
             if (!mesh) return reportError(mesh.error());
+            if (!o->pre_simplify.empty()) {
+              auto bound = parsePercent(o->pre_simplify, "--pre-simplify");
+              if (!bound) return reportError(bound.error());
+              if (o->mesh_out.empty())
+                return reportError(Error::usage("--pre-simplify needs --mesh-out FILE.off for the simplified mesh"));
+              auto simplified = simplifyMesh(*mesh, *bound, o->model);
+              if (!simplified) return reportError(simplified.error());
+              if (Status s = saveOff(o->mesh_out, simplified->mesh); !s) return reportError(s.error());
+              std::cout << "pre-simplified " << mesh->faceCount() << " -> " << simplified->mesh.faceCount()
+                        << " faces within " << 100.0 * *bound << "% (E_s " << 100.0 * simplified->e_s_rel
+                        << "% of the diagonal, Hausdorff " << simplified->hausdorff << "); wrote " << o->mesh_out
+                        << "\n";
+              // Reload what was written, so the cache key is that of the file render/view will read.
+              mesh = loadMesh(o->mesh_out);
+              if (!mesh) return reportError(mesh.error());
+            } else if (!o->mesh_out.empty()) {
+              return reportError(Error::usage("--mesh-out is only used with --pre-simplify"));
+            }
             const double load_ms = sw.lap();
             const uint64_t hash = meshContentHash(*mesh);
             const auto progress = buildProgressBar("lodline: building " + std::filesystem::path(o->model).filename().string());

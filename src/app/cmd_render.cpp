@@ -179,6 +179,16 @@ int runRender(const RenderOptions& o) {
       extracted[name] = drawing.lines().count[k] / 2;
     }
     j["lines"] = lines;
+    if (const VertexClustering* vc = lod_drawing.clustering()) {
+      const ClusterStats& cs = vc->stats();
+      j["cluster"] = {{"faces", cs.faces},
+                      {"representatives", cs.representatives},
+                      {"absorbed", cs.absorbed},
+                      {"culled_vertices", cs.culled_vertices},
+                      {"culled_faces", cs.culled_faces},
+                      {"collapsed_faces", cs.collapsed_faces},
+                      {"duplicate_faces", cs.duplicate_faces}};
+    }
     if (const AdaptiveMesh* lod = lod_drawing.lod()) {
       const LodStats& ls = lod->stats();
       float band = 0.0f;

@@ -270,7 +270,7 @@ int runView(const ViewOptions& o, const DetailOptions& d, const std::string& pla
         const double fps = frames * 1000.0 / fps_clock.lap();
         frames = 0;
         char title[256];
-        if (lod_drawing.detailControlled())
+        if (lod_drawing.lod())
           std::snprintf(title, sizeof(title), "lodline - %s - %.1f fps - %zu faces (T %.3g px^2%s) - %zu line segments",
                         resolved->model.filename().c_str(), fps, renderer->faceCount(), s.detail.target_area,
                         s.detail.geomorphs ? "" : ", no geomorphs", renderer->segmentsDrawn());

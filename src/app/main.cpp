@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "lodline 0.1.0");
   const std::vector<lodline::Command> commands = {
       lodline::addRenderCommand(app), lodline::addViewCommand(app), lodline::addCaptureCommand(app),
-      lodline::addBuildCommand(app), lodline::addGenerateCommand(app)};
+      lodline::addBuildCommand(app), lodline::addGenerateCommand(app),
+      lodline::addSimplifyCommand(app), lodline::addCompareCommand(app), lodline::addBenchCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -15,7 +15,15 @@ namespace lodline {
 
 void addDetailOptions(CLI::App& cmd, DetailOptions& o) {
   cmd.add_flag("--full-detail", o.full_detail,
-               "Draw the full-detail mesh (no progressive mesh, no detail control)");
+               "Draw the full-detail mesh (no progressive mesh, no detail control); same as --lod none");
+  cmd.add_option("--lod", o.lod,
+                 "Level of detail: pm (progressive mesh, detail control by --target-area), cluster "
+                 "(view-dependent vertex clustering every frame, Pan/Zhou/Shi, by --pixel-error) or none")
+      ->capture_default_str();
+  cmd.add_option("--pixel-error", o.pixel_error,
+                 "--lod cluster: pixel error K in px^2 (vertices within a K-px^2 square at their depth merge; "
+                 "--foveation scales it away from --focus)")
+      ->capture_default_str();
   cmd.add_option("--target-area", o.target_area,
                  "Target image area T of visible triangles in px^2 (Jeong et al. 2005); larger = coarser")
       ->capture_default_str();
@@ -58,7 +66,17 @@ std::filesystem::path defaultCacheDir() {
 
 Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
   ResolvedDetail r;
-  r.full_detail = o.full_detail;
+  if (o.lod == "pm") r.mode = LodMode::kPm;
+  else if (o.lod == "cluster") r.mode = LodMode::kCluster;
+  else if (o.lod == "none") r.mode = LodMode::kNone;
+  else return Error::usage("--lod: expected pm, cluster or none, got '" + o.lod + "'");
+  if (o.full_detail) {
+    if (r.mode == LodMode::kCluster) return Error::usage("--full-detail and --lod cluster exclude each other");
+    r.mode = LodMode::kNone;
+  }
+  r.full_detail = r.mode == LodMode::kNone;
+  if (!(o.pixel_error > 0.0f && o.pixel_error <= 1e4f)) return Error::usage("--pixel-error: must be in (0, 10000] px^2");
+  r.cluster.pixel_error = o.pixel_error;
   r.max_adapt_frames = o.max_adapt_frames;
   DetailParams& p = r.params;
   if (!(o.target_area > 0.0f && o.target_area < 1e7f)) return Error::usage("--target-area: must be > 0 px^2");
@@ -130,6 +148,12 @@ Result<std::unique_ptr<LodDrawing>> loadModel(const std::filesystem::path& model
   if (detail.full_detail) {
     if (pm_ms) *pm_ms = 0.0;
     return std::make_unique<LodDrawing>(std::move(mesh.value()));
+  }
+  if (detail.mode == LodMode::kCluster) {
+    auto drawing = std::make_unique<LodDrawing>(std::move(mesh.value()), detail.cluster);
+    if (pm_ms) *pm_ms = sw.lap();
+    if (note) *note = "vertex clustering";
+    return drawing;
   }
   const uint64_t hash = meshContentHash(*mesh);
   auto pm = loadOrBuildPm(*mesh, hash, detail.cache_dir, {},

@@ -19,6 +19,8 @@ namespace lodline {
 /// Raw detail-control options (checked by resolveDetailOptions()).
 struct DetailOptions {
   bool full_detail = false;
+  std::string lod = "pm";       ///< --lod pm|cluster|none (none = --full-detail)
+  float pixel_error = ClusterParams{}.pixel_error;  ///< --pixel-error K (cluster), px²
   float target_area = DetailParams{}.target_area;
   float t_c = DetailParams{}.t_c;
   float t_s = DetailParams{}.t_s;
@@ -37,9 +39,14 @@ struct DetailOptions {
   float smoothing_time = SmoothingParams{}.seconds;
 };
 
+/// Level of detail: progressive mesh with detail control, per-frame vertex clustering, none.
+enum class LodMode { kPm, kCluster, kNone };
+
 struct ResolvedDetail {
   SmoothingParams smoothing;
-  bool full_detail = false;
+  bool full_detail = false;  ///< mode == LodMode::kNone
+  LodMode mode = LodMode::kPm;
+  ClusterParams cluster;     ///< pixel error for LodMode::kCluster (foveation comes from params)
   DetailParams params;
   std::filesystem::path cache_dir;
   int max_adapt_frames = 300;

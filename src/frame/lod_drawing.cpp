@@ -1,5 +1,6 @@
 #include "frame/lod_drawing.h"
 
+#include <algorithm>
 #include <numeric>
 
 #include "core/timer.h"
@@ -22,9 +23,42 @@ ShapeParams adaptiveShapeParams() {
 LodDrawing::LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params)
     : drawing_(std::move(full), params, adaptiveShapeParams()), pm_(std::move(pm)), lod_(std::make_unique<AdaptiveMesh>(*pm_)) {}
 
+LodDrawing::LodDrawing(TriMesh full, const ClusterParams& cluster, const LineParams& params)
+    : drawing_(full, params, adaptiveShapeParams()),
+      cluster_(std::make_unique<VertexClustering>(std::move(full))),
+      cluster_params_(cluster) {
+  // Clustering folds the surface locally (non-manifold edges, small holes where collapsed
+  // faces were): draw boundaries only for models that have some, and no non-manifold edges
+  // as creases (the input's marked edges do not survive updateMesh anyway).
+  LineParams p = params;
+  const auto boundary = cluster_->boundaryVertices();
+  p.boundaries = p.boundaries && std::find(boundary.begin(), boundary.end(), uint8_t{1}) != boundary.end();
+  p.marked_edges = false;
+  drawing_.setParams(p);
+}
+
 Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const DetailParams& detail,
                              float dt) {
   mesh_changed_ = first_;
+  if (cluster_) {
+    Stopwatch sw;
+    ClusterParams cp = cluster_params_;
+    cp.foveation = detail.foveation;
+    cp.focus_px = detail.focus_px;
+    cp.cull = detail.cull;
+    cluster_->cluster(camera, width, height, cp);
+    adapt_ms_ = sw.lap();
+    // Slots are the input vertices, so the full-detail crease vertices apply directly.
+    const auto full = drawing_.fullDetailCreaseVertices();
+    drawing_.creaseMask().assign(full.begin(), full.end());
+    // Positions never move (a representative keeps its own); the shape cache finds the face
+    // slots that changed itself, so the changed-vertex list stays empty.
+    changed_.clear();
+    drawing_.updateMesh(cluster_->mesh().positions, cluster_->faces(), changed_);
+    mesh_changed_ = true;
+    first_ = false;
+    return {};
+  }
   if (!lod_) {
     first_ = false;
     return {};
@@ -69,6 +103,11 @@ Result<int> LodDrawing::converge(const Camera& camera, int width, int height, co
                                  float dt, int max_steps, const std::array<bool, kLineKindCount>& enabled) {
   int steps = 0;
   bool changed_any = first_;
+  if (cluster_) {  // clustering has no state between frames: one step is converged
+    if (Status s = adaptStep(camera, width, height, detail, dt); !s) return s.error();
+    drawing_.update(camera, enabled);
+    return 1;
+  }
   while (lod_ && steps < max_steps) {
     if (Status s = adaptStep(camera, width, height, detail, dt); !s) return s.error();
     ++steps;

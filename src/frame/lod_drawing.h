@@ -9,6 +9,7 @@
 
 #include "frame/line_drawing.h"
 #include "lod/adaptive_mesh.h"
+#include "lod/vertex_clustering.h"
 #include "pm/progressive_mesh.h"
 
 namespace lodline {
@@ -21,7 +22,13 @@ class LodDrawing {
   /// progressive mesh. Starts at the base mesh.
   LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params = {});
 
-  bool detailControlled() const { return lod_ != nullptr; }
+  /// View-dependent vertex clustering every frame (Pan, Zhou, Shi; lod/vertex_clustering.h):
+  /// `full` is clustered for each view with `cluster` (its foveation and focus are taken from
+  /// the DetailParams passed to frame()).
+  LodDrawing(TriMesh full, const ClusterParams& cluster, const LineParams& params = {});
+
+  /// True for any level of detail that changes with the view (progressive mesh or clustering).
+  bool detailControlled() const { return lod_ != nullptr || cluster_ != nullptr; }
 
   /// One frame: adapts the mesh to the view (advancing geomorphs by `dt` seconds), updates
   /// the shape quantities of what changed and extracts the lines. Errors come only from
@@ -38,8 +45,10 @@ class LodDrawing {
 
   const LineDrawing& drawing() const { return drawing_; }
   const Bounds& bounds() const { return drawing_.bounds(); }
-  /// Null at full detail.
+  /// Null at full detail and with clustering.
   const AdaptiveMesh* lod() const { return lod_.get(); }
+  /// Null unless clustering.
+  const VertexClustering* clustering() const { return cluster_.get(); }
   /// Milliseconds of the last adapt step (0 at full detail).
   double adaptMs() const { return adapt_ms_; }
   /// True when the mesh (positions or faces) changed in the last frame(): re-upload it.
@@ -50,6 +59,8 @@ class LodDrawing {
   LineDrawing drawing_;
   std::shared_ptr<const ProgressiveMesh> pm_;
   std::unique_ptr<AdaptiveMesh> lod_;
+  std::unique_ptr<VertexClustering> cluster_;
+  ClusterParams cluster_params_;
   std::vector<std::array<uint32_t, 3>> faces_;
   std::vector<uint32_t> changed_;
   double adapt_ms_ = 0.0;

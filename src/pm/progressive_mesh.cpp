@@ -528,4 +528,78 @@ TriMesh ProgressiveMesh::baseMesh(std::vector<uint32_t>* base_node_ids) const {
   return m;
 }
 
+// ---- Error-bounded static simplification (Pan, Zhou, Shi; DESIGN.md §4) ----
+
+TriMesh pmLevelMesh(const ProgressiveMesh& pm, uint32_t collapses) {
+  const uint32_t n = pm.vertexCount();
+  collapses = std::min<uint32_t>(collapses, static_cast<uint32_t>(pm.splits.size()));
+  // Union-find over input vertices: collapse i merges origin(vu) into origin(vt).
+  std::vector<uint32_t> up(n);
+  for (uint32_t v = 0; v < n; ++v) up[v] = v;
+  std::vector<uint8_t> removed(pm.faceCount(), 0);
+  for (uint32_t i = 0; i < collapses; ++i) {
+    const VertexSplit& s = pm.splits[i];
+    up[pm.origin[s.vu]] = pm.origin[s.vt];
+    removed[s.fl] = removed[s.fr] = 1;
+  }
+  auto find = [&](uint32_t v) {
+    uint32_t r = v;
+    while (up[r] != r) r = up[r];
+    while (up[v] != r) {
+      const uint32_t next = up[v];
+      up[v] = r;
+      v = next;
+    }
+    return r;
+  };
+  TriMesh m;
+  std::vector<uint32_t> index(n, kPmNone);
+  for (uint32_t f = 0; f < pm.faceCount(); ++f) {
+    if (removed[f]) continue;
+    std::array<uint32_t, 3> c;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = find(pm.faces[f][k]);
+      if (index[v] == kPmNone) {
+        index[v] = static_cast<uint32_t>(m.positions.size());
+        m.positions.push_back(pm.positions[v]);
+      }
+      c[k] = index[v];
+    }
+    m.faces.push_back(c);
+  }
+  return m;
+}
+
+BoundedSimplification simplifyWithinBound(const ProgressiveMesh& pm, double bound, const MeshErrorFn& error) {
+  BoundedSimplification best;
+  best.mesh = pmLevelMesh(pm, 0);  // the input itself: error 0
+  auto ok = [&](uint32_t k, TriMesh& mesh, double& e) {
+    mesh = pmLevelMesh(pm, k);
+    e = error(mesh);
+    ++best.evaluations;
+    return e >= 0.0 && e <= bound;
+  };
+  uint32_t lo = 0, hi = static_cast<uint32_t>(pm.splits.size());  // lo: measured within the bound
+  TriMesh mesh;
+  double e = 0.0;
+  if (hi > 0 && ok(hi, mesh, e)) {
+    best.mesh = std::move(mesh);
+    best.collapses = hi;
+    best.error = e;
+    return best;
+  }
+  while (hi - lo > 1) {
+    const uint32_t mid = lo + (hi - lo) / 2;
+    if (ok(mid, mesh, e)) {
+      lo = mid;
+      best.mesh = std::move(mesh);
+      best.collapses = mid;
+      best.error = e;
+    } else {
+      hi = mid;
+    }
+  }
+  return best;
+}
+
 }  // namespace lodline

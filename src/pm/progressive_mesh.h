@@ -123,6 +123,30 @@ uint64_t meshContentHash(const TriMesh& mesh);
 /// Hash of the build parameters (part of the cache key).
 uint64_t buildParamsHash(const PmBuildParams& params);
 
+/// The mesh after the first `collapses` collapses of `pm` (0: the input mesh, splits.size():
+/// the base mesh), compacted: unused vertices are dropped, faces keep their input order.
+/// `pm` must be finalized.
+TriMesh pmLevelMesh(const ProgressiveMesh& pm, uint32_t collapses);
+
+/// Result of simplifyWithinBound().
+struct BoundedSimplification {
+  TriMesh mesh;            ///< the simplified mesh (pmLevelMesh of `collapses`)
+  uint32_t collapses = 0;  ///< collapses applied
+  double error = 0.0;      ///< the measured error of `mesh` (never above the bound)
+  int evaluations = 0;     ///< calls of the error function
+};
+
+/// Error function for simplifyWithinBound(): the error of a candidate mesh (any unit, e.g.
+/// Pan et al.'s E_s relative to the diagonal), or a negative value if it cannot be measured.
+using MeshErrorFn = std::function<double(const TriMesh& candidate)>;
+
+/// Error-bounded static simplification (Pan, Zhou, Shi, DESIGN.md §4): runs the quadric-error
+/// collapses of `pm` in their order and keeps the longest prefix whose measured `error` is at
+/// most `bound`, found by bisection over the collapse count (about log2(collapses)+2 calls).
+/// Every returned level was measured, so the bound holds even where the error is not monotone
+/// in the number of collapses (the search then backs off to a measured level).
+BoundedSimplification simplifyWithinBound(const ProgressiveMesh& pm, double bound, const MeshErrorFn& error);
+
 /// Word-wise 64-bit hash (FNV-1a style mixing per 8-byte word), `seed` chains calls.
 uint64_t hashBytes(const void* data, size_t size, uint64_t seed = 0xcbf29ce484222325ull);
 

@@ -38,7 +38,9 @@ TEST(Smoothing, HeldValueReachesAlphaWithinT) {
     v.kr = {1.0f};
     v.dwkr = {1.0f};
     s.blendView(v, w, 0.0f);
-    if (i == n - 2) EXPECT_LT(v.kr[0], alpha);
+    if (i == n - 2) {
+      EXPECT_LT(v.kr[0], alpha);
+    }
   }
   EXPECT_NEAR(v.kr[0], alpha, 1e-3f);
   EXPECT_NEAR(v.dwkr[0], alpha, 1e-3f);
@@ -102,7 +104,7 @@ TEST(Smoothing, FollowsTheVertexHierarchyThroughSplitsAndCollapses) {
     const auto smooth = lod.drawing().normals();
     const auto raw = lod.drawing().shape().normals();
     const auto slot_nodes = lod.lod()->slotVertices();
-    const ProgressiveMesh& pm = lod.lod()->pm();
+    const ProgressiveMesh& pmesh = lod.lod()->pm();
     // Exact bookkeeping: a node that is new this frame blended its parent's last smoothed
     // normal (split) or the mean of its children's (collapse) with its raw normal.
     if (k > 0) {
@@ -110,12 +112,12 @@ TEST(Smoothing, FollowsTheVertexHierarchyThroughSplitsAndCollapses) {
         const uint32_t node = slot_nodes[v];
         if (node == kPmNone || previous.count(node)) continue;
         glm::vec3 start;
-        const uint32_t parent = pm.parent[node];
+        const uint32_t parent = pmesh.parent[node];
         if (parent != kPmNone && previous.count(parent)) {
           start = previous[parent];
           ++inherited_checked;
-        } else if (!pm.isLeaf(node) && previous.count(pm.split(node).vt) && previous.count(pm.split(node).vu)) {
-          start = glm::normalize(previous[pm.split(node).vt] + previous[pm.split(node).vu]);
+        } else if (!pmesh.isLeaf(node) && previous.count(pmesh.split(node).vt) && previous.count(pmesh.split(node).vu)) {
+          start = glm::normalize(previous[pmesh.split(node).vt] + previous[pmesh.split(node).vu]);
           ++collapse_checked;
         } else {
           continue;  // several levels at once: starts from its own values
