@@ -40,15 +40,11 @@
 #include "io/generate.h"
 #include "io/image.h"
 #include "io/load_mesh.h"
+#include "bench_util.h"
 #include "test_util.h"
 
 namespace lodline {
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
 
 float lum(const Image& im, int x, int y) {
   const uint8_t* p = im.pixel(x, y);
@@ -265,23 +261,10 @@ int groundTruth(const std::filesystem::path& dir) {
 
 // Shaded frames with and without highlights, alternating, along a slow orbit.
 void chamferFrameBenchmark(benchmark::State& state, const std::string& name) {
-  const auto path = test::dataMesh(name);
-  if (path.empty()) {
-    state.SkipWithError(("data/meshes/" + name + " missing: run scripts/setup.sh").c_str());
-    return;
-  }
-  auto mesh = loadMesh(path);
-  if (!mesh) {
-    state.SkipWithError(mesh.error().message.c_str());
-    return;
-  }
-  const size_t faces = mesh->faceCount();
-  auto ctx = createHeadlessContext(ContextBackend::kEgl);
-  if (!ctx) {
-    state.SkipWithError(ctx.error().message.c_str());
-    return;
-  }
-  LineDrawing drawing(std::move(mesh.value()));
+  auto setup = bench::setUpGlBenchmark(state, name);
+  if (!setup) return;
+  const size_t faces = setup->mesh.faceCount();
+  LineDrawing drawing(std::move(setup->mesh));
   RenderParams rp;
   rp.style = Style::kShaded;
   auto renderer = Renderer::create();
@@ -320,11 +303,11 @@ void chamferFrameBenchmark(benchmark::State& state, const std::string& name) {
   }
   state.counters["faces"] = static_cast<double>(faces);
   state.counters["sharp_edges"] = static_cast<double>(edges);
-  state.counters["on_ms"] = median(on_ms);
-  state.counters["off_ms"] = median(off_ms);
-  state.counters["alpha_ms"] = median(alpha_ms);
-  state.counters["ratio"] = median(on_ms) / std::max(median(off_ms), 1e-9);
-  state.counters["alpha_ratio"] = median(alpha_ms) / std::max(median(off_ms), 1e-9);
+  state.counters["on_ms"] = bench::median(on_ms);
+  state.counters["off_ms"] = bench::median(off_ms);
+  state.counters["alpha_ms"] = bench::median(alpha_ms);
+  state.counters["ratio"] = bench::median(on_ms) / std::max(bench::median(off_ms), 1e-9);
+  state.counters["alpha_ratio"] = bench::median(alpha_ms) / std::max(bench::median(off_ms), 1e-9);
 }
 
 void registerAll() {

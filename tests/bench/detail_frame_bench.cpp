@@ -23,15 +23,11 @@
 #include "io/generate.h"
 #include "io/load_mesh.h"
 #include "pm/pm_file.h"
+#include "bench_util.h"
 #include "test_util.h"
 
 namespace lodline {
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
 
 struct Model {
   TriMesh mesh;
@@ -119,19 +115,19 @@ void detailFrame(benchmark::State& state, const std::string& name) {
     glFinish();
     full_draw.push_back(sw.lap());
   }
-  const double controlled_total = median(adapt) + median(shape) + median(lines) + median(upload) + median(draw);
+  const double controlled_total = bench::median(adapt) + bench::median(shape) + bench::median(lines) + bench::median(upload) + bench::median(draw);
   state.counters["model_faces"] = static_cast<double>(model->mesh.faceCount());
-  state.counters["active_faces"] = median(faces);
-  state.counters["adapt_ms"] = median(adapt);
-  state.counters["shape_ms"] = median(shape);
-  state.counters["lines_ms"] = median(lines);
-  state.counters["upload_ms"] = median(upload);
-  state.counters["draw_ms"] = median(draw);
+  state.counters["active_faces"] = bench::median(faces);
+  state.counters["adapt_ms"] = bench::median(adapt);
+  state.counters["shape_ms"] = bench::median(shape);
+  state.counters["lines_ms"] = bench::median(lines);
+  state.counters["upload_ms"] = bench::median(upload);
+  state.counters["draw_ms"] = bench::median(draw);
   state.counters["controlled_ms"] = controlled_total;
-  state.counters["static_ms"] = median(static_draw);
-  state.counters["full_lines_ms"] = median(full_lines);
-  state.counters["full_draw_ms"] = median(full_draw);
-  state.counters["full_ms"] = median(full_lines) + median(full_draw);
+  state.counters["static_ms"] = bench::median(static_draw);
+  state.counters["full_lines_ms"] = bench::median(full_lines);
+  state.counters["full_draw_ms"] = bench::median(full_draw);
+  state.counters["full_ms"] = bench::median(full_lines) + bench::median(full_draw);
 }
 
 }  // namespace

@@ -16,34 +16,17 @@
 #include "gl/context.h"
 #include "gl/renderer.h"
 #include "io/load_mesh.h"
+#include "bench_util.h"
 #include "test_util.h"
 
 namespace lodline {
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 void frameBenchmark(benchmark::State& state, const std::string& name, Style style, int msaa) {
-  const auto path = test::dataMesh(name);
-  if (path.empty()) {
-    state.SkipWithError(("data/meshes/" + name + " missing: run scripts/setup.sh").c_str());
-    return;
-  }
-  auto mesh = loadMesh(path);
-  if (!mesh) {
-    state.SkipWithError(mesh.error().message.c_str());
-    return;
-  }
-  const size_t faces = mesh->faceCount();
-  auto ctx = createHeadlessContext(ContextBackend::kEgl);
-  if (!ctx) {
-    state.SkipWithError(ctx.error().message.c_str());
-    return;
-  }
-  LineDrawing drawing(std::move(mesh.value()));
+  auto setup = bench::setUpGlBenchmark(state, name);
+  if (!setup) return;
+  const size_t faces = setup->mesh.faceCount();
+  LineDrawing drawing(std::move(setup->mesh));
   RenderParams rp;
   rp.style = style;
   rp.msaa = msaa;
@@ -74,12 +57,12 @@ void frameBenchmark(benchmark::State& state, const std::string& name, Style styl
     readback_ms.push_back(sw.lap());
   }
   state.counters["faces"] = static_cast<double>(faces);
-  state.counters["lines_ms"] = median(lines_ms);
-  state.counters["upload_ms"] = median(upload_ms);
-  state.counters["draw_ms"] = median(draw_ms);
-  state.counters["readback_ms"] = median(readback_ms);
+  state.counters["lines_ms"] = bench::median(lines_ms);
+  state.counters["upload_ms"] = bench::median(upload_ms);
+  state.counters["draw_ms"] = bench::median(draw_ms);
+  state.counters["readback_ms"] = bench::median(readback_ms);
   state.counters["frame_ms"] =
-      median(lines_ms) + median(upload_ms) + median(draw_ms) + median(readback_ms);
+      bench::median(lines_ms) + bench::median(upload_ms) + bench::median(draw_ms) + bench::median(readback_ms);
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(faces));
 }
 
