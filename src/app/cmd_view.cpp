@@ -308,7 +308,11 @@ Command addViewCommand(CLI::App& parent) {
 #ifdef LODLINE_HAVE_VIEWER
   return {cmd, [o] { return runView(o->view, o->detail, o->play); }};
 #else
-  return {cmd, [] { return reportError(Error::runtime("this build has no viewer (built with LODLINE_BUILD_VIEWER=OFF)")); }};
+  // The callback keeps the options alive: CLI11 writes into them while parsing.
+  return {cmd, [o] {
+            (void)o;
+            return reportError(Error::runtime("this build has no viewer (built with LODLINE_BUILD_VIEWER=OFF)"));
+          }};
 #endif
 }
 
