@@ -2,8 +2,6 @@
 // see lines.h.
 #include "lines/lines.h"
 
-#include "core/timer.h"
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -223,11 +221,8 @@ void LineExtractor::extract(const TriMesh& mesh, const ShapeCache& shape,
   const float fs = feature_size > 0.0f && std::isfinite(feature_size) ? feature_size : 1.0f;
   SurfaceFields f = fields;
   if (!params.suggestive) f.dcurv = {};
-  Stopwatch sw;
   computeViewQuantities(f, view, params.suggestive_threshold / (fs * fs), view_);
-  view_ms_ = sw.lap();
   extractLines(mesh, shape.adjacency(), shape.faceNormals(), view_, params, fs, scratch_, out);
-  extract_ms_ = sw.lap();
 }
 
 }  // namespace lodline

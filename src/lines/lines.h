@@ -136,13 +136,9 @@ class LineExtractor {
                LineSet& out);
   /// The quantities of the last extract().
   const ViewQuantities& viewQuantities() const { return view_; }
-  /// Milliseconds the last extract() spent on view quantities and on extraction.
-  double lastViewMs() const { return view_ms_; }
-  double lastExtractMs() const { return extract_ms_; }
 
  private:
   ViewQuantities view_;
-  double view_ms_ = 0.0, extract_ms_ = 0.0;
   LineScratch scratch_;
 };
 
