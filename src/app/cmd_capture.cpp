@@ -181,10 +181,8 @@ int runCapture(const CaptureOptions& o) {
   // Frame 0 starts from the detail converged for its camera (as a still render would), not
   // from the base mesh, so the first frames are not a refinement transient.
   {
-    DetailParams still = detail->params;
-    still.geomorphs = false;
     const Camera cam0 = cam_path->at(0.0, drawing.bounds());
-    if (auto steps = lod_drawing.converge(cam0, rp.width, rp.height, still, static_cast<float>(1.0 / o.fps),
+    if (auto steps = lod_drawing.converge(cam0, rp.width, rp.height, detail->params, static_cast<float>(1.0 / o.fps),
                                           detail->max_adapt_frames, enabled);
         !steps)
       return reportError(steps.error());

@@ -89,10 +89,8 @@ int runRender(const RenderOptions& o) {
   const Camera camera = orbitCamera(drawing.bounds(), resolved->orbit, resolved->fov_deg, aspect);
   std::array<bool, kLineKindCount> enabled{};
   for (int k = 0; k < kLineKindCount; ++k) enabled[k] = rp.lines.kinds[k].enabled;
-  // A still image shows the converged detail: adapt without geomorphs until nothing changes.
-  DetailParams still = detail->params;
-  still.geomorphs = false;
-  auto steps = lod_drawing.converge(camera, rp.width, rp.height, still, 1.0f / 30.0f,
+  // A still image shows the converged detail.
+  auto steps = lod_drawing.converge(camera, rp.width, rp.height, detail->params, 1.0f / 30.0f,
                                     detail->max_adapt_frames, enabled);
   if (!steps) return reportError(steps.error());
   const double ms_adapt = stage.lap();

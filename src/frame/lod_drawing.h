@@ -38,8 +38,9 @@ class LodDrawing {
   Status frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
                const std::array<bool, kLineKindCount>& enabled, float smoothing = 1.0f);
 
-  /// Adapts with geomorphs and `dt` per step until a step changes nothing (no split, collapse
-  /// or running morph) or `max_steps` steps ran; then extracts the lines. Returns the steps.
+  /// Adapts without geomorphs (changes show at once), `dt` per step, until a step changes
+  /// nothing or `max_steps` steps ran; then extracts the lines. Returns the steps. This is
+  /// the detail a still image shows, and where captures start.
   Result<int> converge(const Camera& camera, int width, int height, const DetailParams& detail,
                        float dt, int max_steps, const std::array<bool, kLineKindCount>& enabled);
 

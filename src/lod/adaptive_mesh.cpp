@@ -558,14 +558,7 @@ bool AdaptiveMesh::doCollapse(uint32_t p, bool check) {
       if (!facingOk(q[0], q[1], q[2], ref_normal_[f])) return false;
     }
   }
-  if (node_state_[p] & kPending) {
-    const uint32_t pos = pending_pos_[p];
-    const uint32_t last = pending_.back();
-    pending_[pos] = last;
-    pending_pos_[last] = pos;
-    pending_.pop_back();
-    pending_pos_[p] = kNone;
-  }
+  if (node_state_[p] & kPending) removePending(p);
   node_state_[p] = 0;
   node_state_[vs.vt] = 0;
   node_state_[vs.vu] = 0;
@@ -706,15 +699,19 @@ void AdaptiveMesh::startCollapseMorph(uint32_t p, float speedup) {
              params_.morph_time * params_.coarsen_time_factor / speedup);
 }
 
-void AdaptiveMesh::cancelCollapse(uint32_t p) {
-  if (!(node_state_[p] & kPending)) return;
-  const VertexSplit& vs = pm_.split(p);
+void AdaptiveMesh::removePending(uint32_t p) {
   const uint32_t pos = pending_pos_[p];
   const uint32_t last = pending_.back();
   pending_[pos] = last;
   pending_pos_[last] = pos;
   pending_.pop_back();
   pending_pos_[p] = kNone;
+}
+
+void AdaptiveMesh::cancelCollapse(uint32_t p) {
+  if (!(node_state_[p] & kPending)) return;
+  const VertexSplit& vs = pm_.split(p);
+  removePending(p);
   node_state_[p] &= static_cast<uint8_t>(~kPending);
   node_state_[vs.vt] &= static_cast<uint8_t>(~kLocked);
   node_state_[vs.vu] &= static_cast<uint8_t>(~kLocked);

@@ -211,6 +211,8 @@ class AdaptiveMesh {
   bool collapseGeometryOk(uint32_t p) const;
   void startCollapseMorph(uint32_t p, float speedup);
   void cancelCollapse(uint32_t p);
+  /// Takes p out of the list of pending (morphing) collapses.
+  void removePending(uint32_t p);
   void startMorph(uint32_t slot, const glm::vec3& from, const glm::vec3& to, float duration);
   void stopMorph(uint32_t slot);
   void advanceMorphs(float dt);

@@ -78,7 +78,7 @@ void detailFrame(benchmark::State& state, const std::string& name) {
   const float aspect = 1280.0f / 720.0f;
   // Converge at the first camera, as captures do.
   (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), rp.width,
-                            rp.height, [&] { DetailParams d = detail; d.geomorphs = false; return d; }(),
+                            rp.height, detail,
                             1.0f / 30.0f, 300, enabled);
   std::vector<double> adapt, shape, lines, upload, draw, static_draw, full_lines, full_draw, faces;
   float az = 0.0f;

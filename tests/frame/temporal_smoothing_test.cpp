@@ -90,9 +90,7 @@ TEST(Smoothing, FollowsTheVertexHierarchyThroughSplitsAndCollapses) {
     const float dist = 1.5f + 10.5f * std::abs(2.0f * phase - 1.0f);
     return orbitCamera(lod.bounds(), {30.0f + k, 20.0f, dist}, 35.0f, 16.0f / 9.0f);
   };
-  DetailParams still = detail;
-  still.geomorphs = false;
-  ASSERT_TRUE(lod.converge(camera_at(0), 640, 360, still, 1.0f / 30.0f, 300, enabled).ok());
+  ASSERT_TRUE(lod.converge(camera_at(0), 640, 360, detail, 1.0f / 30.0f, 300, enabled).ok());
   std::unordered_map<uint32_t, glm::vec3> previous;  // PM node -> smoothed normal last frame
   size_t inherited_checked = 0, collapse_checked = 0;
   for (int k = 0; k < 180; ++k) {
