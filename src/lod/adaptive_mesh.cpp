@@ -953,11 +953,8 @@ void AdaptiveMesh::fullyCoarsen() {
 // Output and checks
 
 void AdaptiveMesh::exportFaces(std::vector<std::array<uint32_t, 3>>& out) const {
-  out.resize(active_faces_.size());
-  for (size_t k = 0; k < active_faces_.size(); ++k) {
-    const auto& c = fv_[active_faces_[k]];
-    out[k] = {node_slot_[c[0]], node_slot_[c[1]], node_slot_[c[2]]};
-  }
+  // active_fs_ holds the corner slots of every active face, kept in step by split/collapse.
+  out.assign(active_fs_.begin(), active_fs_.end());
 }
 
 void AdaptiveMesh::exportCompact(TriMesh& out, std::vector<uint32_t>& node_ids) const {
@@ -1016,6 +1013,8 @@ std::string AdaptiveMesh::checkInvariants() const {
     for (int i = 0; i < 3; ++i) {
       if (c[i] >= n_nodes_ || node_slot_[c[i]] == kNone)
         return "face " + str(f) + " has inactive corner " + str(c[i]);
+      if (active_fs_[face_pos_[f]][i] != node_slot_[c[i]])
+        return "face " + str(f) + " has a stale corner slot (exportFaces reads them)";
       ++incident[c[i]];
       const uint32_t g = fnb_[f][i];
       if (g == kNone) continue;

@@ -52,59 +52,63 @@ void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out) {
   if (nv > 0) out.vertex_face_offsets[nv] = corner_total;
 
   // Vertex → distinct neighbours, and edges: each edge is created by its smaller vertex,
-  // which also hands it to the face sides it lies on (faces in increasing order).
+  // which also hands it to the face sides it lies on (faces in increasing order). A stamp
+  // per neighbour (the current vertex + 1) replaces searching the ring and the vertex's
+  // edges, so this is O(corners); the output is the same as a search would give.
   out.vertex_vertex_offsets.assign(nv + 1, 0);
-  out.vertex_vertices.clear();
-  out.vertex_vertices.reserve(corner_total);
+  // A ring holds at most two neighbours per corner (an open fan has one more neighbour than
+  // faces); every edge is created by one corner side.
+  out.vertex_vertices.resize(2 * static_cast<size_t>(corner_total));
   out.edge_offsets.assign(nv + 1, 0);
-  out.edges.clear();
-  out.edges.reserve(corner_total / 2 + nv);
-  out.edge_faces.clear();
-  out.edge_faces.reserve(corner_total / 2 + nv);
-  out.edge_face_count.clear();
-  out.edge_face_count.reserve(corner_total / 2 + nv);
+  out.edges.resize(corner_total);
+  out.edge_faces.resize(corner_total);
+  out.edge_face_count.resize(corner_total);
   out.face_edges.assign(nf, {kNoIndex, kNoIndex, kNoIndex});
+  std::vector<uint32_t>& seen = out.scratch_seen;   // v + 1 once w is in v's ring
+  std::vector<uint32_t>& edge_to = out.scratch_edge;  // edge (v, w) for w > v, valid if seen
+  seen.assign(nv, 0);
+  edge_to.resize(nv);
+  uint32_t ring_size = 0, edge_count = 0;
+  const uint32_t* vf = out.vertex_faces.data();
+  const uint8_t* vc = out.vertex_face_corners.data();
   for (uint32_t v = 0; v < nv; ++v) {
-    const size_t ring_begin = out.vertex_vertices.size();
-    const uint32_t first_edge = static_cast<uint32_t>(out.edges.size());
-    // Index of the edge (v, w) for w > v, creating it on first sight.
-    auto edgeTo = [&](uint32_t w) {
-      for (uint32_t e = first_edge; e < out.edges.size(); ++e)
-        if (out.edges[e][1] == w) return e;
-      out.edges.push_back({v, w});
-      out.edge_faces.push_back({kNoIndex, kNoIndex});
-      out.edge_face_count.push_back(0);
-      return static_cast<uint32_t>(out.edges.size() - 1);
-    };
-    auto addFace = [&](uint32_t e, uint32_t f) {
-      const uint32_t k = out.edge_face_count[e]++;
-      if (k < 2) out.edge_faces[e][k] = f;
-    };
+    const uint32_t stamp = v + 1;
     for (uint32_t i = out.vertex_face_offsets[v]; i < out.vertex_face_offsets[v + 1]; ++i) {
-      const uint32_t f = out.vertex_faces[i];
+      const uint32_t f = vf[i];
       const auto& t = mesh.faces[f];
-      const uint8_t c = out.vertex_face_corners[i];
-      const uint32_t next = t[(c + 1) % 3], prev = t[(c + 2) % 3];
-      for (uint32_t w : {next, prev}) {
-        bool seen = false;
-        for (size_t k = ring_begin; k < out.vertex_vertices.size(); ++k)
-          if (out.vertex_vertices[k] == w) { seen = true; break; }
-        if (!seen) out.vertex_vertices.push_back(w);
-      }
-      if (next > v) {  // side c joins corners c and c+1
-        const uint32_t e = edgeTo(next);
-        out.face_edges[f][c] = e;
-        addFace(e, f);
-      }
-      if (prev > v) {  // side c+2 joins corners c+2 and c
-        const uint32_t e = edgeTo(prev);
-        out.face_edges[f][(c + 2) % 3] = e;
-        addFace(e, f);
+      const uint8_t c = vc[i];
+      const uint8_t c_next = c == 2 ? 0 : c + 1, c_prev = c == 0 ? 2 : c - 1;
+      const uint32_t ends[2] = {t[c_next], t[c_prev]};
+      // Side c joins corners c and c+1; side c+2 joins corners c+2 and c.
+      const uint8_t sides[2] = {c, c_prev};
+      for (int k = 0; k < 2; ++k) {
+        const uint32_t w = ends[k];
+        const bool first = seen[w] != stamp;
+        if (first) {
+          seen[w] = stamp;
+          out.vertex_vertices[ring_size++] = w;
+        }
+        if (w < v) continue;
+        if (first) {
+          edge_to[w] = edge_count;
+          out.edges[edge_count] = {v, w};
+          out.edge_faces[edge_count] = {kNoIndex, kNoIndex};
+          out.edge_face_count[edge_count] = 0;
+          ++edge_count;
+        }
+        const uint32_t e = edge_to[w];
+        out.face_edges[f][sides[k]] = e;
+        const uint32_t n = out.edge_face_count[e]++;
+        if (n < 2) out.edge_faces[e][n] = f;
       }
     }
-    out.vertex_vertex_offsets[v + 1] = static_cast<uint32_t>(out.vertex_vertices.size());
-    out.edge_offsets[v + 1] = static_cast<uint32_t>(out.edges.size());
+    out.vertex_vertex_offsets[v + 1] = ring_size;
+    out.edge_offsets[v + 1] = edge_count;
   }
+  out.vertex_vertices.resize(ring_size);
+  out.edges.resize(edge_count);
+  out.edge_faces.resize(edge_count);
+  out.edge_face_count.resize(edge_count);
   const size_t ne = out.edges.size();
 
   out.vertex_on_boundary.assign(nv, 0);

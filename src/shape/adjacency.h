@@ -55,13 +55,16 @@ struct MeshAdjacency {
   /// 1 for vertices on a boundary or non-manifold edge, else 0.
   std::vector<uint8_t> vertex_on_boundary;
 
+  /// Working storage of buildAdjacency (kept so rebuilding every frame allocates nothing).
+  std::vector<uint32_t> scratch_seen, scratch_edge;
+
   size_t edgeCount() const { return edges.size(); }
   /// Index of the edge joining a and b, or kNoIndex (linear in the degree of min(a, b)).
   uint32_t findEdge(uint32_t a, uint32_t b) const;
 };
 
 /// Builds all of `out` from mesh.faces (positions are not read; only their count).
-/// Reuses out's storage. O(F + V + Σ degree²).
+/// Reuses out's storage. O(F + V).
 void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out);
 
 }  // namespace lodline

@@ -452,13 +452,15 @@ void ShapeCache::compute(const TriMesh& mesh) {
     resize(nv, nf);
     stats_.connectivity_rebuilt = true;
   }
-  for (uint32_t f = 0; f < nf; ++f) faceGeometry(mesh, f);
-  for (uint32_t v = 0; v < nv; ++v) vertexNormal(v);
-  for (uint32_t f = 0; f < nf; ++f) faceCurvatureFit(mesh, f);
-  for (uint32_t v = 0; v < nv; ++v) vertexCurvature(v);
+  // Each phase reads only what the previous phases finished and writes only its own face or
+  // vertex, so the loops split over threads without changing a bit of the result.
+  parallelFor(nf, [&](uint32_t f) { faceGeometry(mesh, f); });
+  parallelFor(nv, [&](uint32_t v) { vertexNormal(v); });
+  parallelFor(nf, [&](uint32_t f) { faceCurvatureFit(mesh, f); });
+  parallelFor(nv, [&](uint32_t v) { vertexCurvature(v); });
   if (params_.derivatives) {
-    for (uint32_t f = 0; f < nf; ++f) faceDerivativeFit(mesh, f);
-    for (uint32_t v = 0; v < nv; ++v) vertexDerivative(v);
+    parallelFor(nf, [&](uint32_t f) { faceDerivativeFit(mesh, f); });
+    parallelFor(nv, [&](uint32_t v) { vertexDerivative(v); });
   }
   computed_ = true;
   ++version_;
@@ -495,16 +497,31 @@ void ShapeCache::growVertices(const TriMesh& mesh, size_t begin, size_t end, uin
 }
 
 template <class Fn>
+void ShapeCache::parallelFor(size_t n, Fn&& fn) {
+  // Below a few thousand items waking the workers costs more than it saves.
+  constexpr size_t kMinChunk = 1024;
+  if (params_.threads == 1 || n < 2 * kMinChunk) {
+    for (size_t i = 0; i < n; ++i) fn(static_cast<uint32_t>(i));
+    return;
+  }
+  if (!pool_) pool_ = std::make_unique<WorkerPool>(params_.threads);
+  pool_->forRange(n, kMinChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) fn(static_cast<uint32_t>(i));
+  });
+}
+
+template <class Fn>
 void ShapeCache::forEachMarked(bool faces, size_t count, uint8_t max_level, Fn&& fn) {
   const std::vector<uint32_t>& list = faces ? inc_faces_ : inc_verts_;
   const std::vector<uint32_t>& stamps = faces ? face_stamp_ : vertex_stamp_;
   const std::vector<uint8_t>& levels = faces ? face_level_ : vertex_level_;
   if (count * 16 < stamps.size()) {
-    for (size_t k = 0; k < count; ++k) fn(list[k]);  // few: list order
+    parallelFor(count, [&](uint32_t k) { fn(list[k]); });  // few: list order
   } else {
     // Many: memory order, much kinder to the caches than the list's random order.
-    for (uint32_t i = 0; i < stamps.size(); ++i)
+    parallelFor(stamps.size(), [&](uint32_t i) {
       if (stamps[i] == stamp_ && levels[i] <= max_level) fn(i);
+    });
   }
 }
 

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -27,6 +28,7 @@
 #include <glm/vec4.hpp>
 
 #include "core/mesh.h"
+#include "core/worker_pool.h"
 #include "shape/adjacency.h"
 
 namespace lodline {
@@ -50,6 +52,9 @@ struct ShapeParams {
   /// would touch (the changed set grown by three rings) exceed this fraction of all
   /// vertices. Default 0.5.
   float full_recompute_fraction = 0.5f;
+  /// Threads for the per-face and per-vertex loops, the caller included (0: one per core;
+  /// 1: none started). Results are bit-identical for every count. Default 0.
+  unsigned threads = 0;
 };
 
 /// What the last compute()/update() touched (for frame stats and tests).
@@ -167,8 +172,12 @@ class ShapeCache {
   // order when few, in index order when many.
   template <class Fn>
   void forEachMarked(bool faces, size_t count, uint8_t max_level, Fn&& fn);
+  // fn(i) for i in [0, n), split over the worker threads when n is large.
+  template <class Fn>
+  void parallelFor(size_t n, Fn&& fn);
 
   ShapeParams params_;
+  std::unique_ptr<WorkerPool> pool_;  // started on the first loop long enough to share
   MeshAdjacency adjacency_;
   std::vector<std::array<uint32_t, 3>> faces_copy_;  // connectivity of the last compute
   bool computed_ = false;
