@@ -49,6 +49,7 @@ class LineDrawing {
   /// Per vertex of the current mesh, whether a dihedral crease may pass through it (empty:
   /// everywhere). Level of detail sets it from fullDetailCreaseVertices().
   std::vector<uint8_t>& creaseMask() { return crease_mask_; }
+  std::span<const uint8_t> creaseMask() const { return crease_mask_; }
 
   /// The smoothing state (level of detail moves it along the vertex hierarchy).
   TemporalSmoother& smoother() { return smoother_; }

@@ -77,14 +77,15 @@ Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const 
   } else {
     changed_.assign(ch.dirty.begin(), ch.dirty.end());
   }
-  // Dihedral creases on the adapted mesh only where the full-detail mesh has them.
+  // Dihedral creases on the adapted mesh only where the full-detail mesh has them. A slot
+  // changes its node only by a split or collapse, which marks it dirty, so only the changed
+  // slots need a new entry.
   {
     const auto nodes = lod_->slotVertices();
     const auto full = drawing_.fullDetailCreaseVertices();
     auto& mask = drawing_.creaseMask();
-    mask.resize(nodes.size());
-    for (size_t s = 0; s < nodes.size(); ++s)
-      mask[s] = nodes[s] != kPmNone && full[pm_->origin[nodes[s]]];
+    mask.resize(nodes.size(), 0);
+    for (uint32_t s : changed_) mask[s] = nodes[s] != kPmNone && full[pm_->origin[nodes[s]]];
   }
   drawing_.updateMesh(lod_->positions(), faces_, changed_);
   mesh_changed_ = true;

@@ -254,6 +254,7 @@ class AdaptiveMesh {
   std::vector<glm::vec3> disp_, morph_from_, morph_to_;
   std::vector<float> morph_t_, morph_rate_;
   std::vector<uint32_t> morph_pos_;
+  std::vector<uint8_t> slot_locked_;     // copy of kLocked of the slot's node (read per frame)
   std::vector<uint32_t> dirty_stamp_, moved_stamp_;
   std::vector<NodeBounds> slot_bounds_;  // copy of bounds_ of the slot's node
   std::vector<double> ring_sum_;   // per slot: sum of the image areas of the incident faces

@@ -1,0 +1,74 @@
+// LodDrawing keeps the shape stage, the crease mask and the drawn faces in step with the
+// adaptive mesh incrementally (only what a frame's change list names); after every frame
+// all of it must equal what a from-scratch computation on the current mesh gives.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <memory>
+
+#include "frame/lod_drawing.h"
+#include "io/generate.h"
+
+namespace lodline {
+namespace {
+
+template <class T>
+bool sameBits(std::span<const T> a, std::span<const T> b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size_bytes()) == 0);
+}
+
+TEST(LodDrawing, IncrementalStateEqualsAFreshComputeEveryFrame) {
+  // A sharp box made of many small faces: crease vertices along its 12 edges.
+  const TriMesh mesh = makeRoundedBox({1.0f, 0.7f, 0.5f}, 0.0f, 2, 14);
+  auto pm = buildProgressiveMesh(mesh);
+  ASSERT_TRUE(pm.ok()) << pm.error().message;
+  LodDrawing lod(mesh, std::make_shared<const ProgressiveMesh>(std::move(pm.value())));
+  std::array<bool, kLineKindCount> enabled{};
+  enabled.fill(true);
+  DetailParams detail;
+  detail.target_area = 24.0f;
+  auto camera_at = [&](int k) {  // orbit while zooming in from 8 to 2 radii and out again
+    const float phase = static_cast<float>(k) / 89.0f;
+    const float dist = 2.0f + 6.0f * std::abs(2.0f * phase - 1.0f);
+    return orbitCamera(lod.bounds(), {25.0f + 2.0f * k, 25.0f, dist}, 35.0f, 16.0f / 9.0f);
+  };
+  ASSERT_TRUE(lod.converge(camera_at(0), 640, 360, detail, 1.0f / 30.0f, 300, enabled).ok());
+  const auto full_creases = lod.drawing().fullDetailCreaseVertices();
+  int changed_frames = 0, crease_slots = 0;
+  for (int k = 0; k < 90; ++k) {
+    ASSERT_TRUE(lod.frame(camera_at(k), 640, 360, detail, 1.0f / 30.0f, enabled).ok());
+    const AdaptiveMesh& am = *lod.lod();
+    ASSERT_EQ(am.checkInvariants(), "") << "frame " << k;
+    changed_frames += am.stats().splits + am.stats().collapses > 0;
+    // Drawn faces: exactly the active faces.
+    const TriMesh& drawn = lod.drawing().mesh();
+    std::vector<std::array<uint32_t, 3>> faces;
+    am.exportFaces(faces);
+    ASSERT_EQ(drawn.faces.size(), am.activeFaceCount());
+    ASSERT_TRUE(drawn.faces == faces) << "frame " << k;
+    // Crease mask: per used slot, whether its vertex lies on a full-detail crease.
+    const auto mask = lod.drawing().creaseMask();
+    const auto nodes = am.slotVertices();
+    ASSERT_GE(mask.size(), nodes.size());
+    for (size_t s = 0; s < nodes.size(); ++s) {
+      if (nodes[s] == kPmNone) continue;
+      const uint8_t expected = full_creases[am.pm().origin[nodes[s]]];
+      ASSERT_EQ(mask[s], expected) << "frame " << k << ", slot " << s;
+      crease_slots += expected;
+    }
+    // Shape quantities: bit for bit those of a fresh compute on the drawn mesh.
+    const ShapeCache& inc = lod.drawing().shape();
+    ShapeCache fresh(inc.params());
+    fresh.compute(drawn);
+    ASSERT_TRUE(sameBits(inc.normals(), fresh.normals())) << "frame " << k;
+    ASSERT_TRUE(sameBits(inc.k1(), fresh.k1())) << "frame " << k;
+    ASSERT_TRUE(sameBits(inc.k2(), fresh.k2())) << "frame " << k;
+    ASSERT_TRUE(sameBits(inc.pdir1(), fresh.pdir1())) << "frame " << k;
+    ASSERT_TRUE(sameBits(inc.dcurv(), fresh.dcurv())) << "frame " << k;
+  }
+  EXPECT_GT(changed_frames, 30);  // the test did exercise splits and collapses
+  EXPECT_GT(crease_slots, 0);     // and crease vertices
+}
+
+}  // namespace
+}  // namespace lodline
