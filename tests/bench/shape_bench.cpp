@@ -80,12 +80,14 @@ const char* kMeshes[] = {"armadillo.off",        "bunny00.off",        "refined_
                          "refined_elephant.off:sorted", "icosphere8:sorted"};
 
 // Full compute with adjacency already built (the per-frame cost when all vertices move).
+// range(2): worker threads, caller included (0: one per core, the default; 1: none).
 void BM_ShapeFull(benchmark::State& state) {
   const TriMesh* mesh = benchMesh(kMeshes[state.range(0)]);
   if (!mesh) return state.SkipWithError("mesh not found (run scripts/setup.sh)");
   state.SetLabel(kMeshes[state.range(0)]);
   ShapeParams params;
   params.derivatives = state.range(1) != 0;
+  params.threads = static_cast<unsigned>(state.range(2));
   ShapeCache shape(params);
   shape.compute(*mesh);
   for (auto _ : state) {
@@ -96,10 +98,10 @@ void BM_ShapeFull(benchmark::State& state) {
   state.counters["faces"] = static_cast<double>(mesh->faceCount());
 }
 BENCHMARK(BM_ShapeFull)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7}, {1}})
-    ->ArgNames({"mesh", "derivs"})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7}, {1}, {1, 0}})
+    ->ArgNames({"mesh", "derivs", "threads"})
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ShapeFull)->Args({1, 0})->ArgNames({"mesh", "derivs"})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShapeFull)->Args({1, 0, 1})->ArgNames({"mesh", "derivs", "threads"})->Unit(benchmark::kMillisecond);
 
 // Including the adjacency build (first frame / connectivity change).
 void BM_ShapeFullWithAdjacency(benchmark::State& state) {
