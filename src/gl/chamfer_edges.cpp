@@ -149,7 +149,7 @@ void computeCornerNormals(std::span<const glm::vec3> positions,
     for (int j = 0; j < 3; ++j) {
       const uint32_t v = s.welded.faces[f][j];
       glm::vec3 sum(0.0f);
-      for (uint32_t k = adj.vertex_face_offsets[v]; k < adj.vertex_face_offsets[v + 1]; ++k) {
+      for (uint32_t k = adj.vertex_face_begin[v]; k < adj.vertex_face_end[v]; ++k) {
         const uint32_t g = adj.vertex_faces[k];
         const float lg = glm::length(an[g]);
         if (lg > 0.0f && glm::dot(an[g] / lg, nf_unit) >= cos_limit) sum += an[g];

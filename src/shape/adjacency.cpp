@@ -6,11 +6,30 @@
 
 namespace lodline {
 
+namespace {
+
+// Free entries at the end of each ring after a build, so most in-place insertions need no
+// relocation.
+constexpr uint32_t kRingSlack = 2;
+
+inline bool validTriple(const std::array<uint32_t, 3>& t, uint32_t nv) {
+  return t[0] < nv && t[1] < nv && t[2] < nv && t[0] != t[1] && t[1] != t[2] && t[2] != t[0];
+}
+
+inline EdgeKey edgeKey(uint32_t a, uint32_t b) { return {std::min(a, b), std::max(a, b)}; }
+
+}  // namespace
+
 uint32_t MeshAdjacency::findEdge(uint32_t a, uint32_t b) const {
-  if (a > b) std::swap(a, b);
-  if (a >= vertex_count || a == b) return kNoIndex;
-  for (uint32_t e = edge_offsets[a]; e < edge_offsets[a + 1]; ++e)
-    if (edges[e][1] == b) return e;
+  if (a >= vertex_count || b >= vertex_count || a == b) return kNoIndex;
+  const EdgeKey key = edgeKey(a, b);
+  // The edges at corner c of a face are its sides c (corners c, c+1) and c+2 (c+2, c).
+  for (uint32_t i = vertex_face_begin[a]; i < vertex_face_end[a]; ++i) {
+    const auto& fe = face_edges[vertex_faces[i]];
+    const uint8_t c = vertex_face_corners[i];
+    for (const uint32_t e : {fe[c], fe[c == 0 ? 2 : c - 1]})
+      if (e != kNoIndex && edges[e] == key) return e;
+  }
   return kNoIndex;
 }
 
@@ -21,59 +40,54 @@ void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out) {
   out.face_count = nf;
 
   // Valid faces: three distinct, in-range indices.
-  out.face_valid.assign(nf, 0);
-  for (uint32_t f = 0; f < nf; ++f) {
-    const auto& t = mesh.faces[f];
-    out.face_valid[f] = t[0] < nv && t[1] < nv && t[2] < nv && t[0] != t[1] &&
-                        t[1] != t[2] && t[2] != t[0];
-  }
+  out.face_valid.resize(nf);
+  for (uint32_t f = 0; f < nf; ++f) out.face_valid[f] = validTriple(mesh.faces[f], nv);
 
-  // Vertex → faces (counting sort; filling from the back over faces in reverse keeps faces
-  // in increasing order per vertex and needs no cursor array).
-  out.vertex_face_offsets.assign(nv + 1, 0);
+  // Vertex → faces: count, lay the rings out with slack, fill in increasing face order.
+  out.vertex_face_begin.resize(nv);
+  out.vertex_face_end.assign(nv, 0);
+  out.ring_limit.resize(nv);
   for (uint32_t f = 0; f < nf; ++f) {
     if (!out.face_valid[f]) continue;
-    for (uint32_t v : mesh.faces[f]) ++out.vertex_face_offsets[v + 1];
+    for (uint32_t v : mesh.faces[f]) ++out.vertex_face_end[v];
   }
-  for (uint32_t v = 0; v < nv; ++v) out.vertex_face_offsets[v + 1] += out.vertex_face_offsets[v];
-  const uint32_t corner_total = out.vertex_face_offsets[nv];
-  out.vertex_faces.resize(corner_total);
-  out.vertex_face_corners.resize(corner_total);
-  for (uint32_t f = nf; f-- > 0;) {
+  uint32_t storage = 0, corner_total = 0;
+  for (uint32_t v = 0; v < nv; ++v) {
+    const uint32_t count = out.vertex_face_end[v];
+    corner_total += count;
+    out.vertex_face_begin[v] = out.vertex_face_end[v] = storage;
+    storage += count + kRingSlack;
+    out.ring_limit[v] = storage;
+  }
+  out.vertex_faces.resize(storage);
+  out.vertex_face_corners.resize(storage);
+  for (uint32_t f = 0; f < nf; ++f) {
     if (!out.face_valid[f]) continue;
-    for (uint8_t c = 3; c-- > 0;) {
-      const uint32_t slot = --out.vertex_face_offsets[mesh.faces[f][c] + 1];
+    for (uint8_t c = 0; c < 3; ++c) {
+      const uint32_t slot = out.vertex_face_end[mesh.faces[f][c]]++;
       out.vertex_faces[slot] = f;
       out.vertex_face_corners[slot] = c;
     }
   }
-  // Now vertex_face_offsets[v + 1] holds the start of v: shift down by one.
-  for (uint32_t v = 0; v < nv; ++v) out.vertex_face_offsets[v] = out.vertex_face_offsets[v + 1];
-  if (nv > 0) out.vertex_face_offsets[nv] = corner_total;
+  out.free_edges.clear();
 
-  // Vertex → distinct neighbours, and edges: each edge is created by its smaller vertex,
-  // which also hands it to the face sides it lies on (faces in increasing order). A stamp
-  // per neighbour (the current vertex + 1) replaces searching the ring and the vertex's
-  // edges, so this is O(corners); the output is the same as a search would give.
-  out.vertex_vertex_offsets.assign(nv + 1, 0);
-  // A ring holds at most two neighbours per corner (an open fan has one more neighbour than
-  // faces); every edge is created by one corner side.
-  out.vertex_vertices.resize(2 * static_cast<size_t>(corner_total));
-  out.edge_offsets.assign(nv + 1, 0);
+  // Edges: each edge is created by its smaller vertex, which also hands it to the face sides
+  // it lies on (faces in increasing order). A stamp per neighbour (the current vertex + 1)
+  // replaces searching the vertex's edges, so this is O(corners).
   out.edges.resize(corner_total);
   out.edge_faces.resize(corner_total);
   out.edge_face_count.resize(corner_total);
   out.face_edges.assign(nf, {kNoIndex, kNoIndex, kNoIndex});
-  std::vector<uint32_t>& seen = out.scratch_seen;   // v + 1 once w is in v's ring
+  std::vector<uint32_t>& seen = out.scratch_seen;     // v + 1 once edge (v, w) exists
   std::vector<uint32_t>& edge_to = out.scratch_edge;  // edge (v, w) for w > v, valid if seen
   seen.assign(nv, 0);
   edge_to.resize(nv);
-  uint32_t ring_size = 0, edge_count = 0;
+  uint32_t edge_count = 0;
   const uint32_t* vf = out.vertex_faces.data();
   const uint8_t* vc = out.vertex_face_corners.data();
   for (uint32_t v = 0; v < nv; ++v) {
     const uint32_t stamp = v + 1;
-    for (uint32_t i = out.vertex_face_offsets[v]; i < out.vertex_face_offsets[v + 1]; ++i) {
+    for (uint32_t i = out.vertex_face_begin[v]; i < out.vertex_face_end[v]; ++i) {
       const uint32_t f = vf[i];
       const auto& t = mesh.faces[f];
       const uint8_t c = vc[i];
@@ -83,13 +97,9 @@ void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out) {
       const uint8_t sides[2] = {c, c_prev};
       for (int k = 0; k < 2; ++k) {
         const uint32_t w = ends[k];
-        const bool first = seen[w] != stamp;
-        if (first) {
-          seen[w] = stamp;
-          out.vertex_vertices[ring_size++] = w;
-        }
         if (w < v) continue;
-        if (first) {
+        if (seen[w] != stamp) {
+          seen[w] = stamp;
           edge_to[w] = edge_count;
           out.edges[edge_count] = {v, w};
           out.edge_faces[edge_count] = {kNoIndex, kNoIndex};
@@ -102,22 +112,249 @@ void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out) {
         if (n < 2) out.edge_faces[e][n] = f;
       }
     }
-    out.vertex_vertex_offsets[v + 1] = ring_size;
-    out.edge_offsets[v + 1] = edge_count;
   }
-  out.vertex_vertices.resize(ring_size);
   out.edges.resize(edge_count);
   out.edge_faces.resize(edge_count);
   out.edge_face_count.resize(edge_count);
-  const size_t ne = out.edges.size();
 
   out.vertex_on_boundary.assign(nv, 0);
-  for (size_t e = 0; e < ne; ++e) {
+  for (size_t e = 0; e < edge_count; ++e) {
     if (out.edge_face_count[e] != 2) {
       out.vertex_on_boundary[out.edges[e][0]] = 1;
       out.vertex_on_boundary[out.edges[e][1]] = 1;
     }
   }
+}
+
+// ---------------------------------------------------------------------------------------
+// In-place update
+
+namespace {
+
+// Removes face f from v's ring (kept sorted).
+void ringRemove(MeshAdjacency& adj, uint32_t v, uint32_t f) {
+  const uint32_t b = adj.vertex_face_begin[v], e = adj.vertex_face_end[v];
+  uint32_t* faces = adj.vertex_faces.data();
+  const uint32_t i = static_cast<uint32_t>(std::lower_bound(faces + b, faces + e, f) - faces);
+  if (i == e || faces[i] != f) return;
+  std::copy(faces + i + 1, faces + e, faces + i);
+  std::copy(adj.vertex_face_corners.begin() + i + 1, adj.vertex_face_corners.begin() + e,
+            adj.vertex_face_corners.begin() + i);
+  adj.vertex_face_end[v] = e - 1;
+}
+
+// Inserts face f (v at its corner c) into v's ring in sorted position, moving the ring to
+// the end of the storage with room to grow when it is full.
+void ringInsert(MeshAdjacency& adj, uint32_t v, uint32_t f, uint8_t c) {
+  uint32_t b = adj.vertex_face_begin[v], e = adj.vertex_face_end[v];
+  if (e == adj.ring_limit[v]) {
+    const uint32_t count = e - b, capacity = 2 * count + 4;
+    const uint32_t nb = static_cast<uint32_t>(adj.vertex_faces.size());
+    adj.vertex_faces.resize(nb + capacity);
+    adj.vertex_face_corners.resize(nb + capacity);
+    std::copy(adj.vertex_faces.begin() + b, adj.vertex_faces.begin() + e, adj.vertex_faces.begin() + nb);
+    std::copy(adj.vertex_face_corners.begin() + b, adj.vertex_face_corners.begin() + e,
+              adj.vertex_face_corners.begin() + nb);
+    b = adj.vertex_face_begin[v] = nb;
+    e = adj.vertex_face_end[v] = nb + count;
+    adj.ring_limit[v] = nb + capacity;
+  }
+  uint32_t* faces = adj.vertex_faces.data();
+  const uint32_t i = static_cast<uint32_t>(std::lower_bound(faces + b, faces + e, f) - faces);
+  std::copy_backward(faces + i, faces + e, faces + e + 1);
+  std::copy_backward(adj.vertex_face_corners.begin() + i, adj.vertex_face_corners.begin() + e,
+                     adj.vertex_face_corners.begin() + e + 1);
+  faces[i] = f;
+  adj.vertex_face_corners[i] = c;
+  adj.vertex_face_end[v] = e + 1;
+}
+
+// Face f no longer lies on edge e (f is already out of the rings).
+void edgeRemoveFace(MeshAdjacency& adj, uint32_t e, uint32_t f) {
+  uint32_t& n = adj.edge_face_count[e];
+  auto& ef = adj.edge_faces[e];
+  --n;
+  if (ef[0] == f) {
+    ef[0] = ef[1];
+    ef[1] = kNoIndex;
+  } else if (ef[1] == f) {
+    ef[1] = kNoIndex;
+  }
+  if (n >= 2 && ef[1] == kNoIndex) {
+    // A non-manifold edge lost one of its first two faces: the next smallest face on it
+    // moves up. Faces on e are the faces around its first end with e as a side there.
+    const uint32_t a = adj.edges[e][0];
+    for (uint32_t i = adj.vertex_face_begin[a]; i < adj.vertex_face_end[a]; ++i) {
+      const uint32_t g = adj.vertex_faces[i];
+      if (g <= ef[0]) continue;
+      const uint8_t c = adj.vertex_face_corners[i];
+      if (adj.face_edges[g][c] == e || adj.face_edges[g][c == 0 ? 2 : c - 1] == e) {
+        ef[1] = g;
+        break;
+      }
+    }
+  }
+  if (n == 0) {
+    adj.edges[e] = {0, 0};
+    ef = {kNoIndex, kNoIndex};
+    adj.free_edges.push_back(e);
+  }
+}
+
+void edgeAddFace(MeshAdjacency& adj, uint32_t e, uint32_t f) {
+  auto& ef = adj.edge_faces[e];
+  ++adj.edge_face_count[e];
+  if (ef[0] == kNoIndex) {
+    ef[0] = f;
+  } else if (f < ef[0]) {
+    ef[1] = ef[0];
+    ef[0] = f;
+  } else if (ef[1] == kNoIndex || f < ef[1]) {
+    ef[1] = f;
+  }
+}
+
+}  // namespace
+
+bool updateAdjacency(const TriMesh& mesh, std::span<const std::array<uint32_t, 3>> old_faces,
+                     std::span<const uint32_t> changed, MeshAdjacency& adj) {
+  const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
+  const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
+  const uint32_t old_nv = adj.vertex_count, old_nf = adj.face_count;
+  if (nv < old_nv || old_faces.size() != old_nf || adj.vertex_face_begin.size() != old_nv)
+    return false;
+  if (changed.size() * 8 > std::max<size_t>(std::max(nf, old_nf), 64)) return false;
+  const size_t rebuild_storage = 3 * static_cast<size_t>(nf) + kRingSlack * static_cast<size_t>(nv);
+  if (adj.vertex_faces.size() > 2 * rebuild_storage + 1024) return false;
+
+  // New vertices start with empty rings of no capacity (the first insertion moves them).
+  const uint32_t storage = static_cast<uint32_t>(adj.vertex_faces.size());
+  adj.vertex_face_begin.resize(nv, storage);
+  adj.vertex_face_end.resize(nv, storage);
+  adj.ring_limit.resize(nv, storage);
+  adj.vertex_on_boundary.resize(nv, 0);
+  std::vector<uint32_t>& touched = adj.scratch_edge;
+  std::vector<uint32_t>& mark = adj.scratch_seen;  // 1: in `touched`
+  touched.clear();
+  mark.assign(nv, 0);
+  auto touch = [&](uint32_t v) {
+    if (!mark[v]) {
+      mark[v] = 1;
+      touched.push_back(v);
+    }
+  };
+
+  // 1. Take every changed slot's old face out of the rings and off its edges.
+  for (uint32_t f : changed) {
+    if (f >= old_nf || !adj.face_valid[f]) continue;
+    const auto& t = old_faces[f];
+    for (uint32_t v : t) {
+      ringRemove(adj, v, f);
+      touch(v);
+    }
+    for (uint32_t& e : adj.face_edges[f]) {
+      edgeRemoveFace(adj, e, f);
+      e = kNoIndex;
+    }
+    adj.face_valid[f] = 0;
+  }
+  adj.face_valid.resize(nf, 0);
+  adj.face_edges.resize(nf, {kNoIndex, kNoIndex, kNoIndex});
+  adj.vertex_count = nv;
+  adj.face_count = nf;
+
+  // 2. Put the new faces in, and the unchanged faces that only the new vertices make valid
+  // (an index that was out of range).
+  std::vector<uint32_t>& added = adj.scratch_added;
+  added.assign(changed.begin(), changed.end());
+  if (nv > old_nv) {
+    const uint32_t common = std::min(old_nf, nf);
+    for (uint32_t f = 0; f < common; ++f)
+      if (!adj.face_valid[f] && old_faces[f] == mesh.faces[f] && validTriple(mesh.faces[f], nv))
+        added.push_back(f);
+  }
+  for (uint32_t f : added) {
+    if (f >= nf) continue;
+    const auto& t = mesh.faces[f];
+    if (!validTriple(t, nv)) continue;
+    adj.face_valid[f] = 1;
+    for (uint8_t c = 0; c < 3; ++c) {
+      ringInsert(adj, t[c], f, c);
+      touch(t[c]);
+    }
+    for (int j = 0; j < 3; ++j) {
+      const uint32_t a = t[j], b = t[j == 2 ? 0 : j + 1];
+      uint32_t e = adj.findEdge(a, b);
+      if (e == kNoIndex) {
+        if (!adj.free_edges.empty()) {
+          e = adj.free_edges.back();
+          adj.free_edges.pop_back();
+        } else {
+          e = static_cast<uint32_t>(adj.edges.size());
+          adj.edges.emplace_back();
+          adj.edge_faces.emplace_back();
+          adj.edge_face_count.push_back(0);
+        }
+        adj.edges[e] = edgeKey(a, b);
+        adj.edge_faces[e] = {kNoIndex, kNoIndex};
+        adj.edge_face_count[e] = 0;
+      }
+      adj.face_edges[f][j] = e;
+      edgeAddFace(adj, e, f);
+    }
+  }
+
+  // 3. Boundary flags of the vertices whose rings changed.
+  for (uint32_t v : touched) {
+    uint8_t on = 0;
+    for (uint32_t i = adj.vertex_face_begin[v]; i < adj.vertex_face_end[v] && !on; ++i) {
+      const auto& fe = adj.face_edges[adj.vertex_faces[i]];
+      const uint8_t c = adj.vertex_face_corners[i];
+      on = adj.edge_face_count[fe[c]] != 2 || adj.edge_face_count[fe[c == 0 ? 2 : c - 1]] != 2;
+    }
+    adj.vertex_on_boundary[v] = on;
+  }
+  return true;
+}
+
+std::string checkAdjacency(const TriMesh& mesh, const MeshAdjacency& adj) {
+  MeshAdjacency fresh;
+  buildAdjacency(mesh, fresh);
+  auto str = [](size_t x) { return std::to_string(x); };
+  if (adj.vertex_count != fresh.vertex_count || adj.face_count != fresh.face_count)
+    return "vertex or face count differs";
+  if (adj.face_valid != fresh.face_valid) return "face_valid differs";
+  if (adj.vertex_on_boundary != fresh.vertex_on_boundary) return "vertex_on_boundary differs";
+  for (uint32_t v = 0; v < fresh.vertex_count; ++v) {
+    const auto a = adj.facesOf(v), b = fresh.facesOf(v);
+    if (!std::equal(a.begin(), a.end(), b.begin(), b.end())) return "ring of vertex " + str(v) + " differs";
+    for (size_t k = 0; k < a.size(); ++k)
+      if (adj.vertex_face_corners[adj.vertex_face_begin[v] + k] !=
+          fresh.vertex_face_corners[fresh.vertex_face_begin[v] + k])
+        return "corner in the ring of vertex " + str(v) + " differs";
+  }
+  size_t live = 0;
+  for (size_t e = 0; e < adj.edges.size(); ++e) {
+    if (adj.edge_face_count[e] == 0) {
+      if (adj.edges[e] != EdgeKey{0, 0}) return "unused edge " + str(e) + " keeps its ends";
+      continue;
+    }
+    ++live;
+    const uint32_t g = fresh.findEdge(adj.edges[e][0], adj.edges[e][1]);
+    if (g == kNoIndex || fresh.edges[g] != adj.edges[e]) return "edge " + str(e) + " does not exist";
+    if (fresh.edge_face_count[g] != adj.edge_face_count[e] || fresh.edge_faces[g] != adj.edge_faces[e])
+      return "faces of edge " + str(e) + " differ";
+  }
+  if (live != fresh.edges.size()) return "number of edges differs";
+  for (uint32_t f = 0; f < fresh.face_count; ++f) {
+    for (int j = 0; j < 3; ++j) {
+      const uint32_t e = adj.face_edges[f][j], g = fresh.face_edges[f][j];
+      if ((e == kNoIndex) != (g == kNoIndex)) return "side " + str(j) + " of face " + str(f) + " differs";
+      if (e != kNoIndex && adj.edges[e] != fresh.edges[g])
+        return "side " + str(j) + " of face " + str(f) + " names another edge";
+    }
+  }
+  return "";
 }
 
 }  // namespace lodline

@@ -1,7 +1,8 @@
-// Mesh adjacency over flat arrays (STYLE.md §2): vertex→face and vertex→vertex rings in
-// compressed (offsets/data) form, an undirected edge list with its adjacent faces, and the
-// three edges of every face. Built once per connectivity; the per-frame stages (shape,
-// lines) only read it.
+// Mesh adjacency over flat arrays (STYLE.md §2): vertex→face rings, an undirected edge list
+// with its adjacent faces, and the three edges of every face. Built once per connectivity,
+// or brought up to date in place when a few face slots change (a view-dependent mesh splits
+// and collapses a few hundred vertices per frame); the per-frame stages (shape, lines) only
+// read it.
 //
 // Robustness: faces with a repeated or out-of-range vertex index are "invalid": they are
 // listed in no ring and own no edge. Edges shared by more than two faces (non-manifold)
@@ -11,6 +12,8 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "core/mesh.h"
@@ -24,26 +27,22 @@ struct MeshAdjacency {
   uint32_t vertex_count = 0;
   uint32_t face_count = 0;
 
-  /// Faces around each vertex: faces of vertex v are
-  /// vertex_faces[vertex_face_offsets[v] .. vertex_face_offsets[v+1]), in increasing face
-  /// order. vertex_face_offsets has vertex_count + 1 entries.
-  std::vector<uint32_t> vertex_face_offsets;
+  /// Faces around each vertex: the faces of vertex v are
+  /// vertex_faces[vertex_face_begin[v] .. vertex_face_end[v]), in increasing face order
+  /// (the same order after in-place updates, so gathers over a ring are reproducible).
+  /// Rings are stored with some slack, so ring v + 1 need not start where ring v ends.
+  std::vector<uint32_t> vertex_face_begin;
+  std::vector<uint32_t> vertex_face_end;
   std::vector<uint32_t> vertex_faces;
   /// Which corner (0..2) of that face the vertex is; parallel to vertex_faces.
   std::vector<uint8_t> vertex_face_corners;
 
-  /// Distinct neighbours of each vertex (the 1-ring), same offsets/data layout.
-  std::vector<uint32_t> vertex_vertex_offsets;
-  std::vector<uint32_t> vertex_vertices;
-
-  /// Undirected edges, edges[e][0] < edges[e][1], grouped by their smaller vertex
-  /// (ascending), so the edges of vertex v as smaller end are
-  /// [edge_offsets[v], edge_offsets[v+1]); edge_offsets has vertex_count + 1 entries.
+  /// Undirected edges, edges[e][0] < edges[e][1]. After updateAdjacency() some entries may
+  /// be unused: those have edge_face_count 0 and edges[e] = {0, 0}.
   std::vector<EdgeKey> edges;
-  std::vector<uint32_t> edge_offsets;
   /// First two faces on each edge (kNoIndex where absent), in increasing face order.
   std::vector<std::array<uint32_t, 2>> edge_faces;
-  /// Number of valid faces on each edge: 1 boundary, 2 manifold, > 2 non-manifold.
+  /// Number of valid faces on each edge: 1 boundary, 2 manifold, > 2 non-manifold, 0 unused.
   std::vector<uint32_t> edge_face_count;
 
   /// Edge of each face side: face_edges[f][j] joins corners j and (j+1)%3;
@@ -55,16 +54,35 @@ struct MeshAdjacency {
   /// 1 for vertices on a boundary or non-manifold edge, else 0.
   std::vector<uint8_t> vertex_on_boundary;
 
-  /// Working storage of buildAdjacency (kept so rebuilding every frame allocates nothing).
-  std::vector<uint32_t> scratch_seen, scratch_edge;
+  /// Working storage (kept so rebuilding or updating every frame allocates nothing).
+  std::vector<uint32_t> scratch_seen, scratch_edge, scratch_added, free_edges, ring_limit;
 
   size_t edgeCount() const { return edges.size(); }
-  /// Index of the edge joining a and b, or kNoIndex (linear in the degree of min(a, b)).
+  /// Faces of v, in increasing order.
+  std::span<const uint32_t> facesOf(uint32_t v) const {
+    return {vertex_faces.data() + vertex_face_begin[v], vertex_face_end[v] - vertex_face_begin[v]};
+  }
+  /// Index of the edge joining a and b, or kNoIndex (linear in the degree of a).
   uint32_t findEdge(uint32_t a, uint32_t b) const;
 };
 
 /// Builds all of `out` from mesh.faces (positions are not read; only their count).
 /// Reuses out's storage. O(F + V).
 void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out);
+
+/// Brings `adj`, built (or updated) for the faces `old_faces` over at most as many vertices
+/// as mesh has, up to date with mesh.faces. `changed` lists every face slot whose triple
+/// differs: slots below both sizes whose triple changed, the slots added at the end and the
+/// slots removed from the end (any order, no repeats). O(changed · degree). The result
+/// describes the same rings, in the same order, and the same edges with the same faces as
+/// buildAdjacency(mesh) would; only edge numbering differs. Returns false, leaving `adj` as
+/// it was, when a rebuild is the better choice (more than an eighth of the slots changed,
+/// or the ring storage has grown to twice what a rebuild needs).
+bool updateAdjacency(const TriMesh& mesh, std::span<const std::array<uint32_t, 3>> old_faces,
+                     std::span<const uint32_t> changed, MeshAdjacency& adj);
+
+/// "" if `adj` describes mesh.faces exactly as buildAdjacency would (up to edge numbering),
+/// else the first difference. For tests; O(F + V).
+std::string checkAdjacency(const TriMesh& mesh, const MeshAdjacency& adj);
 
 }  // namespace lodline

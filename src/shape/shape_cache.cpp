@@ -249,7 +249,7 @@ void ShapeCache::vertexNormal(uint32_t v) {
   const MeshAdjacency& adj = adjacency_;
   glm::vec3 n(0.0f);
   float area = 0.0f;
-  for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
+  for (uint32_t i = adj.vertex_face_begin[v]; i < adj.vertex_face_end[v]; ++i) {
     const FaceRecord& rec = faces_[adj.vertex_faces[i]];
     const int c = adj.vertex_face_corners[i];
     area += rec.corner[c];
@@ -307,7 +307,7 @@ void ShapeCache::vertexCurvature(uint32_t v) {
   const glm::vec3& w = frames_[v].w;
   glm::vec3 k(0.0f);
   float wsum = 0.0f;
-  for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
+  for (uint32_t i = adj.vertex_face_begin[v]; i < adj.vertex_face_end[v]; ++i) {
     const uint32_t f = adj.vertex_faces[i];
     const FaceRecord& rec = faces_[f];
     if (!(rec.ok & kCurvOk)) continue;
@@ -397,7 +397,7 @@ void ShapeCache::vertexDerivative(uint32_t v) {
   glm::vec4 c(0.0f);
   float wsum = 0.0f;
   const glm::vec2 ab(vertex_kab_[v][2], vertex_kab_[v][3]);
-  for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
+  for (uint32_t i = adj.vertex_face_begin[v]; i < adj.vertex_face_end[v]; ++i) {
     const uint32_t f = adj.vertex_faces[i];
     const FaceRecord& rec = faces_[f];
     if (!(rec.ok & kDcurvOk)) continue;
@@ -473,7 +473,7 @@ void ShapeCache::growFaces(size_t begin, size_t end, uint8_t level) {
   const MeshAdjacency& adj = adjacency_;
   for (size_t k = begin; k < end; ++k) {
     const uint32_t v = inc_verts_[k];
-    for (uint32_t i = adj.vertex_face_offsets[v]; i < adj.vertex_face_offsets[v + 1]; ++i) {
+    for (uint32_t i = adj.vertex_face_begin[v]; i < adj.vertex_face_end[v]; ++i) {
       const uint32_t f = adj.vertex_faces[i];
       if (face_stamp_[f] != stamp_) {
         face_stamp_[f] = stamp_;
@@ -538,10 +538,19 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
       old_nv == nv && old_nf == nf &&
       (nf == 0 ||
        std::memcmp(faces_copy_.data(), mesh.faces.data(), nf * sizeof(mesh.faces[0])) == 0);
+  bool in_place = false;
   if (!same_faces) {
-    // Connectivity changed: new adjacency; per-face/per-vertex slots keep their values (a
-    // face slot whose triple is unchanged stays valid), new slots start empty.
-    buildAdjacency(mesh, adjacency_);
+    // Connectivity changed. The face slots whose triple changed, was added or was removed:
+    // the adjacency is updated in place around them when they are few (rebuilt otherwise);
+    // per-face/per-vertex slots keep their values (a face slot whose triple is unchanged stays
+    // valid), new slots start empty.
+    const uint32_t common = std::min(old_nf, nf);
+    changed_faces_.clear();
+    for (uint32_t f = 0; f < common; ++f)
+      if (faces_copy_[f] != mesh.faces[f]) changed_faces_.push_back(f);
+    for (uint32_t f = common; f < std::max(old_nf, nf); ++f) changed_faces_.push_back(f);
+    in_place = updateAdjacency(mesh, faces_copy_, changed_faces_, adjacency_);
+    if (!in_place) buildAdjacency(mesh, adjacency_);
     resize(nv, nf);
   }
   if (++stamp_ == 0) {  // wrapped: clear the marks once every 2³² updates
@@ -561,22 +570,16 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
   for (uint32_t v : changed_vertices) seed(v);
   if (!same_faces) {
     // Every vertex whose ring may have changed: those of changed, added and removed face
-    // slots (old and new triples), and new vertices.
-    const uint32_t common = std::min(old_nf, nf);
-    // A slot that became invalid is in no ring, so reset it here (valid ones are redone
-    // with F1 below).
-    for (uint32_t f = 0; f < common; ++f) {
-      if (faces_copy_[f] == mesh.faces[f]) continue;
-      for (uint32_t v : faces_copy_[f]) seed(v);
-      for (uint32_t v : mesh.faces[f]) seed(v);
-      if (!adjacency_.face_valid[f]) faceGeometry(mesh, f);
+    // slots (old and new triples), and new vertices. A slot that became invalid is in no
+    // ring, so reset it here (valid ones are redone with F1 below).
+    for (uint32_t f : changed_faces_) {
+      if (f < old_nf)
+        for (uint32_t v : faces_copy_[f]) seed(v);
+      if (f < nf) {
+        for (uint32_t v : mesh.faces[f]) seed(v);
+        if (!adjacency_.face_valid[f]) faceGeometry(mesh, f);
+      }
     }
-    for (uint32_t f = common; f < nf; ++f) {
-      for (uint32_t v : mesh.faces[f]) seed(v);
-      if (!adjacency_.face_valid[f]) faceGeometry(mesh, f);
-    }
-    for (uint32_t f = common; f < old_nf; ++f)
-      for (uint32_t v : faces_copy_[f]) seed(v);
     for (uint32_t v = old_nv; v < nv; ++v) seed(v);
     faces_copy_.assign(mesh.faces.begin(), mesh.faces.end());
   }
@@ -590,6 +593,7 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
     compute(mesh);  // the adjacency is already current: compute() keeps it
     stats_.changed_vertices = static_cast<uint32_t>(m0);
     stats_.connectivity_rebuilt = !same_faces;
+    stats_.adjacency_in_place = in_place;
     return;
   }
   growFaces(0, m0, 1);
@@ -611,6 +615,7 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
     compute(mesh);
     stats_.changed_vertices = static_cast<uint32_t>(m0);
     stats_.connectivity_rebuilt = !same_faces;
+    stats_.adjacency_in_place = in_place;
     return;
   }
   forEachMarked(true, n1, 1, [&](uint32_t f) { faceGeometry(mesh, f); });
@@ -625,6 +630,7 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
   stats_ = ShapeUpdateStats{};
   stats_.full = false;
   stats_.connectivity_rebuilt = !same_faces;
+  stats_.adjacency_in_place = in_place;
   stats_.changed_vertices = static_cast<uint32_t>(m0);
   stats_.normal_vertices = static_cast<uint32_t>(m1);
   stats_.curvature_vertices = static_cast<uint32_t>(m2);

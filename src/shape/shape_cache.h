@@ -62,7 +62,8 @@ struct ShapeParams {
 /// What the last compute()/update() touched (for frame stats and tests).
 struct ShapeUpdateStats {
   bool full = true;                  ///< true: everything was recomputed
-  bool connectivity_rebuilt = false; ///< true: adjacency was rebuilt (faces changed)
+  bool connectivity_rebuilt = false; ///< true: faces changed, the adjacency was brought up to date
+  bool adjacency_in_place = false;   ///< ... by updateAdjacency() around the changed slots
   uint32_t changed_vertices = 0;     ///< distinct seeds: vertices passed + those of changed face slots
   uint32_t normal_vertices = 0;      ///< vertices whose normal/area/frame were recomputed
   uint32_t curvature_vertices = 0;   ///< vertices whose curvature was recomputed
@@ -126,10 +127,11 @@ class ShapeCache {
   /// and out-of-range ids ignored): face geometry on their faces, normals on the 1-ring,
   /// curvature on the 1-ring of changed normals, derivatives one ring further.
   /// Connectivity may change too (checked with one memcmp, ~0.05 ms per 100k faces): the
-  /// adjacency is then rebuilt (O(V + F)) and the vertices of every face slot whose triple
-  /// changed, was added or removed, and every new vertex, join the changed set — cheap when
-  /// the caller keeps face slots stable (edits in place, additions at the end); a compacted
-  /// face array changes most slots and falls back to a full compute. Fewer vertices than last
+  /// adjacency is then updated in place around the face slots whose triple changed, was
+  /// added or removed (rebuilt, O(V + F), when they are more than an eighth), and their
+  /// vertices and every new vertex join the changed set — cheap when the caller keeps face
+  /// slots stable (edits in place, additions at the end); a compacted face array changes most
+  /// slots and falls back to a full compute. Fewer vertices than last
   /// time, or nothing computed yet: compute(mesh). The result is always bit-identical to
   /// compute(mesh) on a fresh cache.
   void update(const TriMesh& mesh, std::span<const uint32_t> changed_vertices);
@@ -217,6 +219,7 @@ class ShapeCache {
   std::vector<uint8_t> vertex_level_, face_level_;  // ring level at which an item was marked
   uint32_t stamp_ = 0;
   std::vector<uint32_t> inc_verts_, inc_faces_;
+  std::vector<uint32_t> changed_faces_;  // face slots whose triple changed in this update
 };
 
 }  // namespace lodline
