@@ -1,5 +1,6 @@
 #include "frame/line_drawing.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/timer.h"
@@ -53,7 +54,8 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
 
   Stopwatch sw;
   SurfaceFields fields = shape_.fields(mesh_);
-  if (!p.suggestive) fields.dcurv = {};
+  const bool lazy = p.suggestive && shape_.params().derivatives && shape_.params().lazy_derivatives;
+  if (!p.suggestive || lazy) fields.dcurv = {};
   const bool smooth = smoothing < 1.0f;
   if (smooth) {
     fields.normals = smoother_.blendNormals(shape_.normals(), smoothing);
@@ -66,6 +68,31 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   const float sc_threshold = p.suggestive_threshold / (fs * fs);
   computeViewQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, view_);
   if (smooth) smoother_.blendView(view_, smoothing, sc_threshold);
+  if (lazy) {
+    // Dw kr where a suggestive contour can be: at both ends of every edge across which kr
+    // changes sign — the only places extractZeroSet reads the test (its per-edge crossings,
+    // and the three corners of a face crossed by the zero set).
+    const MeshAdjacency& adj = shape_.adjacency();
+    needed_mark_.resize(mesh_.positions.size(), 0);
+    needed_.clear();
+    const std::span<const float> kr = view_.kr;
+    for (size_t e = 0; e < adj.edges.size(); ++e) {
+      if (adj.edge_face_count[e] == 0) continue;
+      const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
+      if ((kr[a] < 0.0f) == (kr[b] < 0.0f)) continue;
+      for (uint32_t v : {a, b})
+        if (!needed_mark_[v]) {
+          needed_mark_[v] = 1;
+          needed_.push_back(v);
+        }
+    }
+    for (uint32_t v : needed_) needed_mark_[v] = 0;
+    std::sort(needed_.begin(), needed_.end());  // memory order for the gathers below
+    shape_.ensureDerivatives(mesh_, needed_);
+    fields.dcurv = shape_.dcurv();
+    computeSuggestiveQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, needed_, view_);
+    if (smooth) smoother_.blendSuggestive(view_, needed_, smoothing, sc_threshold);
+  }
   timings_.view = sw.lap();
   extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_);
   timings_.extract = sw.lap();

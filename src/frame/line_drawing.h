@@ -80,6 +80,8 @@ class LineDrawing {
   TemporalSmoother smoother_;
   std::span<const glm::vec3> shading_normals_;
   ViewQuantities view_;
+  std::vector<uint32_t> needed_;     // vertices whose Dw kr this frame needs (lazy derivatives)
+  std::vector<uint8_t> needed_mark_;
   LineScratch scratch_;
   LineSet segments_;
   StrokeSet strokes_;

@@ -13,9 +13,12 @@ namespace {
 // Geomorphs start a split's new vertex at its parent's position, so adapted meshes routinely
 // hold near-zero-length edges; Max's weights (∝ 1/(|a|·|b|)) let such slivers dominate a
 // vertex normal, area weights give them none. Full detail keeps the more accurate default.
+// The mesh changes every frame, so derivative tensors are computed only where suggestive
+// contours are tested (ShapeParams::lazy_derivatives).
 ShapeParams adaptiveShapeParams() {
   ShapeParams p;
   p.normal_weighting = NormalWeighting::kArea;
+  p.lazy_derivatives = true;
   return p;
 }
 }  // namespace

@@ -37,6 +37,8 @@ void TemporalSmoother::followHierarchy(const AdaptiveMesh& lod) {
     if (view_state) {
       prev_kr_.assign(kr_.begin(), kr_.end());
       prev_dwkr_.assign(dwkr_.begin(), dwkr_.end());
+      prev_dwkr_frame_.assign(dwkr_frame_.begin(), dwkr_frame_.end());
+      prev_dwkr_frame_.resize(prev_dwkr_.size(), 0);
     }
     if (fresh_.size() < n) fresh_.resize(n, 1);
     if (normals_.size() < n) normals_.resize(n, glm::vec3(0, 0, 1));
@@ -44,6 +46,7 @@ void TemporalSmoother::followHierarchy(const AdaptiveMesh& lod) {
       kr_.resize(n, 0.0f);
       dwkr_.resize(n, 0.0f);
     }
+    if (view_state) dwkr_frame_.resize(std::max<size_t>(dwkr_frame_.size(), n), 0);
     auto old_slot = [&](uint32_t node) {
       const uint32_t s = node != kPmNone ? node_slot_[node] : kNoSlot;
       return s < prev_normals_.size() ? s : kNoSlot;
@@ -61,6 +64,7 @@ void TemporalSmoother::followHierarchy(const AdaptiveMesh& lod) {
       }
       if (a == kNoSlot) {
         fresh_[s] = 1;  // several levels at once: no meaningful history
+        if (view_state) dwkr_frame_[s] = 0;
         continue;
       }
       glm::vec3 nrm = prev_normals_[a];
@@ -72,6 +76,10 @@ void TemporalSmoother::followHierarchy(const AdaptiveMesh& lod) {
       if (view_state && a < prev_kr_.size()) {
         kr_[s] = b != kNoSlot && b < prev_kr_.size() ? 0.5f * (prev_kr_[a] + prev_kr_[b]) : prev_kr_[a];
         dwkr_[s] = b != kNoSlot && b < prev_kr_.size() ? 0.5f * (prev_dwkr_[a] + prev_dwkr_[b]) : prev_dwkr_[a];
+        // Lazily computed Dw kr: the history is as recent as the older of the two sources.
+        dwkr_frame_[s] = b != kNoSlot && b < prev_kr_.size()
+                             ? std::min(prev_dwkr_frame_[a], prev_dwkr_frame_[b])
+                             : prev_dwkr_frame_[a];
       }
     }
   }
@@ -115,14 +123,17 @@ void TemporalSmoother::blendView(ViewQuantities& view, float w, float sc_thresho
     kr_.assign(view.kr.begin(), view.kr.end());
     dwkr_.assign(n, 0.0f);
     if (view.dwkr.size() == n) dwkr_.assign(view.dwkr.begin(), view.dwkr.end());
+    dwkr_frame_.assign(n, 0);
     view_initialized_ = true;
   }
   kr_.resize(n, 0.0f);
   dwkr_.resize(n, 0.0f);
   const bool has_dw = view.dwkr.size() == n;
   fresh_.resize(n, 1);
+  dwkr_frame_.resize(n, 0);
   for (size_t i = 0; i < n; ++i) {
     const float wi = fresh_[i] ? 1.0f : w;  // fresh vertices start from this frame's values
+    if (fresh_[i]) dwkr_frame_[i] = 0;
     fresh_[i] = 0;
     kr_[i] = (1.0f - wi) * kr_[i] + wi * view.kr[i];
     view.kr[i] = kr_[i];
@@ -132,12 +143,26 @@ void TemporalSmoother::blendView(ViewQuantities& view, float w, float sc_thresho
     }
   }
   if (has_dw && view.sc_num.size() == n && view.sc_den.size() == n) {
-    for (size_t i = 0; i < n; ++i) {
-      const float c = view.ndotv[i];
-      const float sn = std::sqrt(std::max(0.0f, 1.0f - c * c));
-      view.sc_num[i] = sn * view.dwkr[i] - sc_threshold * c;
-      view.sc_den[i] = c;
-    }
+    for (size_t i = 0; i < n; ++i)
+      suggestiveTest(view.ndotv[i], view.dwkr[i], sc_threshold, view.sc_num[i], view.sc_den[i]);
+  }
+}
+
+void TemporalSmoother::blendSuggestive(ViewQuantities& view, std::span<const uint32_t> vertices,
+                                       float w, float sc_threshold) {
+  const size_t n = view.ndotv.size();
+  if (view.dwkr.size() != n || view.sc_num.size() != n || view.sc_den.size() != n) return;
+  dwkr_.resize(n, 0.0f);
+  dwkr_frame_.resize(n, 0);
+  ++dw_frame_;
+  for (uint32_t i : vertices) {
+    if (i >= n) continue;
+    const bool continuous = dwkr_frame_[i] != 0 && dwkr_frame_[i] + 1 == dw_frame_;
+    const float wi = continuous ? w : 1.0f;
+    dwkr_[i] = (1.0f - wi) * dwkr_[i] + wi * view.dwkr[i];
+    dwkr_frame_[i] = dw_frame_;
+    view.dwkr[i] = dwkr_[i];
+    suggestiveTest(view.ndotv[i], view.dwkr[i], sc_threshold, view.sc_num[i], view.sc_den[i]);
   }
 }
 

@@ -48,11 +48,21 @@ class TemporalSmoother {
   /// threshold·cosθ, sc_den = cosθ, as computeViewQuantities does). `sc_threshold` as there.
   void blendView(ViewQuantities& view, float w, float sc_threshold);
 
+  /// Blends Dw kr at `vertices` only (when it is computed only next to kr zero crossings,
+  /// see ShapeParams::lazy_derivatives) and recomputes the suggestive-contour test there. A
+  /// vertex's Dw kr keeps its history only across consecutive calls that include it (or its
+  /// parent/children, through followHierarchy); otherwise it starts from this frame's value.
+  void blendSuggestive(ViewQuantities& view, std::span<const uint32_t> vertices, float w,
+                       float sc_threshold);
+
  private:
   bool initialized_ = false;
   bool view_initialized_ = false;
   std::vector<glm::vec3> normals_;
   std::vector<float> kr_, dwkr_;
+  // blendSuggestive: per slot, the call (dw_frame_) that last blended its Dw kr (0: never).
+  std::vector<uint32_t> dwkr_frame_;
+  uint32_t dw_frame_ = 0;
   std::vector<uint8_t> fresh_;  // per slot: no history, take this frame's values
   // Hierarchy bookkeeping: PM node held by each slot after the last followHierarchy(), and
   // the slot of each node (kNoSlot when inactive).
@@ -60,6 +70,7 @@ class TemporalSmoother {
   std::vector<uint32_t> changed_;  // scratch: slots whose node changed this frame
   std::vector<glm::vec3> prev_normals_;  // scratch: last frame's values during followHierarchy
   std::vector<float> prev_kr_, prev_dwkr_;
+  std::vector<uint32_t> prev_dwkr_frame_;
 };
 
 }  // namespace lodline

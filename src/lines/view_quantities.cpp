@@ -15,6 +15,42 @@ ViewSpec ViewSpec::fromCamera(const Camera& cam) {
   return v;
 }
 
+namespace {
+
+// n·v̂ and the coordinates (u, v) of v̂ in the principal frame at vertex i.
+struct ViewAt {
+  float ndotv, u, v;
+};
+inline ViewAt viewAt(const SurfaceFields& s, const ViewSpec& view, const glm::vec3& ortho_dir,
+                     size_t i) {
+  glm::vec3 vdir = ortho_dir;
+  if (!view.orthographic) {
+    const glm::vec3 d = view.eye - s.positions[i];
+    const float len = glm::length(d);
+    vdir = len > 0.0f ? d / len : s.normals[i];
+  }
+  return {glm::dot(vdir, s.normals[i]), glm::dot(vdir, s.pdir1[i]), glm::dot(vdir, s.pdir2[i])};
+}
+
+// sinθ·Dw kr and Dw kr at vertex i (0 where sinθ vanishes).
+inline void derivativeAt(const SurfaceFields& s, size_t i, const ViewAt& va, float& sin_dwkr,
+                         float& dwkr) {
+  const float u = va.u, v = va.v, u2 = u * u, v2 = v * v;
+  const float sin2 = u2 + v2;
+  sin_dwkr = dwkr = 0.0f;
+  if (!(sin2 > 1e-12f)) return;
+  const glm::vec4& c = s.dcurv[i];
+  // C(w,w,w) with the unnormalised w = (u, v): sin³θ·C(ŵ,ŵ,ŵ).
+  const float cwww = u2 * (u * c[0] + 3.0f * v * c[1]) + v2 * (3.0f * u * c[2] + v * c[3]);
+  const float csc2 = 1.0f / sin2;
+  const float tau = (s.k2[i] - s.k1[i]) * u * v * csc2;
+  // sinθ·Dw kr = sinθ·C(ŵ,ŵ,ŵ) − 2·τ²·cosθ.
+  sin_dwkr = cwww * csc2 - 2.0f * va.ndotv * tau * tau;
+  dwkr = sin_dwkr / std::sqrt(sin2);
+}
+
+}  // namespace
+
 void computeViewQuantities(const SurfaceFields& s, const ViewSpec& view, float sc_threshold,
                            ViewQuantities& out) {
   const size_t nv = s.positions.size();
@@ -26,33 +62,35 @@ void computeViewQuantities(const SurfaceFields& s, const ViewSpec& view, float s
   out.sc_den.resize(with_derivs ? nv : 0);
   const glm::vec3 ortho_dir = glm::normalize(view.toward_viewer);
   for (size_t i = 0; i < nv; ++i) {
-    glm::vec3 vdir = ortho_dir;
-    if (!view.orthographic) {
-      const glm::vec3 d = view.eye - s.positions[i];
-      const float len = glm::length(d);
-      vdir = len > 0.0f ? d / len : s.normals[i];
-    }
-    const float ndotv = glm::dot(vdir, s.normals[i]);
-    const float u = glm::dot(vdir, s.pdir1[i]), v = glm::dot(vdir, s.pdir2[i]);
-    const float u2 = u * u, v2 = v * v;
-    out.ndotv[i] = ndotv;
+    const ViewAt va = viewAt(s, view, ortho_dir, i);
+    out.ndotv[i] = va.ndotv;
+    const float u2 = va.u * va.u, v2 = va.v * va.v;
     out.kr[i] = s.k1[i] * u2 + s.k2[i] * v2;
     if (!with_derivs) continue;
-    const float sin2 = u2 + v2;
-    float sin_dwkr = 0.0f, dwkr = 0.0f;  // sinθ·Dw kr and Dw kr
-    if (sin2 > 1e-12f) {
-      const glm::vec4& c = s.dcurv[i];
-      // C(w,w,w) with the unnormalised w = (u, v): sin³θ·C(ŵ,ŵ,ŵ).
-      const float cwww = u2 * (u * c[0] + 3.0f * v * c[1]) + v2 * (3.0f * u * c[2] + v * c[3]);
-      const float csc2 = 1.0f / sin2;
-      const float tau = (s.k2[i] - s.k1[i]) * u * v * csc2;
-      // sinθ·Dw kr = sinθ·C(ŵ,ŵ,ŵ) − 2·τ²·cosθ.
-      sin_dwkr = cwww * csc2 - 2.0f * ndotv * tau * tau;
-      dwkr = sin_dwkr / std::sqrt(sin2);
-    }
+    float sin_dwkr, dwkr;
+    derivativeAt(s, i, va, sin_dwkr, dwkr);
     out.dwkr[i] = dwkr;
-    out.sc_num[i] = sin_dwkr - sc_threshold * ndotv;
-    out.sc_den[i] = ndotv;
+    out.sc_num[i] = sin_dwkr - sc_threshold * va.ndotv;
+    out.sc_den[i] = va.ndotv;
+  }
+}
+
+void computeSuggestiveQuantities(const SurfaceFields& s, const ViewSpec& view, float sc_threshold,
+                                 std::span<const uint32_t> vertices, ViewQuantities& out) {
+  const size_t nv = s.positions.size();
+  if (s.dcurv.size() != nv) return;
+  out.dwkr.resize(nv, 0.0f);
+  out.sc_num.resize(nv, 0.0f);
+  out.sc_den.resize(nv, 0.0f);
+  const glm::vec3 ortho_dir = glm::normalize(view.toward_viewer);
+  for (uint32_t i : vertices) {
+    if (i >= nv) continue;
+    const ViewAt va = viewAt(s, view, ortho_dir, i);
+    float sin_dwkr, dwkr;
+    derivativeAt(s, i, va, sin_dwkr, dwkr);
+    out.dwkr[i] = dwkr;
+    out.sc_num[i] = sin_dwkr - sc_threshold * va.ndotv;
+    out.sc_den[i] = va.ndotv;
   }
 }
 

@@ -13,6 +13,9 @@
 // The signs were checked against finite differences of the analytic torus (tests/lines).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -52,5 +55,18 @@ struct ViewQuantities {
 /// entries in every array (dcurv may be empty: then dwkr, sc_num, sc_den are left empty).
 void computeViewQuantities(const SurfaceFields& fields, const ViewSpec& view, float sc_threshold,
                            ViewQuantities& out);
+
+/// The derivative quantities alone (dwkr, sc_num, sc_den), at `vertices` only: sizes those
+/// arrays to vertexCount and leaves the other entries as they were. Same values as
+/// computeViewQuantities gives there; fields.dcurv must be current at `vertices` (a lazily
+/// evaluated ShapeCache computes it only where suggestive contours can be).
+void computeSuggestiveQuantities(const SurfaceFields& fields, const ViewSpec& view, float sc_threshold,
+                                 std::span<const uint32_t> vertices, ViewQuantities& out);
+
+/// The suggestive-contour test from n·v and Dw kr (as computeViewQuantities forms it).
+inline void suggestiveTest(float ndotv, float dwkr, float sc_threshold, float& num, float& den) {
+  num = std::sqrt(std::max(0.0f, 1.0f - ndotv * ndotv)) * dwkr - sc_threshold * ndotv;
+  den = ndotv;
+}
 
 }  // namespace lodline

@@ -431,6 +431,8 @@ void ShapeCache::resize(uint32_t nv, uint32_t nf) {
   vertex_kab_.resize(nv);
   pdir2_.resize(nv);
   dcurv_.resize(params_.derivatives ? nv : 0);
+  vertex_dgen_.resize(params_.lazy_derivatives ? nv : 0, 0);
+  face_dgen_.resize(params_.lazy_derivatives ? nf : 0, 0);
   vertex_stamp_.assign(nv, 0);
   face_stamp_.assign(nf, 0);
   vertex_level_.assign(nv, 0);
@@ -458,15 +460,20 @@ void ShapeCache::compute(const TriMesh& mesh) {
   parallelFor(nv, [&](uint32_t v) { vertexNormal(v); });
   parallelFor(nf, [&](uint32_t f) { faceCurvatureFit(mesh, f); });
   parallelFor(nv, [&](uint32_t v) { vertexCurvature(v); });
-  if (params_.derivatives) {
+  const bool eager = params_.derivatives && !params_.lazy_derivatives;
+  if (eager) {
     parallelFor(nf, [&](uint32_t f) { faceDerivativeFit(mesh, f); });
     parallelFor(nv, [&](uint32_t v) { vertexDerivative(v); });
+  } else if (params_.lazy_derivatives && ++dgen_ == 0) {  // every tensor is stale now
+    std::fill(vertex_dgen_.begin(), vertex_dgen_.end(), 0);
+    std::fill(face_dgen_.begin(), face_dgen_.end(), 0);
+    dgen_ = 1;
   }
   computed_ = true;
   ++version_;
   stats_.full = true;
   stats_.normal_vertices = stats_.curvature_vertices = nv;
-  stats_.derivative_vertices = params_.derivatives ? nv : 0;
+  stats_.derivative_vertices = eager ? nv : 0;
 }
 
 void ShapeCache::growFaces(size_t begin, size_t end, uint8_t level) {
@@ -622,9 +629,13 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
   forEachMarked(false, m1, 1, [&](uint32_t v) { vertexNormal(v); });
   forEachMarked(true, n2, 2, [&](uint32_t f) { faceCurvatureFit(mesh, f); });
   forEachMarked(false, m2, 2, [&](uint32_t v) { vertexCurvature(v); });
-  if (params_.derivatives) {
+  const bool eager = params_.derivatives && !params_.lazy_derivatives;
+  if (eager) {
     forEachMarked(true, n3, 3, [&](uint32_t f) { faceDerivativeFit(mesh, f); });
     forEachMarked(false, m3, 3, [&](uint32_t v) { vertexDerivative(v); });
+  } else if (params_.lazy_derivatives) {  // F3 and V3 hold stale fits and tensors now
+    for (size_t k = 0; k < n3; ++k) face_dgen_[inc_faces_[k]] = 0;
+    for (size_t k = 0; k < m3; ++k) vertex_dgen_[inc_verts_[k]] = 0;
   }
   ++version_;
   stats_ = ShapeUpdateStats{};
@@ -634,7 +645,33 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
   stats_.changed_vertices = static_cast<uint32_t>(m0);
   stats_.normal_vertices = static_cast<uint32_t>(m1);
   stats_.curvature_vertices = static_cast<uint32_t>(m2);
-  stats_.derivative_vertices = static_cast<uint32_t>(params_.derivatives ? m3 : 0);
+  stats_.derivative_vertices = static_cast<uint32_t>(eager ? m3 : 0);
+}
+
+void ShapeCache::ensureDerivatives(const TriMesh& mesh, std::span<const uint32_t> vertices) {
+  last_ensured_ = 0;
+  if (!params_.derivatives || !params_.lazy_derivatives || !computed_) return;
+  const uint32_t nv = adjacency_.vertex_count;
+  ens_verts_.clear();
+  ens_faces_.clear();
+  // Marked current as they are scheduled (repeats drop out); all are computed below.
+  for (uint32_t v : vertices) {
+    if (v >= nv || vertex_dgen_[v] == dgen_) continue;
+    vertex_dgen_[v] = dgen_;
+    ens_verts_.push_back(v);
+    for (uint32_t i = adjacency_.vertex_face_begin[v]; i < adjacency_.vertex_face_end[v]; ++i) {
+      const uint32_t f = adjacency_.vertex_faces[i];
+      if (face_dgen_[f] == dgen_) continue;
+      face_dgen_[f] = dgen_;
+      ens_faces_.push_back(f);
+    }
+  }
+  // In memory order: the requests come in edge order, scattered over the arrays.
+  std::sort(ens_faces_.begin(), ens_faces_.end());
+  std::sort(ens_verts_.begin(), ens_verts_.end());
+  parallelFor(ens_faces_.size(), [&](uint32_t k) { faceDerivativeFit(mesh, ens_faces_[k]); });
+  parallelFor(ens_verts_.size(), [&](uint32_t k) { vertexDerivative(ens_verts_[k]); });
+  last_ensured_ = static_cast<uint32_t>(ens_verts_.size());
 }
 
 SurfaceFields ShapeCache::fields(const TriMesh& mesh) const {

@@ -48,6 +48,11 @@ struct ShapeParams {
   /// Also compute the curvature-derivative tensor (needed by suggestive contours).
   /// Default true.
   bool derivatives = true;
+  /// Compute derivative tensors only on request (ensureDerivatives()): compute() and
+  /// update() then only invalidate them. Suggestive contours test Dw kr only next to kr zero
+  /// crossings, so a mesh that changes every frame (level of detail) skips the widest ring
+  /// of the incremental support for most vertices. Default false.
+  bool lazy_derivatives = false;
   /// update() recomputes everything (same result, in memory order) when the vertices it
   /// would touch (the changed set grown by three rings) exceed this fraction of all
   /// vertices. Default 0.8: large incremental sets are visited in memory order anyway (on a
@@ -136,6 +141,18 @@ class ShapeCache {
   /// compute(mesh) on a fresh cache.
   void update(const TriMesh& mesh, std::span<const uint32_t> changed_vertices);
 
+  /// With lazy_derivatives: makes dcurv() valid at `vertices` (any order, repeats and
+  /// out-of-range ids ignored) for `mesh`, the mesh of the last compute()/update(); the
+  /// values are bit-identical to an eager compute. Otherwise does nothing.
+  void ensureDerivatives(const TriMesh& mesh, std::span<const uint32_t> vertices);
+  /// Whether dcurv()[v] holds the current derivative tensor (always, unless lazy).
+  bool derivativeValid(uint32_t v) const {
+    return params_.derivatives &&
+           (!params_.lazy_derivatives || (v < vertex_dgen_.size() && vertex_dgen_[v] == dgen_));
+  }
+  /// Vertices whose derivative tensor the last ensureDerivatives() computed.
+  uint32_t lastEnsured() const { return last_ensured_; }
+
   const ShapeParams& params() const { return params_; }
   const MeshAdjacency& adjacency() const { return adjacency_; }
   const ShapeUpdateStats& lastStats() const { return stats_; }
@@ -149,7 +166,8 @@ class ShapeCache {
   std::span<const float> k2() const { return k2_; }
   std::span<const glm::vec3> pdir1() const { return pdir1_; }
   std::span<const glm::vec3> pdir2() const { return pdir2_; }
-  /// Empty when params().derivatives is false.
+  /// Empty when params().derivatives is false. With lazy_derivatives only the entries for
+  /// which derivativeValid() holds are current.
   std::span<const glm::vec4> dcurv() const { return dcurv_; }
 
   // Per-face arrays (faceCount entries).
@@ -220,6 +238,11 @@ class ShapeCache {
   uint32_t stamp_ = 0;
   std::vector<uint32_t> inc_verts_, inc_faces_;
   std::vector<uint32_t> changed_faces_;  // face slots whose triple changed in this update
+  // Lazy derivatives: a vertex's tensor / a face's fit is current iff its entry == dgen_.
+  std::vector<uint32_t> vertex_dgen_, face_dgen_;
+  uint32_t dgen_ = 1;
+  uint32_t last_ensured_ = 0;
+  std::vector<uint32_t> ens_verts_, ens_faces_;
 };
 
 }  // namespace lodline

@@ -292,6 +292,71 @@ TEST(ShapeCache, ThreadCountDoesNotChangeTheResult) {
   expectBitIdentical(a, b, "update");
 }
 
+// Lazy derivative tensors: none are current after compute(); ensureDerivatives() makes the
+// requested ones current with the eager values bit for bit; an update invalidates exactly
+// the ring an eager update would recompute, and a second request there recomputes only those.
+TEST(ShapeCache, LazyDerivativesEqualEagerOnRequest) {
+  TriMesh m = makeTorusKnot(3, 2, 1.0f, 0.25f, 200, 24, 0.15f);
+  const uint32_t nv = static_cast<uint32_t>(m.vertexCount());
+  ShapeParams lazy_params;
+  lazy_params.lazy_derivatives = true;
+  ShapeCache lazy(lazy_params);
+  lazy.compute(m);
+  EXPECT_FALSE(lazy.derivativeValid(0));
+  std::vector<uint32_t> all(nv), half;
+  std::iota(all.begin(), all.end(), 0u);
+  for (uint32_t v = 0; v < nv; v += 2) half.push_back(v);
+  auto expectEager = [&](const char* what) {
+    ShapeCache eager;
+    eager.compute(m);
+    uint32_t valid = 0;
+    for (uint32_t v = 0; v < nv; ++v) {
+      if (!lazy.derivativeValid(v)) continue;
+      ++valid;
+      if (std::memcmp(&lazy.dcurv()[v], &eager.dcurv()[v], sizeof(glm::vec4)) != 0) {
+        ADD_FAILURE() << what << ": tensor of vertex " << v << " differs";
+        return valid;
+      }
+    }
+    return valid;
+  };
+  lazy.ensureDerivatives(m, half);
+  EXPECT_EQ(lazy.lastEnsured(), half.size());
+  EXPECT_EQ(expectEager("half"), half.size());
+  lazy.ensureDerivatives(m, all);
+  EXPECT_EQ(lazy.lastEnsured(), nv - half.size());  // only the missing ones
+  EXPECT_EQ(expectEager("all"), nv);
+  // Move a few vertices: their 3-ring goes stale, everything else stays current.
+  const uint32_t moved[] = {10, 2000, 4000};
+  for (uint32_t v : moved) m.positions[v] += glm::vec3(0.003f, -0.002f, 0.001f);
+  lazy.update(m, moved);
+  const uint32_t stale_count = [&] {
+    uint32_t n = 0;
+    for (uint32_t v = 0; v < nv; ++v) n += !lazy.derivativeValid(v);
+    return n;
+  }();
+  EXPECT_GT(stale_count, 3u);
+  EXPECT_LT(stale_count, nv / 20);
+  EXPECT_EQ(expectEager("after move"), nv - stale_count);
+  lazy.ensureDerivatives(m, all);
+  EXPECT_EQ(lazy.lastEnsured(), stale_count);
+  EXPECT_EQ(expectEager("after move, all"), nv);
+  // A connectivity change (a face split by a new vertex) likewise.
+  const auto t = m.faces[500];
+  m.positions.push_back((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0f);
+  m.faces[500] = {t[0], t[1], nv};
+  m.faces.push_back({t[1], t[2], nv});
+  m.faces.push_back({t[2], t[0], nv});
+  lazy.update(m, {});
+  EXPECT_TRUE(lazy.lastStats().adjacency_in_place);
+  std::vector<uint32_t> all_now(nv + 1);
+  std::iota(all_now.begin(), all_now.end(), 0u);
+  lazy.ensureDerivatives(m, all_now);
+  ShapeCache eager;
+  eager.compute(m);
+  EXPECT_TRUE(std::memcmp(lazy.dcurv().data(), eager.dcurv().data(), lazy.dcurv().size_bytes()) == 0);
+}
+
 // Connectivity edits of the kind a view-dependent mesh makes, with stable face slots: an
 // edge flip in place, a vertex split appending a vertex and faces, a face turned degenerate,
 // faces dropped from the end. Each update must equal a fresh full compute, bit for bit, and

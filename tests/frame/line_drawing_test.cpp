@@ -1,0 +1,52 @@
+// LineDrawing with lazily evaluated derivative tensors (what level of detail uses) draws
+// exactly the lines of the eager evaluation when temporal smoothing is off, frame after
+// frame while the mesh deforms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "frame/line_drawing.h"
+#include "io/generate.h"
+
+namespace lodline {
+namespace {
+
+TEST(LineDrawing, LazyDerivativesDrawTheSameLines) {
+  const TriMesh mesh = makeTorusKnot(2, 3, 1.0f, 0.2f, 300, 24, 0.18f);
+  ShapeParams eager_params, lazy_params;
+  lazy_params.lazy_derivatives = true;
+  LineDrawing eager(mesh, {}, eager_params), lazy(mesh, {}, lazy_params);
+  std::array<bool, kLineKindCount> enabled{};
+  enabled.fill(true);
+  TriMesh moving = mesh;
+  std::vector<uint32_t> changed;
+  size_t suggestive = 0;
+  for (int k = 0; k < 12; ++k) {
+    // A travelling bump moves a band of vertices each frame.
+    changed.clear();
+    for (uint32_t v = 0; v < moving.vertexCount(); ++v) {
+      if ((v / 24) % 300 < static_cast<uint32_t>(20 * k) || (v / 24) % 300 >= static_cast<uint32_t>(20 * k + 20)) continue;
+      moving.positions[v] = mesh.positions[v] * (1.0f + 0.02f * std::sin(0.5f * static_cast<float>(v + k)));
+      changed.push_back(v);
+    }
+    eager.updateMesh(moving.positions, moving.faces, changed);
+    lazy.updateMesh(moving.positions, moving.faces, changed);
+    const Camera cam = orbitCamera(eager.bounds(), {15.0f * k, 25.0f, 0.0f}, 35.0f, 16.0f / 9.0f);
+    eager.update(cam, enabled);
+    lazy.update(cam, enabled);
+    const LineSet& a = eager.segments();
+    const LineSet& b = lazy.segments();
+    ASSERT_EQ(a.counts, b.counts) << "frame " << k;
+    ASSERT_EQ(a.points, b.points) << "frame " << k;
+    ASSERT_EQ(a.alpha, b.alpha) << "frame " << k;
+    suggestive += a.counts[static_cast<int>(LineType::kSuggestive)];
+    // The lazy cache computed far fewer tensors than there are vertices.
+    uint32_t valid = 0;
+    for (uint32_t v = 0; v < moving.vertexCount(); ++v) valid += lazy.shape().derivativeValid(v);
+    EXPECT_LT(valid, moving.vertexCount()) << "frame " << k;
+  }
+  EXPECT_GT(suggestive, 100u);  // the comparison covered suggestive contours
+}
+
+}  // namespace
+}  // namespace lodline
