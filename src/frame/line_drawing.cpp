@@ -8,7 +8,11 @@
 namespace lodline {
 
 LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapeParams& shape_params)
-    : mesh_(std::move(mesh)), params_(params), shape_(shape_params) {
+    : pool_(std::make_unique<WorkerPool>(shape_params.threads)),
+      mesh_(std::move(mesh)),
+      params_(params),
+      shape_(shape_params) {
+  shape_.setWorkerPool(pool_.get());
   bounds_ = computeBounds(mesh_.positions);
   Stopwatch sw;
   shape_.compute(mesh_);
@@ -66,21 +70,25 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   }
   const float fs = feature_size_ > 0.0f && std::isfinite(feature_size_) ? feature_size_ : 1.0f;
   const float sc_threshold = p.suggestive_threshold / (fs * fs);
-  computeViewQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, view_);
+  computeViewQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, view_, pool_.get());
   if (smooth) smoother_.blendView(view_, smoothing, sc_threshold);
   if (lazy) {
-    // Dw kr where a suggestive contour can be: at both ends of every edge across which kr
-    // changes sign — the only places extractZeroSet reads the test (its per-edge crossings,
-    // and the three corners of a face crossed by the zero set).
+    // Dw kr where a suggestive contour can be: at the corners of every face that the kr
+    // zero set crosses and whose corners all pass the n·v gate — the only places
+    // extractZeroSet reads the test (pass 1 also forms it on other crossed edges, but only
+    // such faces use it).
     const MeshAdjacency& adj = shape_.adjacency();
     needed_mark_.resize(mesh_.positions.size(), 0);
     needed_.clear();
-    const std::span<const float> kr = view_.kr;
-    for (size_t e = 0; e < adj.edges.size(); ++e) {
-      if (adj.edge_face_count[e] == 0) continue;
-      const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
-      if ((kr[a] < 0.0f) == (kr[b] < 0.0f)) continue;
-      for (uint32_t v : {a, b})
+    const std::span<const float> kr = view_.kr, ndotv = view_.ndotv;
+    const float gate = p.suggestive_min_ndotv;
+    for (size_t f = 0; f < mesh_.faces.size(); ++f) {
+      if (!adj.face_valid[f]) continue;
+      const auto& t = mesh_.faces[f];
+      const bool s0 = kr[t[0]] < 0.0f, s1 = kr[t[1]] < 0.0f, s2 = kr[t[2]] < 0.0f;
+      if (s0 == s1 && s1 == s2) continue;
+      if (ndotv[t[0]] < gate || ndotv[t[1]] < gate || ndotv[t[2]] < gate) continue;
+      for (uint32_t v : t)
         if (!needed_mark_[v]) {
           needed_mark_[v] = 1;
           needed_.push_back(v);

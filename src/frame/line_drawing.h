@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <span>
 
 #include "core/camera.h"
@@ -69,8 +70,12 @@ class LineDrawing {
   float featureSize() const { return feature_size_; }
   const CpuTimings& timings() const { return timings_; }
   const ShapeCache& shape() const { return shape_; }
+  /// The threads of this drawing's data-parallel loops (shape stage, view quantities);
+  /// level of detail runs its own on them too.
+  WorkerPool& workers() { return *pool_; }
 
  private:
+  std::unique_ptr<WorkerPool> pool_;  // ShapeParams::threads threads, caller included
   TriMesh mesh_;
   Bounds bounds_;
   LineParams params_;

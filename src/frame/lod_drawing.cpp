@@ -24,7 +24,9 @@ ShapeParams adaptiveShapeParams() {
 }  // namespace
 
 LodDrawing::LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params)
-    : drawing_(std::move(full), params, adaptiveShapeParams()), pm_(std::move(pm)), lod_(std::make_unique<AdaptiveMesh>(*pm_)) {}
+    : drawing_(std::move(full), params, adaptiveShapeParams()), pm_(std::move(pm)), lod_(std::make_unique<AdaptiveMesh>(*pm_)) {
+  lod_->setWorkerPool(&drawing_.workers());
+}
 
 LodDrawing::LodDrawing(TriMesh full, const ClusterParams& cluster, const LineParams& params)
     : drawing_(full, params, adaptiveShapeParams()),

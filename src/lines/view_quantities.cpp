@@ -52,7 +52,7 @@ inline void derivativeAt(const SurfaceFields& s, size_t i, const ViewAt& va, flo
 }  // namespace
 
 void computeViewQuantities(const SurfaceFields& s, const ViewSpec& view, float sc_threshold,
-                           ViewQuantities& out) {
+                           ViewQuantities& out, WorkerPool* pool) {
   const size_t nv = s.positions.size();
   const bool with_derivs = s.dcurv.size() == nv && nv > 0;
   out.ndotv.resize(nv);
@@ -61,17 +61,24 @@ void computeViewQuantities(const SurfaceFields& s, const ViewSpec& view, float s
   out.sc_num.resize(with_derivs ? nv : 0);
   out.sc_den.resize(with_derivs ? nv : 0);
   const glm::vec3 ortho_dir = glm::normalize(view.toward_viewer);
-  for (size_t i = 0; i < nv; ++i) {
-    const ViewAt va = viewAt(s, view, ortho_dir, i);
-    out.ndotv[i] = va.ndotv;
-    const float u2 = va.u * va.u, v2 = va.v * va.v;
-    out.kr[i] = s.k1[i] * u2 + s.k2[i] * v2;
-    if (!with_derivs) continue;
-    float sin_dwkr, dwkr;
-    derivativeAt(s, i, va, sin_dwkr, dwkr);
-    out.dwkr[i] = dwkr;
-    out.sc_num[i] = sin_dwkr - sc_threshold * va.ndotv;
-    out.sc_den[i] = va.ndotv;
+  auto range = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const ViewAt va = viewAt(s, view, ortho_dir, i);
+      out.ndotv[i] = va.ndotv;
+      const float u2 = va.u * va.u, v2 = va.v * va.v;
+      out.kr[i] = s.k1[i] * u2 + s.k2[i] * v2;
+      if (!with_derivs) continue;
+      float sin_dwkr, dwkr;
+      derivativeAt(s, i, va, sin_dwkr, dwkr);
+      out.dwkr[i] = dwkr;
+      out.sc_num[i] = sin_dwkr - sc_threshold * va.ndotv;
+      out.sc_den[i] = va.ndotv;
+    }
+  };
+  if (pool) {
+    pool->forRange(nv, 4096, range);
+  } else {
+    range(0, nv);
   }
 }
 

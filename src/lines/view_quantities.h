@@ -22,6 +22,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/camera.h"
+#include "core/worker_pool.h"
 #include "shape/shape_cache.h"
 
 namespace lodline {
@@ -53,8 +54,9 @@ struct ViewQuantities {
 /// Fills `out` for the view `view`. `sc_threshold` is the absolute threshold on tanθ·Dw kr
 /// in 1/units² (LineParams::suggestive_threshold / fs²). `fields` must hold vertexCount
 /// entries in every array (dcurv may be empty: then dwkr, sc_num, sc_den are left empty).
+/// `pool` (optional) splits the vertices over its threads; the result is the same.
 void computeViewQuantities(const SurfaceFields& fields, const ViewSpec& view, float sc_threshold,
-                           ViewQuantities& out);
+                           ViewQuantities& out, WorkerPool* pool = nullptr);
 
 /// The derivative quantities alone (dwkr, sc_num, sc_den), at `vertices` only: sizes those
 /// arrays to vertexCount and leaves the other entries as they were. Same values as

@@ -18,6 +18,7 @@
 #include "lod/adaptive_mesh.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -38,6 +39,11 @@ constexpr int kMaxPasses = 4;
 /// The exact post-collapse mean is computed only when the estimate is below this × t_c·T
 /// (on the knot and armadillo orbits the exact mean was never below estimate / 1.09).
 constexpr float kEstimateMargin = 1.25f;
+/// How many work-list entries ahead evaluatePass() prefetches per-node data.
+constexpr size_t kPrefetchAhead = 8;
+/// A collapse found illegal is not re-checked for this many frames unless vt's or vu's slot
+/// changes (is marked dirty) first.
+constexpr uint32_t kIllegalFrames = 16;
 
 inline uint32_t next3(uint32_t i) { return i == 2 ? 0 : i + 1; }
 inline uint32_t prev3(uint32_t i) { return i == 0 ? 2 : i - 1; }
@@ -134,6 +140,7 @@ AdaptiveMesh::AdaptiveMesh(const ProgressiveMesh& pm) : pm_(pm) {
   morph_rate_.assign(cap, 0.0f);
   morph_pos_.assign(cap, kNone);
   slot_locked_.assign(cap, 0);
+  illegal_frame_.assign(cap, 0);
   dirty_stamp_.assign(cap, 0);
   ring_sum_.assign(cap, 0.0);
   slot_bounds_.assign(cap, NodeBounds{});
@@ -195,6 +202,7 @@ uint32_t AdaptiveMesh::allocSlot(uint32_t node) {
   slot_bounds_[slot] = bounds_[node];
   morph_pos_[slot] = kNone;
   slot_locked_[slot] = 0;
+  illegal_frame_[slot] = 0;
   ring_sum_[slot] = 0.0;
   ring_cnt_[slot] = 0;
   ++active_vertices_;
@@ -433,6 +441,21 @@ float AdaptiveMesh::predictedMean(uint32_t p) const {
 
 // ---------------------------------------------------------------------------------------
 // Legality and the two operations
+
+// ecolLegal() depends on the corners and neighbours of fl and fr only. Those change only by
+// a split or collapse of vt or vu, or one that inserts or removes a face on an edge of fl or
+// fr, and every such operation marks vt's or vu's slot dirty (its l/r or its own slots).
+// So an illegal verdict holds until one of the two slots is dirtied; it expires after
+// kIllegalFrames anyway, which bounds the delay if that reasoning ever misses a case.
+bool AdaptiveMesh::collapseMayBeLegal(uint32_t st, uint32_t su, uint32_t p) {
+  const uint32_t when = illegal_frame_[st];
+  if (params_.geomorphs && when != 0 && frame_ - when < kIllegalFrames && dirty_stamp_[st] < when &&
+      dirty_stamp_[su] < when)
+    return false;
+  if (ecolLegal(p)) return true;
+  illegal_frame_[st] = frame_;
+  return false;
+}
 
 bool AdaptiveMesh::ecolLegal(uint32_t p) const {
   if (pm_.isLeaf(p)) return false;
@@ -778,6 +801,12 @@ void AdaptiveMesh::evaluatePass() {
   const bool morph = params_.geomorphs && params_.morph_time > 0.0f;
   for (size_t i = 0; i < work_.size(); ++i) {
     if (params_.max_operations && ops_ >= params_.max_operations) break;
+    // The sibling's slot is the one per-node read of most iterations (a cache miss over a
+    // 1M-node array): fetch it a few vertices ahead.
+    if (i + kPrefetchAhead < work_.size()) {
+      const uint32_t ahead = slot_bounds_[work_[i + kPrefetchAhead]].sibling;
+      if (ahead != kNone) __builtin_prefetch(&node_slot_[ahead]);
+    }
     const uint32_t slot = work_[i];
     const uint32_t v = slot_node_[slot];
     if (v == kNone) continue;
@@ -810,14 +839,15 @@ void AdaptiveMesh::evaluatePass() {
     if (su == kNone || slot_locked_[su]) continue;
     // p's bounds contain v's, so p can only be invisible when v is.
     if (!vis && !visible(bounds_[p])) {
-      if (ecolLegal(p) && doCollapse(p, true) && work_.size() < work_.capacity())
+      if (collapseMayBeLegal(slot, su, p) && doCollapse(p, true) && work_.size() < work_.capacity())
         work_.push_back(slot);
       continue;
     }
     const float target = targetAt(nb.pos);  // p has v's position
     // Cheap estimate first; the decision itself uses the exact post-collapse mean, the same
     // quantity the split of p compares with t_s·T, so a pair never flips back and forth.
-    if (!(estimatedMean(slot, su) < kEstimateMargin * t_c * target) || !ecolLegal(p)) continue;
+    if (!(estimatedMean(slot, su) < kEstimateMargin * t_c * target) || !collapseMayBeLegal(slot, su, p))
+      continue;
     const float mean = predictedMean(p);
     if (!(mean < t_c * target)) continue;
     // Coarsening speed grows with the square of the discrepancy: a collapse far below its
@@ -838,6 +868,7 @@ void AdaptiveMesh::adapt(float dt_seconds) {
     std::fill(retry_frame_.begin(), retry_frame_.end(), 0u);
     std::fill(dirty_stamp_.begin(), dirty_stamp_.end(), 0u);
     std::fill(moved_stamp_.begin(), moved_stamp_.end(), 0u);
+    std::fill(illegal_frame_.begin(), illegal_frame_.end(), 0u);
     frame_ = 1;
   }
   changes_.split.clear();
@@ -850,36 +881,51 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   if (!have_view_) return;
   stats_.target_area = t0_;
 
-  // 1. Image areas of all active faces (and the band statistics of the incoming mesh).
-  uint32_t visible = 0, in_band = 0;
+  // 1. Image areas of all active faces (and the band statistics of the incoming mesh): per
+  // face in parallel, then summed into the rings in face order (the same sums as serially).
+  std::atomic<uint32_t> visible{0}, in_band{0};
   const float near2 = std::max(camera_.near_plane * camera_.near_plane, 1e-20f);
+  auto areas = [&](size_t begin, size_t end) {
+    uint32_t vis = 0, band = 0;
+    for (size_t k = begin; k < end; ++k) {
+      const auto& c = active_fs_[k];
+      const glm::vec3 &a = slot_bounds_[c[0]].pos, &b = slot_bounds_[c[1]].pos,
+                      &d = slot_bounds_[c[2]].pos;
+      const glm::vec3 n = glm::cross(b - a, d - a);
+      const float area = 0.5f * glm::length(n);
+      const glm::vec3 centre = (a + b + d) * (1.0f / 3.0f);
+      const glm::vec3 m = centre - eye_;
+      const float img = camera_.orthographic ? k_ * area : k_ * area / std::max(glm::dot(m, m), near2);
+      active_area_[k] = img;
+      const glm::vec3 view_dir = camera_.orthographic ? forward_ : m;
+      if (glm::dot(n, view_dir) >= 0.0f) continue;
+      bool inside = true;
+      for (const glm::vec4& pl : planes_) inside &= glm::dot(glm::vec3(pl), centre) + pl.w >= 0.0f;
+      if (!inside) continue;
+      ++vis;
+      const float t = modifiers_ ? targetAt(centre) : t0_;
+      if (img >= 0.5f * params_.t_c * t && img <= 2.0f * params_.t_s * t) ++band;
+    }
+    visible += vis;
+    in_band += band;
+  };
+  if (pool_) {
+    pool_->forRange(active_faces_.size(), 4096, areas);
+  } else {
+    areas(0, active_faces_.size());
+  }
   std::fill(ring_sum_.begin(), ring_sum_.begin() + slot_count_, 0.0);
   std::fill(ring_cnt_.begin(), ring_cnt_.begin() + slot_count_, 0);
   for (size_t k = 0; k < active_faces_.size(); ++k) {
-    const auto& c = active_fs_[k];
-    const glm::vec3 &a = slot_bounds_[c[0]].pos, &b = slot_bounds_[c[1]].pos,
-                    &d = slot_bounds_[c[2]].pos;
-    const glm::vec3 n = glm::cross(b - a, d - a);
-    const float area = 0.5f * glm::length(n);
-    const glm::vec3 centre = (a + b + d) * (1.0f / 3.0f);
-    const glm::vec3 m = centre - eye_;
-    const float img = camera_.orthographic ? k_ * area : k_ * area / std::max(glm::dot(m, m), near2);
-    active_area_[k] = img;
-    for (uint32_t slot : c) {
+    const float img = active_area_[k];
+    for (uint32_t slot : active_fs_[k]) {
       ring_sum_[slot] += img;
       ++ring_cnt_[slot];
     }
-    const glm::vec3 view_dir = camera_.orthographic ? forward_ : m;
-    if (glm::dot(n, view_dir) >= 0.0f) continue;
-    bool inside = true;
-    for (const glm::vec4& pl : planes_) inside &= glm::dot(glm::vec3(pl), centre) + pl.w >= 0.0f;
-    if (!inside) continue;
-    ++visible;
-    const float t = modifiers_ ? targetAt(centre) : t0_;
-    if (img >= 0.5f * params_.t_c * t && img <= 2.0f * params_.t_s * t) ++in_band;
   }
   stats_.visible_faces = visible;
-  stats_.band_fraction = visible ? static_cast<float>(in_band) / static_cast<float>(visible) : 1.0f;
+  stats_.band_fraction =
+      visible ? static_cast<float>(in_band.load()) / static_cast<float>(visible.load()) : 1.0f;
 
   // Geomorphs switched off: finish what is in flight.
   if (!params_.geomorphs && (!morphing_.empty() || !pending_.empty())) advanceMorphs(0.0f);

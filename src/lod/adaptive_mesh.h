@@ -37,6 +37,7 @@
 #include "core/camera.h"
 #include "core/mesh.h"
 #include "core/result.h"
+#include "core/worker_pool.h"
 #include "pm/progressive_mesh.h"
 
 namespace lodline {
@@ -117,6 +118,10 @@ struct LodChanges {
 class AdaptiveMesh {
  public:
   explicit AdaptiveMesh(const ProgressiveMesh& pm);
+
+  /// Runs the per-face pass of adapt() on `pool`'s threads (not owned; must outlive this
+  /// mesh; null: on the caller's thread). The result does not depend on it.
+  void setWorkerPool(WorkerPool* pool) { pool_ = pool; }
 
   /// Sets camera, image size (px) and detail parameters for the next adapt(). Errors: image
   /// size ≤ 0, T ≤ 0, t_c/t_s not 0 < 2·t_c < t_s, a detail map whose values are not
@@ -201,6 +206,9 @@ class AdaptiveMesh {
     return !pm_.isLeaf(node) && face_pos_[pm_.split(node).fl] != kPmNone;
   }
   bool ecolLegal(uint32_t p) const;
+  /// ecolLegal(p) for the collapse of the vt in slot st and the vu in slot su, skipping the
+  /// check while an earlier illegal verdict still holds (see the .cpp).
+  bool collapseMayBeLegal(uint32_t st, uint32_t su, uint32_t p);
   /// Executes the split of active node s (legal, fn active). False (nothing changed) if the
   /// neighbourhood is not the recorded one or, with `check`, a face would flip.
   bool doSplit(uint32_t s, bool check, bool morph);
@@ -225,6 +233,7 @@ class AdaptiveMesh {
   bool collectFan(uint32_t v, uint32_t from, uint32_t to, std::vector<uint32_t>& out) const;
 
   const ProgressiveMesh& pm_;
+  WorkerPool* pool_ = nullptr;
   uint32_t n_nodes_ = 0, n_faces_ = 0;
 
   // Static per node / per face.
@@ -255,6 +264,7 @@ class AdaptiveMesh {
   std::vector<float> morph_t_, morph_rate_;
   std::vector<uint32_t> morph_pos_;
   std::vector<uint8_t> slot_locked_;     // copy of kLocked of the slot's node (read per frame)
+  std::vector<uint32_t> illegal_frame_;  // frame whose check found the slot's collapse illegal
   std::vector<uint32_t> dirty_stamp_, moved_stamp_;
   std::vector<NodeBounds> slot_bounds_;  // copy of bounds_ of the slot's node
   std::vector<double> ring_sum_;   // per slot: sum of the image areas of the incident faces

@@ -507,12 +507,13 @@ template <class Fn>
 void ShapeCache::parallelFor(size_t n, Fn&& fn) {
   // Below a few thousand items waking the workers costs more than it saves.
   constexpr size_t kMinChunk = 1024;
-  if (params_.threads == 1 || n < 2 * kMinChunk) {
+  if ((params_.threads == 1 && !external_pool_) || n < 2 * kMinChunk) {
     for (size_t i = 0; i < n; ++i) fn(static_cast<uint32_t>(i));
     return;
   }
-  if (!pool_) pool_ = std::make_unique<WorkerPool>(params_.threads);
-  pool_->forRange(n, kMinChunk, [&](size_t begin, size_t end) {
+  if (!external_pool_ && !pool_) pool_ = std::make_unique<WorkerPool>(params_.threads);
+  WorkerPool& pool = external_pool_ ? *external_pool_ : *pool_;
+  pool.forRange(n, kMinChunk, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) fn(static_cast<uint32_t>(i));
   });
 }

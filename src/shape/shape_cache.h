@@ -154,6 +154,9 @@ class ShapeCache {
   uint32_t lastEnsured() const { return last_ensured_; }
 
   const ShapeParams& params() const { return params_; }
+  /// Runs the loops on `pool` (not owned; must outlive this cache) instead of starting its
+  /// own threads. Null: back to its own.
+  void setWorkerPool(WorkerPool* pool) { external_pool_ = pool; }
   const MeshAdjacency& adjacency() const { return adjacency_; }
   const ShapeUpdateStats& lastStats() const { return stats_; }
   /// Incremented by every compute()/update().
@@ -200,6 +203,7 @@ class ShapeCache {
 
   ShapeParams params_;
   std::unique_ptr<WorkerPool> pool_;  // started on the first loop long enough to share
+  WorkerPool* external_pool_ = nullptr;
   MeshAdjacency adjacency_;
   std::vector<std::array<uint32_t, 3>> faces_copy_;  // connectivity of the last compute
   bool computed_ = false;

@@ -522,3 +522,41 @@ TEST(AdaptiveMesh, ChangeListAndExports) {
 
 }  // namespace
 }  // namespace lodline
+
+namespace lodline {
+namespace {
+
+// The per-face pass split over worker threads leaves every decision unchanged: two meshes,
+// one adapting on three threads and one on the caller's, stay identical through a zooming
+// orbit with geomorphs.
+TEST(AdaptiveMesh, WorkerThreadsDoNotChangeTheResult) {
+  const Model& m = model("fine_torus");
+  ASSERT_FALSE(m.mesh.faces.empty());
+  AdaptiveMesh serial(m.pm), threaded(m.pm);
+  WorkerPool pool(3);
+  threaded.setWorkerPool(&pool);
+  DetailParams detail;
+  std::vector<std::array<uint32_t, 3>> a, b;
+  uint32_t ops = 0;
+  for (int k = 0; k < 120; ++k) {
+    const Camera cam = cameraAt(m.bounds, 3.0f * k, 30.0f, 2.0f + 4.0f * std::abs(std::sin(0.05f * k)));
+    ASSERT_TRUE(serial.setView(cam, kW, kH, detail).ok());
+    ASSERT_TRUE(threaded.setView(cam, kW, kH, detail).ok());
+    serial.adapt(1.0f / 30.0f);
+    threaded.adapt(1.0f / 30.0f);
+    ASSERT_EQ(serial.stats().splits, threaded.stats().splits) << k;
+    ASSERT_EQ(serial.stats().collapses, threaded.stats().collapses) << k;
+    ASSERT_EQ(serial.stats().visible_faces, threaded.stats().visible_faces) << k;
+    ASSERT_EQ(serial.stats().band_fraction, threaded.stats().band_fraction) << k;
+    serial.exportFaces(a);
+    threaded.exportFaces(b);
+    ASSERT_EQ(a, b) << k;
+    ops += serial.stats().splits + serial.stats().collapses;
+  }
+  EXPECT_GT(ops, 1000u);
+  EXPECT_GT(threaded.activeFaceCount(), 2u * 4096u);  // long enough to be split over threads
+  EXPECT_EQ(threaded.checkInvariants(), "");
+}
+
+}  // namespace
+}  // namespace lodline
