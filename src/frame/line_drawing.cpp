@@ -1,6 +1,7 @@
 #include "frame/line_drawing.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "core/timer.h"
@@ -13,6 +14,7 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
       params_(params),
       shape_(shape_params) {
   shape_.setWorkerPool(pool_.get());
+  scratch_.pool = pool_.get();
   bounds_ = computeBounds(mesh_.positions);
   Stopwatch sw;
   shape_.compute(mesh_);
@@ -78,24 +80,26 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     // extractZeroSet reads the test (pass 1 also forms it on other crossed edges, but only
     // such faces use it).
     const MeshAdjacency& adj = shape_.adjacency();
-    needed_mark_.resize(mesh_.positions.size(), 0);
-    needed_.clear();
+    const size_t nv = mesh_.positions.size();
+    needed_mark_.resize(nv, 0);
     const std::span<const float> kr = view_.kr, ndotv = view_.ndotv;
     const float gate = p.suggestive_min_ndotv;
-    for (size_t f = 0; f < mesh_.faces.size(); ++f) {
-      if (!adj.face_valid[f]) continue;
-      const auto& t = mesh_.faces[f];
-      const bool s0 = kr[t[0]] < 0.0f, s1 = kr[t[1]] < 0.0f, s2 = kr[t[2]] < 0.0f;
-      if (s0 == s1 && s1 == s2) continue;
-      if (ndotv[t[0]] < gate || ndotv[t[1]] < gate || ndotv[t[2]] < gate) continue;
-      for (uint32_t v : t)
-        if (!needed_mark_[v]) {
-          needed_mark_[v] = 1;
-          needed_.push_back(v);
-        }
+    pool_->forRange(mesh_.faces.size(), 4096, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; ++f) {
+        if (!adj.face_valid[f]) continue;
+        const auto& t = mesh_.faces[f];
+        const bool s0 = kr[t[0]] < 0.0f, s1 = kr[t[1]] < 0.0f, s2 = kr[t[2]] < 0.0f;
+        if (s0 == s1 && s1 == s2) continue;
+        if (ndotv[t[0]] < gate || ndotv[t[1]] < gate || ndotv[t[2]] < gate) continue;
+        for (uint32_t v : t) std::atomic_ref<uint8_t>(needed_mark_[v]).store(1, std::memory_order_relaxed);
+      }
+    });
+    needed_.clear();  // in vertex order, which the gathers below prefer
+    for (uint32_t v = 0; v < nv; ++v) {
+      if (!needed_mark_[v]) continue;
+      needed_.push_back(v);
+      needed_mark_[v] = 0;
     }
-    for (uint32_t v : needed_) needed_mark_[v] = 0;
-    std::sort(needed_.begin(), needed_.end());  // memory order for the gathers below
     shape_.ensureDerivatives(mesh_, needed_);
     fields.dcurv = shape_.dcurv();
     computeSuggestiveQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, needed_, view_);

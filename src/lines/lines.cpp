@@ -73,20 +73,27 @@ void extractZeroSet(std::span<const glm::vec3> positions,
     scratch.cross_num.resize(ne);
     scratch.cross_den.resize(ne);
   }
-  for (size_t e = 0; e < ne; ++e) {
-    const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
-    const float va = val[a], vb = val[b];
-    const bool c = (va < 0.0f) != (vb < 0.0f);
-    scratch.crosses[e] = c;
-    if (!c) continue;
-    float t = va / (va - vb);
-    if (!(t >= 0.0f && t <= 1.0f)) t = 0.5f;  // NaN input
-    const float s = 1.0f - t;
-    scratch.cross_point[e] = s * positions[a] + t * positions[b];
-    if (has_test) {
-      scratch.cross_num[e] = s * in.test_num[a] + t * in.test_num[b];
-      scratch.cross_den[e] = has_den ? s * in.test_den[a] + t * in.test_den[b] : 1.0f;
+  auto crossings = [&](size_t begin, size_t end) {
+    for (size_t e = begin; e < end; ++e) {
+      const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
+      const float va = val[a], vb = val[b];
+      const bool c = (va < 0.0f) != (vb < 0.0f);
+      scratch.crosses[e] = c;
+      if (!c) continue;
+      float t = va / (va - vb);
+      if (!(t >= 0.0f && t <= 1.0f)) t = 0.5f;  // NaN input
+      const float s = 1.0f - t;
+      scratch.cross_point[e] = s * positions[a] + t * positions[b];
+      if (has_test) {
+        scratch.cross_num[e] = s * in.test_num[a] + t * in.test_num[b];
+        scratch.cross_den[e] = has_den ? s * in.test_den[a] + t * in.test_den[b] : 1.0f;
+      }
     }
+  };
+  if (scratch.pool) {
+    scratch.pool->forRange(ne, 8192, crossings);
+  } else {
+    crossings(0, ne);
   }
 
   // Pass 2, per face: join the two crossings, keeping the pieces that pass the test.
@@ -160,20 +167,27 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
       if (e != kNoIndex) scratch.edge_mark[e] = 1;
     }
   }
-  for (size_t e = 0; e < ne; ++e) {
-    const uint32_t count = adj.edge_face_count[e];
-    if (count == 1) {
-      scratch.edge_mark[e] = params.boundaries ? 2 : scratch.edge_mark[e];
-    } else if (count == 2) {
-      if (!want_creases || scratch.edge_mark[e]) continue;
-      if (masked && (!crease_vertices[adj.edges[e][0]] || !crease_vertices[adj.edges[e][1]])) continue;
-      const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
-      const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
-      if (glm::dot(n1, n1) == 0.0f || glm::dot(n2, n2) == 0.0f) continue;
-      if (glm::dot(n1, n2) < cos_limit) scratch.edge_mark[e] = 1;
-    } else if (count > 2 && want_creases && params.marked_edges) {
-      scratch.edge_mark[e] = 1;
+  auto classify = [&](size_t begin, size_t end) {  // each edge writes only its own mark
+    for (size_t e = begin; e < end; ++e) {
+      const uint32_t count = adj.edge_face_count[e];
+      if (count == 1) {
+        scratch.edge_mark[e] = params.boundaries ? 2 : scratch.edge_mark[e];
+      } else if (count == 2) {
+        if (!want_creases || scratch.edge_mark[e]) continue;
+        if (masked && (!crease_vertices[adj.edges[e][0]] || !crease_vertices[adj.edges[e][1]])) continue;
+        const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
+        const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
+        if (glm::dot(n1, n1) == 0.0f || glm::dot(n2, n2) == 0.0f) continue;
+        if (glm::dot(n1, n2) < cos_limit) scratch.edge_mark[e] = 1;
+      } else if (count > 2 && want_creases && params.marked_edges) {
+        scratch.edge_mark[e] = 1;
+      }
     }
+  };
+  if (scratch.pool) {
+    scratch.pool->forRange(ne, 8192, classify);
+  } else {
+    classify(0, ne);
   }
   for (size_t e = 0; e < ne; ++e) {
     const uint8_t m = scratch.edge_mark[e];

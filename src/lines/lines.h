@@ -20,6 +20,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/mesh.h"
+#include "core/worker_pool.h"
 #include "lines/view_quantities.h"
 #include "shape/adjacency.h"
 #include "shape/shape_cache.h"
@@ -94,6 +95,8 @@ struct LineScratch {
   std::vector<uint8_t> crosses;
   std::vector<uint8_t> edge_mark;
   uint32_t next_interior_id = 0;
+  /// Optional threads (not owned) for the per-edge passes; the output is the same.
+  WorkerPool* pool = nullptr;
 };
 
 /// Appends to `out` the segments of the zero set of `in.value` over the valid faces of
