@@ -19,47 +19,67 @@ WorkerPool::~WorkerPool() {
   for (std::thread& t : workers_) t.join();
 }
 
-void WorkerPool::run(size_t n, unsigned parts, Call call, void* ctx) {
+WorkerPool::Awake::Awake(WorkerPool* pool) : pool_(pool) {
+  if (!pool_ || pool_->workers_.empty()) return;
+  if (pool_->awake_.fetch_add(1, std::memory_order_relaxed) == 0) {
+    std::lock_guard lock(pool_->mutex_);  // sleeping workers re-check and start polling
+  }
+  pool_->start_cv_.notify_all();
+}
+
+WorkerPool::Awake::~Awake() {
+  if (pool_ && !pool_->workers_.empty()) pool_->awake_.fetch_sub(1, std::memory_order_relaxed);
+}
+
+void WorkerPool::drain() {
+  const size_t chunks = (n_ + chunk_ - 1) / chunk_;
+  for (size_t c = next_.fetch_add(1, std::memory_order_relaxed); c < chunks;
+       c = next_.fetch_add(1, std::memory_order_relaxed))
+    call_(ctx_, c * chunk_, std::min(n_, (c + 1) * chunk_));
+}
+
+void WorkerPool::run(size_t n, size_t chunk, Call call, void* ctx) {
   std::lock_guard run_lock(run_mutex_);
+  const size_t chunks = (n + chunk - 1) / chunk;
+  n_ = n;
+  chunk_ = chunk;
+  call_ = call;
+  ctx_ = ctx;
+  next_.store(0, std::memory_order_relaxed);
+  const unsigned helpers = static_cast<unsigned>(std::min<size_t>(workers_.size(), chunks - 1));
+  helpers_.store(helpers, std::memory_order_relaxed);
+  unfinished_.store(helpers, std::memory_order_relaxed);
   {
+    // Under the mutex, so a worker about to sleep either sees the new loop or is woken.
     std::lock_guard lock(mutex_);
-    n_ = n;
-    parts_ = parts;
-    call_ = call;
-    ctx_ = ctx;
-    unfinished_ = parts - 1;  // the caller does part 0 itself
-    ++generation_;
+    generation_.fetch_add(1, std::memory_order_release);
   }
   start_cv_.notify_all();
-  call(ctx, 0, n / parts);
+  drain();  // the caller works too
+  if (waitBriefly([this] { return unfinished_.load(std::memory_order_acquire) == 0; })) return;
   std::unique_lock lock(mutex_);
-  done_cv_.wait(lock, [this] { return unfinished_ == 0; });
+  done_cv_.wait(lock, [this] { return unfinished_.load(std::memory_order_acquire) == 0; });
 }
 
 void WorkerPool::workerLoop(unsigned index) {
   uint64_t seen = 0;
   for (;;) {
-    size_t begin = 0, end = 0;
-    Call call = nullptr;
-    void* ctx = nullptr;
-    {
+    if (!waitBriefly([&] { return generation_.load(std::memory_order_acquire) != seen; })) {
       std::unique_lock lock(mutex_);
-      start_cv_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      start_cv_.wait(lock, [&] {
+        return stop_ || generation_.load(std::memory_order_acquire) != seen ||
+               awake_.load(std::memory_order_relaxed) > 0;
+      });
       if (stop_) return;
-      seen = generation_;
-      if (index >= parts_) continue;  // this loop has fewer chunks than threads
-      begin = n_ * index / parts_;
-      end = n_ * (index + 1) / parts_;
-      call = call_;
-      ctx = ctx_;
+      if (generation_.load(std::memory_order_acquire) == seen) continue;  // woken to poll
     }
-    call(ctx, begin, end);
-    bool last = false;
-    {
-      std::lock_guard lock(mutex_);
-      last = --unfinished_ == 0;
+    seen = generation_.load(std::memory_order_acquire);
+    if (index > helpers_.load(std::memory_order_relaxed)) continue;  // needs fewer threads
+    drain();
+    if (unfinished_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+      std::lock_guard lock(mutex_);  // pairs with the caller's predicate check
+      done_cv_.notify_one();
     }
-    if (last) done_cv_.notify_one();
   }
 }
 

@@ -1,7 +1,11 @@
 // A few worker threads for data-parallel loops over flat arrays (the shape stage's per-face
-// and per-vertex kernels). Owned by the stage that uses it — there is no global pool — and
-// idle workers sleep on a condition variable instead of spinning, so they take no CPU from
-// the GL driver's own threads between frames (llvmpipe renders on every core).
+// and per-vertex kernels). Owned by the stage that uses it — there is no global pool.
+//
+// Waking a sleeping thread costs 0.05–0.5 ms on these VMs, as much as a whole loop of a
+// frame. So a frame's CPU stages run inside a WorkerPool::Awake scope, during which idle
+// workers poll for the next loop instead of sleeping; outside it they poll for kSpinMicros
+// after a loop, then sleep on a condition variable, leaving the cores to the GL driver's
+// threads (llvmpipe renders on every core).
 //
 //   WorkerPool pool(0);                         // 0: one thread per core (caller included)
 //   pool.forRange(n, 1024, [&](size_t begin, size_t end) {
@@ -13,6 +17,8 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -35,33 +41,75 @@ class WorkerPool {
   /// Threads that run a loop, the caller included.
   unsigned threadCount() const { return static_cast<unsigned>(workers_.size()) + 1; }
 
-  /// Calls fn(begin, end) on contiguous, disjoint chunks that cover [0, n), one per thread,
-  /// and returns when all are done. Loops shorter than 2·min_chunk run inline. `fn` must not
-  /// throw. Calls from several threads at once are serialised.
+  /// While one exists, idle workers wait for the next loop by polling (wakes them now if
+  /// they sleep). Scopes nest.
+  class Awake {
+   public:
+    explicit Awake(WorkerPool* pool);
+    ~Awake();
+    Awake(const Awake&) = delete;
+    Awake& operator=(const Awake&) = delete;
+
+   private:
+    WorkerPool* pool_;
+  };
+
+  /// Calls fn(begin, end) on contiguous, disjoint chunks that cover [0, n) and returns when
+  /// all are done. Chunks hold at least min_chunk items (the last may hold fewer) and are
+  /// handed out as threads become free, so uneven work balances. Loops shorter than
+  /// 2·min_chunk run inline as one call. `fn` must not throw. Calls from several threads at
+  /// once are serialised.
   template <class Fn>
   void forRange(size_t n, size_t min_chunk, Fn&& fn) {
-    const size_t by_size = min_chunk > 0 ? n / min_chunk : n;
-    const unsigned parts = static_cast<unsigned>(std::min<size_t>(threadCount(), by_size));
-    if (parts <= 1) {
+    min_chunk = std::max<size_t>(min_chunk, 1);
+    if (threadCount() <= 1 || n < 2 * min_chunk) {
       if (n > 0) fn(size_t{0}, n);
       return;
     }
-    run(n, parts, [](void* ctx, size_t b, size_t e) { (*static_cast<std::remove_reference_t<Fn>*>(ctx))(b, e); },
+    // About 4 chunks per thread: enough to even out, few enough to keep the hand-out cheap.
+    const size_t chunk = std::max(min_chunk, (n + 4 * threadCount() - 1) / (4 * threadCount()));
+    run(n, chunk, [](void* ctx, size_t b, size_t e) { (*static_cast<std::remove_reference_t<Fn>*>(ctx))(b, e); },
         const_cast<void*>(static_cast<const void*>(&fn)));
   }
 
  private:
   using Call = void (*)(void*, size_t, size_t);
-  void run(size_t n, unsigned parts, Call call, void* ctx);
+  void run(size_t n, size_t chunk, Call call, void* ctx);
   void workerLoop(unsigned index);
+  void drain();  // takes chunks until none are left
+  // Polls `ready` while an Awake scope exists, else for up to kSpinMicros; true as soon as
+  // it holds.
+  template <class Ready>
+  bool waitBriefly(Ready&& ready) const {
+    auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(kSpinMicros);
+    for (unsigned i = 1;; ++i) {
+      if (ready()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();  // be gentle with a hyper-threaded sibling
+#endif
+      if ((i & 63) != 0) continue;
+      const auto now = std::chrono::steady_clock::now();
+      if (awake_.load(std::memory_order_relaxed) > 0) {
+        until = now + std::chrono::microseconds(kSpinMicros);
+      } else if (now > until) {
+        return false;
+      }
+    }
+  }
+  static constexpr int kSpinMicros = 100;
+  std::atomic<int> awake_{0};  // Awake scopes alive
 
   std::vector<std::thread> workers_;
   std::mutex run_mutex_;  // one loop at a time
   std::mutex mutex_;
   std::condition_variable start_cv_, done_cv_;
-  uint64_t generation_ = 0;
-  unsigned parts_ = 0, unfinished_ = 0;
-  size_t n_ = 0;
+  std::atomic<uint64_t> generation_{0};     // one per loop; workers watch it
+  // Workers taking part in the current loop (read by every worker, so atomic; the loop's
+  // other fields are read only by those, which the caller waits for).
+  std::atomic<unsigned> helpers_{0};
+  std::atomic<unsigned> unfinished_{0};    // of those, still working
+  size_t n_ = 0, chunk_ = 0;
+  std::atomic<size_t> next_{0};  // index of the next chunk to hand out
   Call call_ = nullptr;
   void* ctx_ = nullptr;
   bool stop_ = false;

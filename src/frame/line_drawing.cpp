@@ -38,6 +38,7 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
 void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
                              std::span<const std::array<uint32_t, 3>> faces,
                              std::span<const uint32_t> changed) {
+  const WorkerPool::Awake awake(pool_.get());
   Stopwatch sw;
   mesh_.positions.assign(positions.begin(), positions.end());
   mesh_.faces.assign(faces.begin(), faces.end());
@@ -58,6 +59,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   p.marked_edges = p.marked_edges && p.creases;
   p.boundaries = p.boundaries && enabled[static_cast<int>(LineKind::kBoundary)];
 
+  const WorkerPool::Awake awake(pool_.get());
   Stopwatch sw;
   SurfaceFields fields = shape_.fields(mesh_);
   const bool lazy = p.suggestive && shape_.params().derivatives && shape_.params().lazy_derivatives;

@@ -100,6 +100,7 @@ Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const 
 
 Status LodDrawing::frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
                          const std::array<bool, kLineKindCount>& enabled, float smoothing) {
+  const WorkerPool::Awake awake(&drawing_.workers());  // the stages' loops come back to back
   if (Status s = adaptStep(camera, width, height, detail, dt); !s) return s;
   drawing_.update(camera, enabled, smoothing);
   return {};
@@ -107,6 +108,7 @@ Status LodDrawing::frame(const Camera& camera, int width, int height, const Deta
 
 Result<int> LodDrawing::converge(const Camera& camera, int width, int height, const DetailParams& detail,
                                  float dt, int max_steps, const std::array<bool, kLineKindCount>& enabled) {
+  const WorkerPool::Awake awake(&drawing_.workers());
   int steps = 0;
   bool changed_any = first_;
   if (cluster_) {  // clustering has no state between frames: one step is converged

@@ -141,6 +141,9 @@ AdaptiveMesh::AdaptiveMesh(const ProgressiveMesh& pm) : pm_(pm) {
   morph_pos_.assign(cap, kNone);
   slot_locked_.assign(cap, 0);
   illegal_frame_.assign(cap, 0);
+  pre_node_.assign(cap, kNone);
+  pre_visible_.assign(cap, 0);
+  pre_target_.assign(cap, 0.0f);
   dirty_stamp_.assign(cap, 0);
   ring_sum_.assign(cap, 0.0);
   slot_bounds_.assign(cap, NodeBounds{});
@@ -797,6 +800,23 @@ void AdaptiveMesh::evaluatePass() {
   work_.clear();
   for (uint32_t slot = 0; slot < slot_count_; ++slot)
     if (slot_node_[slot] != kNone) work_.push_back(slot);
+  // Visibility and target of every listed vertex, in parallel: they depend only on the
+  // slot's node (its bounds) and the view. Used while the slot still holds that node.
+  const size_t listed = work_.size();
+  auto classify = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const uint32_t slot = work_[i];
+      const NodeBounds& nb = slot_bounds_[slot];
+      pre_node_[slot] = slot_node_[slot];
+      pre_visible_[slot] = visible(nb);
+      pre_target_[slot] = targetAt(nb.pos);
+    }
+  };
+  if (pool_) {
+    pool_->forRange(listed, 4096, classify);
+  } else {
+    classify(0, listed);
+  }
   const float t_s = params_.t_s, t_c = params_.t_c;
   const bool morph = params_.geomorphs && params_.morph_time > 0.0f;
   for (size_t i = 0; i < work_.size(); ++i) {
@@ -812,7 +832,8 @@ void AdaptiveMesh::evaluatePass() {
     if (v == kNone) continue;
     const NodeBounds& nb = slot_bounds_[slot];
     const uint32_t p = nb.parent;
-    const bool vis = visible(nb);
+    const bool known = i < listed && pre_node_[slot] == v;
+    const bool vis = known ? pre_visible_[slot] != 0 : visible(nb);
     if (slot_locked_[slot]) {
       // Off-screen: a pending collapse executes at once (p can only be invisible if v is).
       if (!vis && nb.sibling != kNone && !visible(bounds_[p])) {
@@ -821,7 +842,7 @@ void AdaptiveMesh::evaluatePass() {
       continue;
     }
     if (vis && !pm_.isLeaf(v)) {
-      const float target = targetAt(nb.pos);
+      const float target = known ? pre_target_[slot] : targetAt(nb.pos);
       const float mean = ringMean(v);
       if (mean > t_s * target) {
         split_speedup_ = clampf(mean / (t_s * target), 1.0f, params_.max_morph_speedup);
@@ -843,7 +864,7 @@ void AdaptiveMesh::evaluatePass() {
         work_.push_back(slot);
       continue;
     }
-    const float target = targetAt(nb.pos);  // p has v's position
+    const float target = known ? pre_target_[slot] : targetAt(nb.pos);  // p has v's position
     // Cheap estimate first; the decision itself uses the exact post-collapse mean, the same
     // quantity the split of p compares with t_s·T, so a pair never flips back and forth.
     if (!(estimatedMean(slot, su) < kEstimateMargin * t_c * target) || !collapseMayBeLegal(slot, su, p))

@@ -265,6 +265,10 @@ class AdaptiveMesh {
   std::vector<uint32_t> morph_pos_;
   std::vector<uint8_t> slot_locked_;     // copy of kLocked of the slot's node (read per frame)
   std::vector<uint32_t> illegal_frame_;  // frame whose check found the slot's collapse illegal
+  // evaluatePass(): node, visibility and target T of each slot, computed up front.
+  std::vector<uint32_t> pre_node_;
+  std::vector<uint8_t> pre_visible_;
+  std::vector<float> pre_target_;
   std::vector<uint32_t> dirty_stamp_, moved_stamp_;
   std::vector<NodeBounds> slot_bounds_;  // copy of bounds_ of the slot's node
   std::vector<double> ring_sum_;   // per slot: sum of the image areas of the incident faces

@@ -234,15 +234,26 @@ bool updateAdjacency(const TriMesh& mesh, std::span<const std::array<uint32_t, 3
   adj.ring_limit.resize(nv, storage);
   adj.vertex_on_boundary.resize(nv, 0);
   std::vector<uint32_t>& touched = adj.scratch_edge;
-  std::vector<uint32_t>& mark = adj.scratch_seen;  // 1: in `touched`
+  std::vector<uint8_t>& mark = adj.scratch_mark;  // 1: in `touched` (all 0 between calls)
   touched.clear();
-  mark.assign(nv, 0);
+  mark.resize(nv, 0);
   auto touch = [&](uint32_t v) {
     if (!mark[v]) {
       mark[v] = 1;
       touched.push_back(v);
     }
   };
+
+  // Unchanged faces that the new vertices make valid join the faces to add.
+  std::vector<uint32_t>& added = adj.scratch_added;
+  added.assign(changed.begin(), changed.end());
+  const uint32_t common = std::min(old_nf, nf);
+  if (nv > old_nv && std::find(adj.face_valid.begin(), adj.face_valid.begin() + common, 0) !=
+                         adj.face_valid.begin() + common) {
+    for (uint32_t f = 0; f < common; ++f)
+      if (!adj.face_valid[f] && old_faces[f] == mesh.faces[f] && validTriple(mesh.faces[f], nv))
+        added.push_back(f);
+  }
 
   // 1. Take every changed slot's old face out of the rings and off its edges.
   for (uint32_t f : changed) {
@@ -264,15 +275,7 @@ bool updateAdjacency(const TriMesh& mesh, std::span<const std::array<uint32_t, 3
   adj.face_count = nf;
 
   // 2. Put the new faces in, and the unchanged faces that only the new vertices make valid
-  // (an index that was out of range).
-  std::vector<uint32_t>& added = adj.scratch_added;
-  added.assign(changed.begin(), changed.end());
-  if (nv > old_nv) {
-    const uint32_t common = std::min(old_nf, nf);
-    for (uint32_t f = 0; f < common; ++f)
-      if (!adj.face_valid[f] && old_faces[f] == mesh.faces[f] && validTriple(mesh.faces[f], nv))
-        added.push_back(f);
-  }
+  // (an index that was out of range; found before step 1 below).
   for (uint32_t f : added) {
     if (f >= nf) continue;
     const auto& t = mesh.faces[f];
@@ -313,6 +316,7 @@ bool updateAdjacency(const TriMesh& mesh, std::span<const std::array<uint32_t, 3
       on = adj.edge_face_count[fe[c]] != 2 || adj.edge_face_count[fe[c == 0 ? 2 : c - 1]] != 2;
     }
     adj.vertex_on_boundary[v] = on;
+    mark[v] = 0;
   }
   return true;
 }

@@ -101,7 +101,7 @@ void detailFrame(benchmark::State& state, const std::string& name) {
     renderer->draw(cam, rp, rp.width, rp.height);
     glFinish();
     draw.push_back(sw.lap());
-    faces.push_back(static_cast<double>(controlled.drawing().mesh().faceCount()));
+    faces.push_back(static_cast<double>(controlled.lod()->activeFaceCount()));
     // The same adapted mesh drawn again: the static cost of what controlled detail draws.
     renderer->draw(cam, rp, rp.width, rp.height);
     glFinish();
