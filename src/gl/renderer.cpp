@@ -22,7 +22,15 @@ void setMatrices(GLuint program, const Camera& camera, float aspect) {
 template <class T>
 void uploadArray(GLenum target, const GlBuffer& buffer, std::span<const T> data) {
   glBindBuffer(target, buffer.id());
-  glBufferData(target, static_cast<GLsizeiptr>(data.size_bytes()), data.data(), GL_DYNAMIC_DRAW);
+  GLint64 capacity = 0;
+  glGetBufferParameteri64v(target, GL_BUFFER_SIZE, &capacity);
+  const auto bytes = static_cast<GLsizeiptr>(data.size_bytes());
+  if (bytes <= capacity && bytes > 0) {
+    glBufferSubData(target, 0, bytes, data.data());
+  } else {
+    glBufferData(target, bytes + bytes / 2, nullptr, GL_DYNAMIC_DRAW);
+    if (bytes > 0) glBufferSubData(target, 0, bytes, data.data());
+  }
 }
 
 }  // namespace
