@@ -36,8 +36,9 @@ constexpr size_t kMaxStack = 1u << 20;
 constexpr uint32_t kRetryFrames = 8;
 /// Evaluation passes per frame at most (a pass repeats only while it changes a lot).
 constexpr int kMaxPasses = 4;
-/// The exact post-collapse mean is computed only when the estimate is below this × t_c·T
-/// (on the knot and armadillo orbits the exact mean was never below estimate / 1.09).
+/// The exact post-collapse mean is computed only when the estimate is below this × t_c·T.
+/// Measured over 240-frame zooming orbits of the 1.1M knot, the armadillo and the bunny:
+/// every collapse taken had an estimate below 1.155 × t_c·T.
 constexpr float kEstimateMargin = 1.25f;
 /// How many work-list entries ahead evaluatePass() prefetches per-node data.
 constexpr size_t kPrefetchAhead = 8;
