@@ -42,9 +42,24 @@ void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
   Stopwatch sw;
   mesh_.positions.assign(positions.begin(), positions.end());
   mesh_.faces.assign(faces.begin(), faces.end());
+  updateShape(changed);
+  timings_.shape = sw.lap();
+}
+
+void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
+                             std::vector<std::array<uint32_t, 3>>& faces,
+                             std::span<const uint32_t> changed) {
+  const WorkerPool::Awake awake(pool_.get());
+  Stopwatch sw;
+  mesh_.positions.assign(positions.begin(), positions.end());
+  mesh_.faces.swap(faces);
+  updateShape(changed);
+  timings_.shape = sw.lap();
+}
+
+void LineDrawing::updateShape(std::span<const uint32_t> changed) {
   mesh_.marked_edges.clear();  // marked edges refer to full-detail vertex ids
   shape_.update(mesh_, changed);
-  timings_.shape = sw.lap();
 }
 
 std::span<const glm::vec3> LineDrawing::normals() const {

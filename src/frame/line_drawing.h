@@ -38,6 +38,9 @@ class LineDrawing {
   /// to a full recompute). Unused slots may hold any finite position.
   void updateMesh(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
                   std::span<const uint32_t> changed);
+  /// The same, taking `faces` by swapping buffers (it gets the previous face array back).
+  void updateMesh(std::span<const glm::vec3> positions, std::vector<std::array<uint32_t, 3>>& faces,
+                  std::span<const uint32_t> changed);
 
   /// Recomputes the lines for `camera`. Kinds disabled in `enabled` are not extracted.
   /// `smoothing` < 1 blends normals, kr and Dw kr with the previous frames' values by that
@@ -75,6 +78,7 @@ class LineDrawing {
   WorkerPool& workers() { return *pool_; }
 
  private:
+  void updateShape(std::span<const uint32_t> changed);
   std::unique_ptr<WorkerPool> pool_;  // ShapeParams::threads threads, caller included
   TriMesh mesh_;
   Bounds bounds_;

@@ -592,7 +592,9 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
       }
     }
     for (uint32_t v = old_nv; v < nv; ++v) seed(v);
-    faces_copy_.assign(mesh.faces.begin(), mesh.faces.end());
+    faces_copy_.resize(nf);  // only the changed slots differ
+    for (uint32_t f : changed_faces_)
+      if (f < nf) faces_copy_[f] = mesh.faces[f];
   }
   // The nested support sets, as prefixes of inc_faces_ / inc_verts_ (level = ring):
   //   C = changed; F1 = faces of C (geometry, corner areas); V1 = their vertices (normals,
