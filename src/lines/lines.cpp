@@ -96,55 +96,88 @@ void extractZeroSet(std::span<const glm::vec3> positions,
     crossings(0, ne);
   }
 
-  // Pass 2, per face: join the two crossings, keeping the pieces that pass the test.
+  // Pass 2, per face: join the two crossings, keeping the pieces that pass the test. Points
+  // inside a face get ids from `interior` up, in face order.
+  auto faces_pass = [&](size_t begin, size_t end, LineSet& dst, uint32_t& interior_id) {
+    for (size_t f = begin; f < end; ++f) {
+      if (!adj.face_valid[f]) continue;
+      const auto& t = faces[f];
+      const bool s0 = val[t[0]] < 0.0f, s1 = val[t[1]] < 0.0f, s2 = val[t[2]] < 0.0f;
+      if (s0 == s1 && s1 == s2) continue;
+      if (has_gate && (in.gate[t[0]] < in.gate_min || in.gate[t[1]] < in.gate_min ||
+                       in.gate[t[2]] < in.gate_min))
+        continue;
+      if (has_test) {  // quick reject: the test fails at all three vertices
+        bool all_fail = true;
+        for (uint32_t v : t)
+          if (passes(in.test_num[v], has_den ? in.test_den[v] : 1.0f)) { all_fail = false; break; }
+        if (all_fail) continue;
+      }
+      // The lone corner i has the other sign; its two sides i and i-1 cross.
+      const int i = (s0 == s1) ? 2 : (s0 == s2 ? 1 : 0);
+      const uint32_t e1 = adj.face_edges[f][i];
+      const uint32_t e2 = adj.face_edges[f][(i + 2) % 3];
+      const glm::vec3& p1 = scratch.cross_point[e1];
+      const glm::vec3& p2 = scratch.cross_point[e2];
+      if (!has_test) {
+        pushSegment(dst, type, static_cast<uint32_t>(f), p1, e1, 1.0f, p2, e2, 1.0f);
+        continue;
+      }
+      const float n1 = scratch.cross_num[e1], n2 = scratch.cross_num[e2];
+      const float d1 = scratch.cross_den[e1], d2 = scratch.cross_den[e2];
+      // Breakpoints where num or den change sign along p1→p2 (linear interpolation).
+      float z[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+      int nz = 1;
+      if ((n1 >= 0.0f) != (n2 >= 0.0f)) z[nz++] = n1 / (n1 - n2);
+      if ((d1 >= 0.0f) != (d2 >= 0.0f)) z[nz++] = d1 / (d1 - d2);
+      z[nz++] = 1.0f;
+      if (nz == 4 && z[2] < z[1]) std::swap(z[1], z[2]);
+      for (int k = 0; k + 1 < nz; ++k) {
+        const float za = z[k], zb = z[k + 1];
+        if (!(zb > za)) continue;
+        const float zm = 0.5f * (za + zb);
+        const float nm = (1.0f - zm) * n1 + zm * n2, dm = (1.0f - zm) * d1 + zm * d2;
+        if (!passes(nm, dm)) continue;
+        const float na = (1.0f - za) * n1 + za * n2, da = (1.0f - za) * d1 + za * d2;
+        const float nb = (1.0f - zb) * n1 + zb * n2, db = (1.0f - zb) * d1 + zb * d2;
+        const glm::vec3 pa = k == 0 ? p1 : (1.0f - za) * p1 + za * p2;
+        const glm::vec3 pb = k + 2 == nz ? p2 : (1.0f - zb) * p1 + zb * p2;
+        const uint32_t ida = k == 0 ? e1 : interior_id++;
+        const uint32_t idb = k + 2 == nz ? e2 : interior_id++;
+        pushSegment(dst, type, static_cast<uint32_t>(f), pa, ida, fadeAlpha(na, da, in.fade), pb,
+                    idb, fadeAlpha(nb, db, in.fade));
+      }
+    }
+  };
   uint32_t interior_id = std::max(scratch.next_interior_id, static_cast<uint32_t>(ne));
-  for (size_t f = 0; f < faces.size(); ++f) {
-    if (!adj.face_valid[f]) continue;
-    const auto& t = faces[f];
-    const bool s0 = val[t[0]] < 0.0f, s1 = val[t[1]] < 0.0f, s2 = val[t[2]] < 0.0f;
-    if (s0 == s1 && s1 == s2) continue;
-    if (has_gate && (in.gate[t[0]] < in.gate_min || in.gate[t[1]] < in.gate_min ||
-                     in.gate[t[2]] < in.gate_min))
-      continue;
-    if (has_test) {  // quick reject: the test fails at all three vertices
-      bool all_fail = true;
-      for (uint32_t v : t)
-        if (passes(in.test_num[v], has_den ? in.test_den[v] : 1.0f)) { all_fail = false; break; }
-      if (all_fail) continue;
-    }
-    // The lone corner i has the other sign; its two sides i and i-1 cross.
-    const int i = (s0 == s1) ? 2 : (s0 == s2 ? 1 : 0);
-    const uint32_t e1 = adj.face_edges[f][i];
-    const uint32_t e2 = adj.face_edges[f][(i + 2) % 3];
-    const glm::vec3& p1 = scratch.cross_point[e1];
-    const glm::vec3& p2 = scratch.cross_point[e2];
-    if (!has_test) {
-      pushSegment(out, type, static_cast<uint32_t>(f), p1, e1, 1.0f, p2, e2, 1.0f);
-      continue;
-    }
-    const float n1 = scratch.cross_num[e1], n2 = scratch.cross_num[e2];
-    const float d1 = scratch.cross_den[e1], d2 = scratch.cross_den[e2];
-    // Breakpoints where num or den change sign along p1→p2 (linear interpolation).
-    float z[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-    int nz = 1;
-    if ((n1 >= 0.0f) != (n2 >= 0.0f)) z[nz++] = n1 / (n1 - n2);
-    if ((d1 >= 0.0f) != (d2 >= 0.0f)) z[nz++] = d1 / (d1 - d2);
-    z[nz++] = 1.0f;
-    if (nz == 4 && z[2] < z[1]) std::swap(z[1], z[2]);
-    for (int k = 0; k + 1 < nz; ++k) {
-      const float za = z[k], zb = z[k + 1];
-      if (!(zb > za)) continue;
-      const float zm = 0.5f * (za + zb);
-      const float nm = (1.0f - zm) * n1 + zm * n2, dm = (1.0f - zm) * d1 + zm * d2;
-      if (!passes(nm, dm)) continue;
-      const float na = (1.0f - za) * n1 + za * n2, da = (1.0f - za) * d1 + za * d2;
-      const float nb = (1.0f - zb) * n1 + zb * n2, db = (1.0f - zb) * d1 + zb * d2;
-      const glm::vec3 pa = k == 0 ? p1 : (1.0f - za) * p1 + za * p2;
-      const glm::vec3 pb = k + 2 == nz ? p2 : (1.0f - zb) * p1 + zb * p2;
-      const uint32_t ida = k == 0 ? e1 : interior_id++;
-      const uint32_t idb = k + 2 == nz ? e2 : interior_id++;
-      pushSegment(out, type, static_cast<uint32_t>(f), pa, ida, fadeAlpha(na, da, in.fade), pb,
-                  idb, fadeAlpha(nb, db, in.fade));
+  const size_t nf = faces.size();
+  if (!scratch.pool || nf < 16384) {
+    faces_pass(0, nf, out, interior_id);
+  } else {
+    // In parts on the worker threads, each into its own set with ids from ne, then appended
+    // in face order with the ids shifted: the same output as one pass.
+    const size_t parts = 4 * scratch.pool->threadCount();
+    scratch.part_sets.resize(parts);
+    scratch.part_interior.assign(parts, 0);
+    scratch.pool->forRange(parts, 1, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; ++c) {
+        LineSet& part = scratch.part_sets[c];
+        part.clear();
+        uint32_t id = static_cast<uint32_t>(ne);
+        faces_pass(nf * c / parts, nf * (c + 1) / parts, part, id);
+        scratch.part_interior[c] = id - static_cast<uint32_t>(ne);
+      }
+    });
+    for (size_t c = 0; c < parts; ++c) {
+      const LineSet& part = scratch.part_sets[c];
+      const uint32_t shift = interior_id - static_cast<uint32_t>(ne);
+      out.points.insert(out.points.end(), part.points.begin(), part.points.end());
+      out.alpha.insert(out.alpha.end(), part.alpha.begin(), part.alpha.end());
+      for (uint32_t id : part.point_ids) out.point_ids.push_back(id >= ne ? id + shift : id);
+      out.types.insert(out.types.end(), part.types.begin(), part.types.end());
+      out.sources.insert(out.sources.end(), part.sources.begin(), part.sources.end());
+      for (int k = 0; k < kLineTypeCount; ++k) out.counts[k] += part.counts[k];
+      interior_id += scratch.part_interior[c];
     }
   }
   scratch.next_interior_id = interior_id;

@@ -95,8 +95,11 @@ struct LineScratch {
   std::vector<uint8_t> crosses;
   std::vector<uint8_t> edge_mark;
   uint32_t next_interior_id = 0;
-  /// Optional threads (not owned) for the per-edge passes; the output is the same.
+  /// Optional threads (not owned) for the per-edge and per-face passes; the output is the
+  /// same.
   WorkerPool* pool = nullptr;
+  std::vector<LineSet> part_sets;       // per-face pass, one set per part
+  std::vector<uint32_t> part_interior;  // interior ids each part used
 };
 
 /// Appends to `out` the segments of the zero set of `in.value` over the valid faces of

@@ -500,3 +500,37 @@ TEST(LineTypes, Names) {
 
 }  // namespace
 }  // namespace lodline
+
+namespace lodline {
+namespace {
+
+// The per-edge and per-face passes split over worker threads give exactly the serial output
+// (same segments in the same order, same point ids), for all line kinds together.
+TEST(ExtractLines, WorkerThreadsGiveTheSerialOutput) {
+  const TriMesh m = makeTorusKnot(2, 3, 1.0f, 0.2f, 600, 24, 0.18f);  // 28,800 faces
+  ShapeCache shape;
+  shape.compute(m);
+  ViewSpec view;
+  view.eye = {0.3f, 1.2f, 3.5f};
+  const float fs = computeFeatureSize(shape.k1(), shape.k2(), computeBounds(m.positions).radius);
+  ViewQuantities vq;
+  const LineParams params;
+  computeViewQuantities(shape.fields(m), view, params.suggestive_threshold / (fs * fs), vq);
+  LineScratch serial_scratch, threaded_scratch;
+  WorkerPool pool(3);
+  threaded_scratch.pool = &pool;
+  LineSet serial, threaded;
+  extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, serial_scratch, serial);
+  extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, threaded_scratch, threaded);
+  ASSERT_GT(serial.counts[static_cast<int>(LineType::kContour)], 100u);
+  ASSERT_GT(serial.counts[static_cast<int>(LineType::kSuggestive)], 100u);
+  EXPECT_EQ(serial.counts, threaded.counts);
+  EXPECT_EQ(serial.points, threaded.points);
+  EXPECT_EQ(serial.alpha, threaded.alpha);
+  EXPECT_EQ(serial.point_ids, threaded.point_ids);
+  EXPECT_EQ(serial.types, threaded.types);
+  EXPECT_EQ(serial.sources, threaded.sources);
+}
+
+}  // namespace
+}  // namespace lodline
