@@ -16,8 +16,7 @@ void StrokeSet::clear() {
 
 namespace {
 constexpr uint32_t kNone = 0xffffffffu;
-constexpr uint64_t kEndBits = 30;  // endpoint index bits in a sort key
-constexpr uint64_t kEndMask = (uint64_t{1} << kEndBits) - 1;
+constexpr uint64_t kEndMask = (uint64_t{1} << 30) - 1;  // most segment ends supported
 }  // namespace
 
 void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch) {
@@ -25,26 +24,44 @@ void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch) {
   const size_t ns = lines.segmentCount();
   const size_t nends = 2 * ns;
   LODLINE_ASSERT(nends <= kEndMask);
-  // Sort ends by (type, point id); key = type(2 bits) | id(32 bits) | end index(30 bits).
-  scratch.keys.resize(nends);
-  for (size_t k = 0; k < nends; ++k) {
-    const uint64_t type = static_cast<uint64_t>(lines.types[k / 2]);
-    scratch.keys[k] = (type << 62) | (uint64_t{lines.point_ids[k]} << kEndBits) | k;
-  }
-  std::sort(scratch.keys.begin(), scratch.keys.end());
+  // Partner ends: two ends join when they are the only two with their (type, point id).
+  // Ids are small (edge, vertex or interior indices), so a table indexed by id·types + type
+  // finds them in one pass; only the entries touched are reset afterwards.
   scratch.partner.assign(nends, kNone);
-  for (size_t i = 0; i < nends;) {
-    size_t j = i + 1;
-    while (j < nends && (scratch.keys[j] >> kEndBits) == (scratch.keys[i] >> kEndBits)) ++j;
-    if (j - i == 2) {
-      const uint32_t a = static_cast<uint32_t>(scratch.keys[i] & kEndMask);
-      const uint32_t b = static_cast<uint32_t>(scratch.keys[i + 1] & kEndMask);
+  uint32_t max_id = 0;
+  for (uint32_t id : lines.point_ids) max_id = std::max(max_id, id);
+  const size_t table_size = (static_cast<size_t>(max_id) + 1) * kLineTypeCount;
+  if (scratch.first_end.size() < table_size) {
+    scratch.first_end.resize(table_size, kNone);
+    scratch.end_count.resize(table_size, 0);
+  }
+  auto slot = [&](size_t k) {
+    return static_cast<size_t>(lines.point_ids[k]) * kLineTypeCount +
+           static_cast<size_t>(lines.types[k / 2]);
+  };
+  for (size_t k = 0; k < nends; ++k) {
+    const size_t t = slot(k);
+    uint8_t& n = scratch.end_count[t];
+    if (n == 0) {
+      scratch.first_end[t] = static_cast<uint32_t>(k);
+    } else if (n == 1) {
+      const uint32_t a = scratch.first_end[t], b = static_cast<uint32_t>(k);
       if (a / 2 != b / 2) {  // a degenerate segment joining a point to itself stays alone
         scratch.partner[a] = b;
         scratch.partner[b] = a;
       }
+    } else if (n == 2) {  // a third end: a junction, nobody joins here
+      const uint32_t a = scratch.first_end[t];
+      const uint32_t b = scratch.partner[a];
+      scratch.partner[a] = kNone;
+      if (b != kNone) scratch.partner[b] = kNone;
     }
-    i = j;
+    if (n < 3) ++n;
+  }
+  for (size_t k = 0; k < nends; ++k) {
+    const size_t t = slot(k);
+    scratch.end_count[t] = 0;
+    scratch.first_end[t] = kNone;
   }
 
   scratch.used.assign(ns, 0);

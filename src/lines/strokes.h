@@ -30,9 +30,11 @@ struct StrokeSet {
 
 /// Scratch of chainStrokes(); reuse between calls.
 struct ChainScratch {
-  std::vector<uint64_t> keys;
   std::vector<uint32_t> partner;
   std::vector<uint8_t> used;
+  // Per (point id, type): the first end seen and how many ends share it (kept reset).
+  std::vector<uint32_t> first_end;
+  std::vector<uint8_t> end_count;
 };
 
 /// Joins the segments of `lines` into strokes: two segment ends join when they have the same

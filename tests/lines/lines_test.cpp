@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <random>
 #include <numbers>
 #include <vector>
 
@@ -530,6 +532,60 @@ TEST(ExtractLines, WorkerThreadsGiveTheSerialOutput) {
   EXPECT_EQ(serial.point_ids, threaded.point_ids);
   EXPECT_EQ(serial.types, threaded.types);
   EXPECT_EQ(serial.sources, threaded.sources);
+}
+
+}  // namespace
+}  // namespace lodline
+
+namespace lodline {
+namespace {
+
+// chainStrokes joins two segment ends exactly when they are the only two ends with their
+// (type, point id), and never a segment to itself: checked on random segments with many
+// shared ids (junctions of three and more ends) and degenerate segments.
+TEST(Strokes, JoinExactlyTheEndsThatPairUp) {
+  std::mt19937 rng(5);
+  for (int round = 0; round < 20; ++round) {
+    LineSet lines;
+    const int ns = 200 + static_cast<int>(rng() % 300);
+    std::map<std::pair<int, uint32_t>, int> ends_with_key;  // (type, id) -> count
+    for (int k = 0; k < ns; ++k) {
+      const auto type = static_cast<LineType>(rng() % 2);
+      const uint32_t a = rng() % 90, b = (rng() % 10 == 0) ? a : rng() % 90;
+      for (uint32_t id : {a, b}) {
+        lines.points.push_back(glm::vec3(static_cast<float>(id), static_cast<float>(type), 0.0f));
+        lines.alpha.push_back(1.0f);
+        lines.point_ids.push_back(id);
+        ++ends_with_key[{static_cast<int>(type), id}];
+      }
+      lines.types.push_back(type);
+      lines.sources.push_back(static_cast<uint32_t>(k));
+      ++lines.counts[static_cast<int>(type)];
+    }
+    StrokeSet strokes;
+    ChainScratch scratch;
+    chainStrokes(lines, strokes, scratch);
+    auto count = [&](const glm::vec3& p) {
+      return ends_with_key[{static_cast<int>(p.y), static_cast<uint32_t>(p.x)}];
+    };
+    size_t segments = 0;
+    for (size_t s = 0; s < strokes.strokeCount(); ++s) {
+      const uint32_t b = strokes.offsets[s], e = strokes.offsets[s + 1];
+      ASSERT_GE(e - b, 2u);
+      segments += e - b - 1;
+      for (uint32_t i = b + 1; i + 1 < e; ++i) ASSERT_EQ(count(strokes.points[i]), 2) << round;  // joints
+      if (strokes.closed[s]) {
+        ASSERT_EQ(strokes.points[b], strokes.points[e - 1]);
+        ASSERT_EQ(count(strokes.points[b]), 2) << round;
+      } else if (!(e - b == 2 && strokes.points[b] == strokes.points[b + 1])) {
+        // Open strokes stop where the ends do not pair up (a lone degenerate segment may
+        // hold both ends of its id).
+        ASSERT_NE(count(strokes.points[b]), 2) << round;
+        ASSERT_NE(count(strokes.points[e - 1]), 2) << round;
+      }
+    }
+    EXPECT_EQ(segments, static_cast<size_t>(ns)) << round;
+  }
 }
 
 }  // namespace
