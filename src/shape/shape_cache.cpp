@@ -526,13 +526,12 @@ void ShapeCache::forEachMarked(bool faces, size_t count, uint8_t max_level, Fn&&
   if (count * 16 < stamps.size()) {
     parallelFor(count, [&](uint32_t k) { fn(list[k]); });  // few: list order
   } else {
-    // Many: memory order, much kinder to the caches than the list's random order. Gathered
-    // first, so the threads get equal shares (changes cluster: a view-dependent mesh
-    // appends the faces of recent splits, which are also the ones morphing).
-    ordered_.clear();
-    for (uint32_t i = 0; i < stamps.size(); ++i)
-      if (stamps[i] == stamp_ && levels[i] <= max_level) ordered_.push_back(i);
-    parallelFor(ordered_.size(), [&](uint32_t k) { fn(ordered_[k]); });
+    // Many: memory order, much kinder to the caches than the list's random order. Changes
+    // cluster (a view-dependent mesh appends the faces of recent splits, which are also the
+    // ones morphing); the pool's chunks are handed out as threads free up, which evens that out.
+    parallelFor(stamps.size(), [&](uint32_t i) {
+      if (stamps[i] == stamp_ && levels[i] <= max_level) fn(i);
+    });
   }
 }
 

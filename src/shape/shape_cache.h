@@ -242,7 +242,6 @@ class ShapeCache {
   uint32_t stamp_ = 0;
   std::vector<uint32_t> inc_verts_, inc_faces_;
   std::vector<uint32_t> changed_faces_;  // face slots whose triple changed in this update
-  std::vector<uint32_t> ordered_;        // forEachMarked: the marked items in memory order
   // Lazy derivatives: a vertex's tensor / a face's fit is current iff its entry == dgen_.
   std::vector<uint32_t> vertex_dgen_, face_dgen_;
   uint32_t dgen_ = 1;
