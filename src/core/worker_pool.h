@@ -32,7 +32,7 @@ namespace lodline {
 class WorkerPool {
  public:
   /// `threads` counts the calling thread too: 1 runs everything inline; 0 uses
-  /// std::thread::hardware_concurrency() (at most 16).
+  /// std::thread::hardware_concurrency() (at most 8: these loops gain little beyond).
   explicit WorkerPool(unsigned threads = 0);
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
