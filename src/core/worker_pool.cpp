@@ -6,6 +6,7 @@ namespace lodline {
 
 WorkerPool::WorkerPool(unsigned threads) {
   if (threads == 0) threads = std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
+  threads = std::min(threads, 256u);  // the helper count of a loop travels in 8 bits
   workers_.reserve(threads - 1);
   for (unsigned i = 1; i < threads; ++i) workers_.emplace_back([this, i] { workerLoop(i); });
 }
@@ -47,12 +48,12 @@ void WorkerPool::run(size_t n, size_t chunk, Call call, void* ctx) {
   ctx_ = ctx;
   next_.store(0, std::memory_order_relaxed);
   const unsigned helpers = static_cast<unsigned>(std::min<size_t>(workers_.size(), chunks - 1));
-  helpers_.store(helpers, std::memory_order_relaxed);
   unfinished_.store(helpers, std::memory_order_relaxed);
   {
     // Under the mutex, so a worker about to sleep either sees the new loop or is woken.
     std::lock_guard lock(mutex_);
-    generation_.fetch_add(1, std::memory_order_release);
+    const uint64_t next_loop = (generation_.load(std::memory_order_relaxed) >> 8) + 1;
+    generation_.store((next_loop << 8) | helpers, std::memory_order_release);
   }
   start_cv_.notify_all();
   drain();  // the caller works too
@@ -74,7 +75,7 @@ void WorkerPool::workerLoop(unsigned index) {
       if (generation_.load(std::memory_order_acquire) == seen) continue;  // woken to poll
     }
     seen = generation_.load(std::memory_order_acquire);
-    if (index > helpers_.load(std::memory_order_relaxed)) continue;  // needs fewer threads
+    if (index > (seen & 0xff)) continue;  // this loop needs fewer threads
     drain();
     if (unfinished_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
       std::lock_guard lock(mutex_);  // pairs with the caller's predicate check

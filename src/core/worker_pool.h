@@ -103,10 +103,11 @@ class WorkerPool {
   std::mutex run_mutex_;  // one loop at a time
   std::mutex mutex_;
   std::condition_variable start_cv_, done_cv_;
-  std::atomic<uint64_t> generation_{0};     // one per loop; workers watch it
-  // Workers taking part in the current loop (read by every worker, so atomic; the loop's
-  // other fields are read only by those, which the caller waits for).
-  std::atomic<unsigned> helpers_{0};
+  // One value per loop, which workers watch: (loop counter << 8) | workers taking part. The
+  // helper count travels in the same word, so a worker never pairs one loop's count with
+  // another's; the loop's other fields are read only by those helpers, which the caller
+  // waits for before the next loop can begin.
+  std::atomic<uint64_t> generation_{0};
   std::atomic<unsigned> unfinished_{0};    // of those, still working
   size_t n_ = 0, chunk_ = 0;
   std::atomic<size_t> next_{0};  // index of the next chunk to hand out
