@@ -38,12 +38,8 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
 void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
                              std::span<const std::array<uint32_t, 3>> faces,
                              std::span<const uint32_t> changed) {
-  const WorkerPool::Awake awake(pool_.get());
-  Stopwatch sw;
-  mesh_.positions.assign(positions.begin(), positions.end());
-  mesh_.faces.assign(faces.begin(), faces.end());
-  updateShape(changed);
-  timings_.shape = sw.lap();
+  faces_in_.assign(faces.begin(), faces.end());
+  updateMesh(positions, faces_in_, changed);
 }
 
 void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
@@ -53,13 +49,9 @@ void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
   Stopwatch sw;
   mesh_.positions.assign(positions.begin(), positions.end());
   mesh_.faces.swap(faces);
-  updateShape(changed);
-  timings_.shape = sw.lap();
-}
-
-void LineDrawing::updateShape(std::span<const uint32_t> changed) {
   mesh_.marked_edges.clear();  // marked edges refer to full-detail vertex ids
   shape_.update(mesh_, changed);
+  timings_.shape = sw.lap();
 }
 
 std::span<const glm::vec3> LineDrawing::normals() const {

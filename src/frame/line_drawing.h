@@ -78,7 +78,6 @@ class LineDrawing {
   WorkerPool& workers() { return *pool_; }
 
  private:
-  void updateShape(std::span<const uint32_t> changed);
   std::unique_ptr<WorkerPool> pool_;  // ShapeParams::threads threads, caller included
   TriMesh mesh_;
   Bounds bounds_;
@@ -89,6 +88,7 @@ class LineDrawing {
   TemporalSmoother smoother_;
   std::span<const glm::vec3> shading_normals_;
   ViewQuantities view_;
+  std::vector<std::array<uint32_t, 3>> faces_in_;  // updateMesh(span): copy, then swap in
   std::vector<uint32_t> needed_;     // vertices whose Dw kr this frame needs (lazy derivatives)
   std::vector<uint8_t> needed_mark_;
   LineScratch scratch_;

@@ -55,9 +55,10 @@ struct ShapeParams {
   bool lazy_derivatives = false;
   /// update() recomputes everything (same result, in memory order) when the vertices it
   /// would touch (the changed set grown by three rings) exceed this fraction of all
-  /// vertices. Default 0.8: large incremental sets are visited in memory order anyway (on a
-  /// 1.1M-triangle knot orbit, 22k adapted vertices, updates averaged 7.0 ms at 0.8 and
-  /// 8.6 ms at 0.5, which fell back to full computes in 24 of 60 frames).
+  /// vertices. Default 0.8: large incremental sets are visited in memory order anyway. When
+  /// chosen (eager tensors, adjacency rebuilt every frame), a 1.1M-triangle knot orbit with
+  /// 22k adapted vertices averaged 7.0 ms per update at 0.8 against 8.6 ms at 0.5, which fell
+  /// back to full computes in 24 of 60 frames.
   float full_recompute_fraction = 0.8f;
   /// Threads for the per-face and per-vertex loops, the caller included (0: one per core;
   /// 1: none started). Results are bit-identical for every count. Default 0.

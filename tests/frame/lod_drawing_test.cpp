@@ -9,14 +9,10 @@
 #include "frame/lod_drawing.h"
 #include "io/generate.h"
 #include "lines/view_quantities.h"
+#include "shape/shape_test_util.h"
 
 namespace lodline {
 namespace {
-
-template <class T>
-bool sameBits(std::span<const T> a, std::span<const T> b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size_bytes()) == 0);
-}
 
 TEST(LodDrawing, IncrementalStateEqualsAFreshComputeEveryFrame) {
   // A sharp box made of many small faces: crease vertices along its 12 edges.
@@ -61,10 +57,10 @@ TEST(LodDrawing, IncrementalStateEqualsAFreshComputeEveryFrame) {
     const ShapeCache& inc = lod.drawing().shape();
     ShapeCache fresh(inc.params());
     fresh.compute(drawn);
-    ASSERT_TRUE(sameBits(inc.normals(), fresh.normals())) << "frame " << k;
-    ASSERT_TRUE(sameBits(inc.k1(), fresh.k1())) << "frame " << k;
-    ASSERT_TRUE(sameBits(inc.k2(), fresh.k2())) << "frame " << k;
-    ASSERT_TRUE(sameBits(inc.pdir1(), fresh.pdir1())) << "frame " << k;
+    ASSERT_TRUE(test::sameBits(inc.normals(), fresh.normals())) << "frame " << k;
+    ASSERT_TRUE(test::sameBits(inc.k1(), fresh.k1())) << "frame " << k;
+    ASSERT_TRUE(test::sameBits(inc.k2(), fresh.k2())) << "frame " << k;
+    ASSERT_TRUE(test::sameBits(inc.pdir1(), fresh.pdir1())) << "frame " << k;
     // Derivative tensors are lazy here: current wherever the frame asked for them (next to
     // every kr zero crossing), and those equal the eager ones bit for bit.
     ASSERT_TRUE(inc.params().lazy_derivatives);

@@ -209,10 +209,7 @@ TEST(ShapeCache, EmptyAndTinyMeshes) {
 
 // Compares every per-vertex array bit for bit.
 void expectBitIdentical(const ShapeCache& a, const ShapeCache& b, const char* what) {
-  auto same = [](auto x, auto y) {
-    return x.size() == y.size() &&
-           (x.empty() || std::memcmp(x.data(), y.data(), x.size_bytes()) == 0);
-  };
+  auto same = [](auto x, auto y) { return test::sameBits(x, y); };
   EXPECT_TRUE(same(a.normals(), b.normals())) << what;
   EXPECT_TRUE(same(a.pointAreas(), b.pointAreas())) << what;
   EXPECT_TRUE(same(a.k1(), b.k1())) << what;

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #include <functional>
+#include <span>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -10,6 +12,12 @@
 #include "core/mesh.h"
 
 namespace lodline::test {
+
+/// True when both arrays hold the same bytes (bit-identical floats, NaNs included).
+template <class T>
+bool sameBits(std::span<const T> a, std::span<const T> b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size_bytes()) == 0);
+}
 
 /// Signed volume enclosed by a closed mesh (> 0 when faces are counter-clockwise seen from
 /// outside).
