@@ -18,6 +18,8 @@
 #include "app/commands.h"
 #include "app/headless.h"
 #include "app/model.h"
+#include "app/options.h"
+#include "io/scene_file.h"
 #include "core/timer.h"
 #include "frame/camera_path.h"
 #include "io/load_mesh.h"
@@ -73,15 +75,35 @@ int runWalkthrough(const BenchOptions& o) {
   rp.width = (*size)[0];
   rp.height = (*size)[1];
   rp.msaa = o.msaa;
-  std::array<bool, kLineKindCount> enabled{};
-  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = rp.lines.kinds[k].enabled;
   const float aspect = static_cast<float>(rp.width) / static_cast<float>(rp.height);
 
   Stopwatch sw;
-  auto mesh = loadMesh(o.model);
-  if (!mesh) return reportError(mesh.error());
+  // The model may be a scene: every object is walked through with the same level of detail
+  // (its own detail factor and style from the scene file; the scene's settings do not apply,
+  // the benchmark's options do).
+  auto scene = loadScene(std::filesystem::path(o.model));
+  if (!scene) return reportError(scene.error());
+  struct BenchObject {
+    const SceneObject* source;
+    TriMesh mesh;
+    RenderParams style;
+  };
+  std::vector<BenchObject> objects;
+  size_t input_faces = 0;
+  Bounds bounds;
+  for (const SceneObject& obj : scene->objects) {
+    auto mesh = loadObjectMesh(obj);
+    if (!mesh) return reportError(mesh.error());
+    ViewOptions vo;
+    auto style = resolveObjectStyle(vo, obj.style, obj.where);
+    if (!style) return reportError(style.error());
+    style->msaa = o.msaa;
+    const Bounds b = computeBounds(mesh->positions);
+    bounds = objects.empty() ? b : unionBounds(bounds, b);
+    input_faces += mesh->faceCount();
+    objects.push_back({&obj, std::move(mesh.value()), *style});
+  }
   const double load_s = sw.lap() / 1000.0;
-  const Bounds bounds = computeBounds(mesh->positions);
   const double duration = o.frames / 30.0;
   Result<CameraPath> path = Error::usage("");
   {
@@ -98,52 +120,66 @@ int runWalkthrough(const BenchOptions& o) {
     ModeResult r;
     r.mode = mode;
     sw.lap();
-    std::unique_ptr<LodDrawing> lod;
     ClusterParams cp;
     cp.pixel_error = o.pixel_error;
-    if (mode == "none") {
-      lod = std::make_unique<LodDrawing>(*mesh);
-      r.model_faces = mesh->faceCount();
-    } else if (mode == "cluster") {
-      lod = std::make_unique<LodDrawing>(*mesh, cp);
-      r.model_faces = mesh->faceCount();
-    } else if (mode == "hybrid") {
-      auto s = simplifyMesh(*mesh, *bound, o.model);
-      if (!s) return reportError(s.error());
-      std::ostringstream note;
-      note << "pre-simplified " << mesh->faceCount() << " -> " << s->mesh.faceCount() << " faces, E_s "
-           << std::setprecision(3) << 100.0 * s->e_s_rel << "%";
-      r.note = note.str();
-      r.model_faces = s->mesh.faceCount();
-      lod = std::make_unique<LodDrawing>(std::move(s->mesh), cp);
-    } else {
-      const std::filesystem::path dir = o.cache_dir.empty() ? defaultCacheDir() : std::filesystem::path(o.cache_dir);
-      auto pm = loadOrBuildPm(*mesh, meshContentHash(*mesh), dir, {}, {}, &r.note);
-      if (!pm) return reportError(Error::runtime(o.model + ": " + pm.error().message));
-      r.model_faces = mesh->faceCount();
-      lod = std::make_unique<LodDrawing>(*mesh, std::make_shared<const ProgressiveMesh>(std::move(pm.value())));
+    SceneDrawing lod;
+    auto pool = std::make_shared<WorkerPool>(ShapeParams{}.threads);
+    for (const BenchObject& bo : objects) {
+      SceneDrawing::Object so;
+      so.name = bo.source->name;
+      so.style = bo.style;
+      so.detail_factor = bo.source->detail_factor;
+      so.input_faces = bo.mesh.faceCount();
+      so.input_vertices = bo.mesh.vertexCount();
+      const std::string what = bo.source->mesh.string();
+      if (mode == "none") {
+        so.drawing = std::make_unique<LodDrawing>(bo.mesh, LineParams{}, pool);
+        r.model_faces += bo.mesh.faceCount();
+      } else if (mode == "cluster") {
+        so.drawing = std::make_unique<LodDrawing>(bo.mesh, cp, LineParams{}, pool);
+        r.model_faces += bo.mesh.faceCount();
+      } else if (mode == "hybrid") {
+        auto s = simplifyMesh(bo.mesh, *bound, what);
+        if (!s) return reportError(s.error());
+        std::ostringstream note;
+        note << (r.note.empty() ? "" : "; ") << "pre-simplified " << bo.mesh.faceCount() << " -> "
+             << s->mesh.faceCount() << " faces, E_s " << std::setprecision(3) << 100.0 * s->e_s_rel << "%";
+        r.note += note.str();
+        r.model_faces += s->mesh.faceCount();
+        so.drawing = std::make_unique<LodDrawing>(std::move(s->mesh), cp, LineParams{}, pool);
+      } else {
+        const std::filesystem::path dir = o.cache_dir.empty() ? defaultCacheDir() : std::filesystem::path(o.cache_dir);
+        std::string note;
+        auto pm = loadOrBuildPm(bo.mesh, meshContentHash(bo.mesh), dir, {}, {}, &note);
+        if (!pm) return reportError(Error::runtime(what + ": " + pm.error().message));
+        r.note += (r.note.empty() ? "" : "; ") + note;
+        r.model_faces += bo.mesh.faceCount();
+        so.drawing = std::make_unique<LodDrawing>(bo.mesh, std::make_shared<const ProgressiveMesh>(std::move(pm.value())),
+                                                  LineParams{}, pool);
+      }
+      lod.add(std::move(so));
     }
     DetailParams detail;
     detail.target_area = o.target_area;
     const double dt = path->duration() / (o.frames - 1);
     // Warm-up (not timed): the progressive mesh converges at the first camera, as a viewer
     // would before the walk starts; every mode uploads its first mesh.
-    const Camera first = path->at(path->keys().front().time, lod->bounds());
-    if (auto st = lod->converge(first, rp.width, rp.height, detail, static_cast<float>(dt), 300, enabled); !st)
+    const Camera first = path->at(path->keys().front().time, lod.bounds());
+    if (auto st = lod.converge(first, rp.width, rp.height, detail, static_cast<float>(dt), 300); !st)
       return reportError(st.error());
-    headless->setMesh(lod->drawing());
-    headless->draw(lod->drawing(), first, rp);
+    if (Status st = headless->setMeshes(lod, true); !st) return reportError(st.error());
+    headless->draw(lod, first, rp);
     r.setup_s = sw.lap() / 1000.0 + load_s;
     double total = 0.0, cpu = 0.0, gl = 0.0, faces = 0.0;
     for (int i = 0; i < o.frames; ++i) {
       const double t = path->keys().front().time + i * dt;
-      const Camera cam = path->at(t, lod->bounds());
+      const Camera cam = path->at(t, lod.bounds());
       Stopwatch frame;
-      if (Status st = lod->frame(cam, rp.width, rp.height, detail, static_cast<float>(dt), enabled); !st)
+      if (Status st = lod.frame(cam, rp.width, rp.height, detail, static_cast<float>(dt)); !st)
         return reportError(st.error());
-      if (lod->meshChanged()) headless->setMesh(lod->drawing());
+      if (Status st = headless->setMeshes(lod, false); !st) return reportError(st.error());
       const double c = frame.elapsed();
-      headless->draw(lod->drawing(), cam, rp);
+      headless->draw(lod, cam, rp);
       const double all = frame.elapsed();
       total += all;
       cpu += c;
@@ -158,7 +194,8 @@ int runWalkthrough(const BenchOptions& o) {
     std::cerr << "lodline: " << mode << ": " << std::fixed << std::setprecision(1) << 1000.0 / r.mean_ms << " fps\n";
   }
 
-  std::cout << "Walkthrough of " << o.model << " (" << mesh->faceCount() << " faces), path " << o.path << ", "
+  std::cout << "Walkthrough of " << o.model << " (" << input_faces << " faces"
+            << (objects.size() > 1 ? " in " + std::to_string(objects.size()) + " objects" : std::string()) << "), path " << o.path << ", "
             << o.frames << " frames at " << rp.width << "x" << rp.height << ", msaa " << rp.msaa
             << ", pixel error " << o.pixel_error << " px^2, T " << o.target_area << " px^2; "
             << headless->context().description() << "\n\n";
@@ -190,7 +227,7 @@ Command addBenchCommand(CLI::App& parent) {
       "walkthrough",
       "Replay a camera path with no LOD, vertex clustering, hybrid (pre-simplified + clustering) and the "
       "progressive mesh; print mean fps and triangles drawn (Pan/Zhou/Shi Table 2)");
-  walk->add_option("model", o->model, "Mesh file")->required();
+  walk->add_option("model", o->model, "Mesh, scene (.json) or glTF file")->required();
   walk->add_option("--path", o->path, "Camera path: a JSON path file (docs/capture.md) or orbit, zoom-out, dolly, flyover")
       ->capture_default_str();
   walk->add_option("--frames", o->frames, "Frames replayed per mode (built-in paths last frames/30 s)")

@@ -92,12 +92,7 @@ double percentile(std::vector<double> v, double p) {
   return v[i];
 }
 
-int runCapture(const CaptureOptions& o) {
-  auto resolved = resolveViewOptions(o.view);
-  if (!resolved) return reportError(resolved.error());
-  auto backend = parseContextBackend(o.context);
-  if (!backend) return reportError(backend.error());
-  if (!(o.fps > 0.0 && o.fps <= 1000.0)) return reportError(Error::usage("--fps: must be in (0, 1000]"));
+int runCapture(CLI::App& cmd, CaptureOptions& o) {
   if (o.output.empty()) return reportError(Error::usage("capture: -o out.mp4 or -o DIR/ is required"));
   const bool png_sequence = o.output.back() == '/' || std::filesystem::is_directory(o.output);
   const std::filesystem::path out(o.output);
@@ -106,34 +101,36 @@ int runCapture(const CaptureOptions& o) {
   for (const std::string* p : {&o.metrics, &o.stats})
     if (!p->empty())
       if (Status s = checkWritable(*p); !s) return reportError(s.error());
+  if (!png_sequence) {
+    if (Status s = checkWritable(out); !s) return reportError(s.error());
+    if (!ffmpegAvailable())
+      return reportError(Error::runtime(o.output + ": ffmpeg not found (install Debian's ffmpeg, or write a "
+                                        "PNG sequence with -o DIR/)"));
+  }
+
+  auto loaded_input = loadInput(cmd, o.view, o.detail);
+  if (!loaded_input) return reportError(loaded_input.error());
+  LoadedScene& loaded = **loaded_input;
+  // Options the scene's settings may have set are read from here on.
+  auto backend = parseContextBackend(o.context);
+  if (!backend) return reportError(backend.error());
+  if (!(o.fps > 0.0 && o.fps <= 1000.0)) return reportError(Error::usage("--fps: must be in (0, 1000]"));
   if (png_sequence) {
     std::error_code ec;
     std::filesystem::create_directories(out, ec);
     if (ec) return reportError(Error::runtime(o.output + ": cannot create directory: " + ec.message()));
-  } else if (Status s = checkWritable(out); !s) {
-    return reportError(s.error());
-  } else if (!ffmpegAvailable()) {
-    return reportError(Error::runtime(o.output + ": ffmpeg not found (install Debian's ffmpeg, or write a "
-                                      "PNG sequence with -o DIR/)"));
   }
-
-  auto detail = resolveDetailOptions(o.detail);
-  if (!detail) return reportError(detail.error());
-  const RenderParams& rp = resolved->render;
-  auto model = loadModel(resolved->model, *detail);
-  if (!model) return reportError(model.error());
-  LodDrawing& lod_drawing = **model;
-  const LineDrawing& drawing = lod_drawing.drawing();
-  const size_t model_vertices = drawing.mesh().vertexCount(), model_faces = drawing.mesh().faceCount();
+  const ResolvedDetail* detail = &loaded.detail;
+  const RenderParams& rp = loaded.view.render;
+  SceneDrawing& scene = loaded.drawing;
+  size_t model_vertices = 0, model_faces = 0;
+  for (const auto& obj : scene.objects()) {
+    model_vertices += obj.input_vertices;
+    model_faces += obj.input_faces;
+  }
   const float aspect = static_cast<float>(rp.width) / static_cast<float>(rp.height);
 
-  Result<CameraPath> cam_path = [&]() -> Result<CameraPath> {
-    const auto& names = builtinPathNames();
-    if (std::find(names.begin(), names.end(), o.path) != names.end() ||
-        std::filesystem::path(o.path).extension() != ".json")  // unknown names get the usage error
-      return builtinPath(o.path, drawing.bounds(), resolved->fov_deg, aspect, o.duration);
-    return loadCameraPath(o.path);
-  }();
+  Result<CameraPath> cam_path = scenePath(loaded, o.path, givenOnCommandLine(cmd, "path"), o.duration, aspect);
   if (!cam_path) return reportError(cam_path.error());
   const int64_t total = std::max<int64_t>(1, std::llround(cam_path->duration() * o.fps));
   auto range = parseFrames(o.frames, total);
@@ -148,10 +145,8 @@ int runCapture(const CaptureOptions& o) {
     video.emplace(std::move(v.value()));
   }
 
-  std::array<bool, kLineKindCount> enabled{};
-  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = rp.lines.kinds[k].enabled;
   const bool want_metrics = !o.metrics.empty() || !o.stats.empty();
-  VisibleStrokes visible;
+  VisibleStrokes visible, object_visible;
   LineMask prev_mask, mask;
   bool have_prev = false;
   std::ostringstream csv;
@@ -166,24 +161,32 @@ int runCapture(const CaptureOptions& o) {
                                 ? smoothingWeight(detail->smoothing.alpha, detail->smoothing.seconds, static_cast<float>(o.fps))
                                 : 1.0f;
   // Errors from the detail parameters were ruled out by resolveDetailOptions.
+  const double t0 = cam_path->keys().front().time;
   auto simulate = [&](int64_t k) -> Camera {
-    const Camera cam = cam_path->at(static_cast<double>(k) / o.fps, drawing.bounds());
-    (void)lod_drawing.frame(cam, rp.width, rp.height, detail->params, static_cast<float>(1.0 / o.fps), enabled,
-                            smoothing_w);
+    const Camera cam = cam_path->at(t0 + static_cast<double>(k) / o.fps, scene.bounds());
+    (void)scene.frame(cam, rp.width, rp.height, detail->params, static_cast<float>(1.0 / o.fps), smoothing_w);
     return cam;
   };
+  // Visible strokes of every object against the depth of all faces, as one set.
+  auto visible_lines = [&](const Camera& cam, const DepthImage& depth) {
+    visible.clear();
+    for (const auto& obj : scene.objects()) {
+      visibleStrokes(obj.drawing->drawing().strokes(), cam, depth, {}, object_visible);
+      appendStrokes(object_visible, visible);
+    }
+  };
   auto line_mask = [&](const Camera& cam, LineMask& m) {
-    headless->setMesh(drawing);
-    headless->draw(drawing, cam, rp);
-    visibleStrokes(drawing.strokes(), cam, headless->readDepth(), {}, visible);
+    (void)headless->setMeshes(scene, true);
+    headless->draw(scene, cam, rp);
+    visible_lines(cam, headless->readDepth());
     rasterizeStrokes(visible, rp.width, rp.height, m);
   };
   // Frame 0 starts from the detail converged for its camera (as a still render would), not
   // from the base mesh, so the first frames are not a refinement transient.
   {
-    const Camera cam0 = cam_path->at(0.0, drawing.bounds());
-    if (auto steps = lod_drawing.converge(cam0, rp.width, rp.height, detail->params, static_cast<float>(1.0 / o.fps),
-                                          detail->max_adapt_frames, enabled);
+    const Camera cam0 = cam_path->at(t0, scene.bounds());
+    if (auto steps = scene.converge(cam0, rp.width, rp.height, detail->params, static_cast<float>(1.0 / o.fps),
+                                    detail->max_adapt_frames);
         !steps)
       return reportError(steps.error());
   }
@@ -206,8 +209,11 @@ int runCapture(const CaptureOptions& o) {
   for (int64_t k = range->first; k < range->end && !g_interrupted.load(); ++k) {
     Stopwatch frame_clock;
     const Camera cam = simulate(k);
-    if (lod_drawing.meshChanged() || k == range->first) headless->setMesh(drawing);
-    headless->draw(drawing, cam, rp);
+    if (Status s = headless->setMeshes(scene, k == range->first); !s) {
+      failure = s;
+      break;
+    }
+    headless->draw(scene, cam, rp);
     const Image image = headless->readImage();
     if (png_sequence) {
       char name[32];
@@ -218,7 +224,7 @@ int runCapture(const CaptureOptions& o) {
     }
     if (!failure) break;
     if (want_metrics) {
-      visibleStrokes(drawing.strokes(), cam, headless->readDepth(), {}, visible);
+      visible_lines(cam, headless->readDepth());
       rasterizeStrokes(visible, rp.width, rp.height, mask);
       MaskChange change;
       if (have_prev) {
@@ -228,11 +234,18 @@ int runCapture(const CaptureOptions& o) {
       }
       const auto specks = std::count_if(visible.length_px.begin(), visible.length_px.end(),
                                         [](float len) { return len < 3.0f; });
+      size_t active_faces = 0, splits = 0, collapses = 0;
+      for (const auto& obj : scene.objects()) {
+        active_faces += obj.drawing->drawing().mesh().faceCount();
+        if (const AdaptiveMesh* lod = obj.drawing->lod()) {
+          splits += lod->stats().splits;
+          collapses += lod->stats().collapses;
+        }
+      }
       const double ms = frame_clock.elapsed();
       csv << k << ',' << change.line_pixels << ',' << change.appeared << ',' << change.vanished << ','
-          << change.churn() << ',' << visible.strokeCount() << ',' << specks << ','
-          << drawing.mesh().faceCount() << ',' << (lod_drawing.lod() ? lod_drawing.lod()->stats().splits : 0) << ','
-          << (lod_drawing.lod() ? lod_drawing.lod()->stats().collapses : 0) << ',' << ms << '\n';
+          << change.churn() << ',' << visible.strokeCount() << ',' << specks << ',' << active_faces << ','
+          << splits << ',' << collapses << ',' << ms << '\n';
       if (have_prev) churns.push_back(change.churn());
       specks_per_frame.push_back(static_cast<double>(specks));
       std::swap(prev_mask, mask);
@@ -271,7 +284,7 @@ int runCapture(const CaptureOptions& o) {
               << "  specks mean " << mean_specks << '\n';
   if (!o.stats.empty()) {
     nlohmann::json j;
-    j["model"] = {{"path", resolved->model.string()}, {"vertices", model_vertices},
+    j["model"] = {{"path", loaded.view.model.string()}, {"vertices", model_vertices},
                   {"faces", model_faces}};
     j["image"] = {{"width", rp.width}, {"height", rp.height}};
     j["capture"] = {{"path", o.path}, {"fps", o.fps}, {"first_frame", range->first},
@@ -303,10 +316,12 @@ int runCapture(const CaptureOptions& o) {
 Command addCaptureCommand(CLI::App& parent) {
   auto o = std::make_shared<CaptureOptions>();
   CLI::App* cmd = parent.add_subcommand(
-      "capture", "Render a camera path headlessly to an MP4 video or a numbered PNG sequence");
+      "capture", "Render a camera path around a model or scene headlessly to an MP4 video or a numbered PNG sequence");
   addViewOptions(*cmd, o->view);
   addDetailOptions(*cmd, o->detail);
-  cmd->add_option("--path", o->path, "Camera path: orbit, zoom-out, dolly, flyover, or a path file (.json)")
+  cmd->add_option("--path", o->path,
+                  "Camera path: orbit, zoom-out, dolly, flyover, or a path file (.json); default: the scene file's "
+                  "camera path, else orbit")
       ->capture_default_str();
   cmd->add_option("--duration", o->duration, "Length of a built-in path in seconds")->capture_default_str();
   cmd->add_option("--frames", o->frames,
@@ -318,7 +333,7 @@ Command addCaptureCommand(CLI::App& parent) {
   cmd->add_option("--metrics", o->metrics, "Per-frame temporal-coherence metrics as CSV (docs/capture.md)");
   cmd->add_option("--stats", o->stats, "Summary statistics as JSON");
   cmd->add_option("--context", o->context, "OpenGL context: auto, egl or osmesa")->capture_default_str();
-  return {cmd, [o] { return runCapture(*o); }};
+  return {cmd, [o, cmd] { return runCapture(*cmd, *o); }};
 }
 
 }  // namespace lodline

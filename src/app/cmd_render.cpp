@@ -20,6 +20,7 @@
 #include "io/image.h"
 #include "io/load_mesh.h"
 #include "raster/soft_renderer.h"
+#include "export/coherence.h"
 
 namespace lodline {
 
@@ -47,15 +48,25 @@ struct RenderOptions {
   std::string backend = "gl";  ///< gl (OpenGL context) or soft (raster/, no OpenGL at all)
 };
 
-int runRender(const RenderOptions& o) {
+size_t countSpecks(const VisibleStrokes& v) {
+  return static_cast<size_t>(std::count_if(v.length_px.begin(), v.length_px.end(), [](float len) { return len < 3.0f; }));
+}
+
+SvgStyle svgStyleOf(const RenderParams& rp) {
+  SvgStyle style;
+  style.background = rp.background.a > 0.0f;
+  style.background_colour = colorToHex(rp.background);
+  for (int k = 0; k < kLineKindCount; ++k) {
+    const LineStyle& ls = rp.lines.kinds[k];
+    style.lines[k] = {colorToHex(ls.color), ls.width_px, ls.color.a};
+  }
+  return style;
+}
+
+int runRender(CLI::App& cmd, RenderOptions& o) {
   Stopwatch total;
-  auto resolved = resolveViewOptions(o.view);
-  if (!resolved) return reportError(resolved.error());
-  auto backend = parseContextBackend(o.context);
-  if (!backend) return reportError(backend.error());
-  if (o.backend != "gl" && o.backend != "soft")
-    return reportError(Error::usage("--backend: expected gl or soft, got '" + o.backend + "'"));
-  const bool soft = o.backend == "soft";
+  // Checked again after the scene's settings are applied; first here, to fail early.
+  if (auto backend = parseContextBackend(o.context); !backend) return reportError(backend.error());
   if (o.output.empty() && o.svg.empty())
     return reportError(Error::usage("render: give an output: -o FILE.png and/or --svg FILE.svg"));
   auto has_ext = [](const std::string& path, const char* want) {
@@ -72,26 +83,34 @@ int runRender(const RenderOptions& o) {
     if (!path->empty())
       if (Status s = checkWritable(*path); !s) return reportError(s.error());
 
-  const RenderParams& rp = resolved->render;
-  auto detail = resolveDetailOptions(o.detail);
-  if (!detail) return reportError(detail.error());
+  auto loaded_input = loadInput(cmd, o.view, o.detail);
+  if (!loaded_input) return reportError(loaded_input.error());
+  LoadedScene& loaded = **loaded_input;
+  // Options the scene's settings may have set are read from here on.
+  if (o.backend != "gl" && o.backend != "soft")
+    return reportError(Error::usage("--backend: expected gl or soft, got '" + o.backend + "'"));
+  auto backend = parseContextBackend(o.context);
+  if (!backend) return reportError(backend.error());
+  const bool soft = o.backend == "soft";
+  SceneDrawing& scene = loaded.drawing;
+  if (soft && scene.size() != 1)
+    return reportError(Error::usage("--backend soft draws one object; this scene has " + std::to_string(scene.size()) +
+                                    " (use --backend gl)"));
+  const RenderParams& rp = loaded.view.render;
+  const ResolvedDetail& detail = loaded.detail;
+  size_t model_vertices = 0, model_faces = 0;
+  for (const auto& obj : scene.objects()) {
+    model_vertices += obj.input_vertices;
+    model_faces += obj.input_faces;
+  }
   Stopwatch stage;
-  double ms_load = 0.0, ms_pm = 0.0;
-  std::string cache_note;
-  auto model = loadModel(resolved->model, *detail, &ms_load, &ms_pm, &cache_note);
-  if (!model) return reportError(model.error());
-  LodDrawing& lod_drawing = **model;
-  const LineDrawing& drawing = lod_drawing.drawing();
-  const size_t model_vertices = drawing.mesh().vertexCount(), model_faces = drawing.mesh().faceCount();
-  stage.lap();
 
   const float aspect = static_cast<float>(rp.width) / static_cast<float>(rp.height);
-  const Camera camera = orbitCamera(drawing.bounds(), resolved->orbit, resolved->fov_deg, aspect);
-  std::array<bool, kLineKindCount> enabled{};
-  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = rp.lines.kinds[k].enabled;
+  auto camera_result = initialCamera(loaded, aspect);
+  if (!camera_result) return reportError(camera_result.error());
+  const Camera camera = *camera_result;
   // A still image shows the converged detail.
-  auto steps = lod_drawing.converge(camera, rp.width, rp.height, detail->params, 1.0f / 30.0f,
-                                    detail->max_adapt_frames, enabled);
+  auto steps = scene.converge(camera, rp.width, rp.height, detail.params, 1.0f / 30.0f, detail.max_adapt_frames);
   if (!steps) return reportError(steps.error());
   const double ms_adapt = stage.lap();
 
@@ -102,10 +121,17 @@ int runRender(const RenderOptions& o) {
   DepthImage depth;
   double ms_setup = 0.0, ms_render = 0.0, ms_readback = 0.0;
   if (soft) {
+    const LineDrawing& drawing = scene[0].drawing->drawing();
     soft_renderer.setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
     soft_renderer.setLines(drawing.lines());
     ms_setup = stage.lap();
-    soft_renderer.draw(camera, rp);
+    // The object's style on the frame's page (size, background, msaa).
+    RenderParams p = scene[0].style;
+    p.width = rp.width;
+    p.height = rp.height;
+    p.background = rp.background;
+    p.msaa = rp.msaa;
+    soft_renderer.draw(camera, p);
     ms_render = stage.lap();
     image = soft_renderer.image();
     depth = soft_renderer.depth();
@@ -113,39 +139,42 @@ int runRender(const RenderOptions& o) {
   } else {
     headless = HeadlessRenderer::create(*backend, rp);
     if (!*headless) return reportError(headless->error());
-    (*headless)->setMesh(drawing);
+    if (Status s = (*headless)->setMeshes(scene, true); !s) return reportError(s.error());
     ms_setup = stage.lap();
-    (*headless)->draw(drawing, camera, rp);
+    (*headless)->draw(scene, camera, rp);
     ms_render = stage.lap();
     image = (*headless)->readImage();
     ms_readback = stage.lap();
     depth = (*headless)->readDepth();
   }
 
-  // Visible lines, from the depth buffer of the faces just drawn: for the SVG and the stats.
-  VisibleStrokes visible;
-  visibleStrokes(drawing.strokes(), camera, depth, {}, visible);
-  const auto visible_segments = countVisibleSegments(drawing.segments(), camera, depth);
+  // Visible lines of every object, from the depth buffer of all faces just drawn (so one
+  // object hides another's lines): for the SVG and the stats.
+  std::vector<VisibleStrokes> visible(scene.size());
+  std::vector<std::array<uint32_t, kLineTypeCount>> visible_segments(scene.size());
+  LineMask line_mask, object_mask;
+  for (size_t i = 0; i < scene.size(); ++i) {
+    const LineDrawing& d = scene[i].drawing->drawing();
+    visibleStrokes(d.strokes(), camera, depth, {}, visible[i]);
+    visible_segments[i] = countVisibleSegments(d.segments(), camera, depth);
+  }
   const double ms_visibility = stage.lap();
 
   if (!o.output.empty())
     if (Status s = writePng(o.output, image); !s) return reportError(s.error());
   if (!o.svg.empty()) {
-    SvgStyle style;
-    style.background = rp.background.a > 0.0f;
-    style.background_colour = colorToHex(rp.background);
-    for (int k = 0; k < kLineKindCount; ++k) {
-      const LineStyle& ls = rp.lines.kinds[k];
-      style.lines[k] = {colorToHex(ls.color), ls.width_px, ls.color.a};
+    std::vector<SvgLayer> layers;
+    for (size_t i = 0; i < scene.size(); ++i) {
+      const VisibleStrokes& v = visible[i];
+      layers.push_back({scene[i].name, SvgStrokes{v.points, v.offsets, v.types, v.opacity}, svgStyleOf(scene[i].style)});
     }
-    const SvgStrokes strokes{visible.points, visible.offsets, visible.types, visible.opacity};
-    if (Status s = writeSvg(o.svg, rp.width, rp.height, strokes, style); !s) return reportError(s.error());
+    if (Status s = writeSvgLayers(o.svg, rp.width, rp.height, layers, svgStyleOf(rp)); !s) return reportError(s.error());
   }
 
   if (!o.stats.empty()) {
-    const CpuTimings& t = drawing.timings();
+    const CpuTimings t = scene.timings();
     nlohmann::json j;
-    j["model"] = {{"path", resolved->model.string()}, {"vertices", model_vertices}, {"faces", model_faces}};
+    j["model"] = {{"path", loaded.view.model.string()}, {"vertices", model_vertices}, {"faces", model_faces}};
     j["image"] = {{"width", rp.width}, {"height", rp.height}};
     // Pixels the model covers (differ from the background): the image area detail control
     // divides by T.
@@ -157,51 +186,122 @@ int runRender(const RenderOptions& o) {
       coverage += std::max({dr, dg, db}) > 8;
     }
     j["image"]["coverage_px"] = coverage;
+    std::vector<size_t> faces_drawn(scene.size()), segments_drawn(scene.size());
     if (soft) {
       j["context"] = {{"backend", "soft"}, {"gl", "none"}};
-      j["faces_drawn"] = soft_renderer.faceCount();
-      j["line_segments"] = soft_renderer.segmentsDrawn();
+      faces_drawn[0] = soft_renderer.faceCount();
+      segments_drawn[0] = soft_renderer.segmentsDrawn();
       const SoftTimes& st = soft_renderer.times();
       j["soft_ms"] = {{"transform", st.transform}, {"setup", st.setup}, {"raster", st.raster},
                       {"shade", st.shade}, {"lines", st.lines}};
     } else {
       j["context"] = {{"backend", backendName((*headless)->context().backend())},
                       {"gl", (*headless)->context().description()}};
-      j["faces_drawn"] = (*headless)->renderer().faceCount();
-      j["line_segments"] = (*headless)->renderer().segmentsDrawn();
+      for (size_t i = 0; i < scene.size(); ++i) {
+        faces_drawn[i] = (*headless)->renderer().faceCount(i);
+        segments_drawn[i] = (*headless)->renderer().segmentsDrawn(i);
+      }
     }
+    // Per object, then the totals at the top level (the keys a single model always had).
+    nlohmann::json objects = nlohmann::json::array();
+    size_t total_faces_drawn = 0, total_segments = 0, total_strokes = 0, total_specks = 0, total_line_pixels = 0;
+    std::array<uint64_t, kLineKindCount> lines_total{}, extracted_total{};
+    uint64_t active_vertices = 0, active_faces = 0, visible_faces = 0, splits = 0, collapses = 0, morphing = 0;
+    double band_weighted = 0.0;
+    bool any_lod = false;
+    for (size_t i = 0; i < scene.size(); ++i) {
+      const SceneDrawing::Object& obj = scene[i];
+      const LineDrawing& d = obj.drawing->drawing();
+      rasterizeStrokes(visible[i], rp.width, rp.height, object_mask);
+      size_t line_pixels = 0;
+      for (uint8_t v : object_mask.on) line_pixels += v;
+      nlohmann::json lines, extracted;
+      for (int k = 0; k < kLineKindCount; ++k) {
+        const char* name = lineKindName(static_cast<LineKind>(k));
+        const uint32_t vis = obj.style.lines.kinds[k].enabled ? visible_segments[i][k] : 0;
+        lines[name] = vis;
+        extracted[name] = d.lines().count[k] / 2;
+        lines_total[k] += vis;
+        extracted_total[k] += d.lines().count[k] / 2;
+      }
+      const size_t specks = countSpecks(visible[i]);
+      nlohmann::json oj = {{"name", obj.name},
+                           {"vertices", obj.input_vertices},
+                           {"faces", obj.input_faces},
+                           {"detail_factor", obj.detail_factor},
+                           {"style", styleName(obj.style.style)},
+                           {"faces_drawn", faces_drawn[i]},
+                           {"line_segments", segments_drawn[i]},
+                           {"lines", lines},
+                           {"lines_extracted", extracted},
+                           {"strokes", visible[i].strokeCount()},
+                           {"specks", specks},
+                           {"line_pixels", line_pixels}};
+      if (const AdaptiveMesh* lod = obj.drawing->lod()) {
+        const LodStats& ls = lod->stats();
+        float band = 0.0f;
+        uint32_t vis_faces = 0;
+        lod->measureBand(band, vis_faces);
+        oj["lod"] = {{"active_vertices", lod->activeVertexCount()}, {"active_faces", lod->activeFaceCount()},
+                     {"visible_faces", vis_faces}, {"splits", ls.splits}, {"collapses", ls.collapses},
+                     {"morphing", ls.morphing}, {"band_fraction", band}, {"target_area", ls.target_area}};
+        any_lod = true;
+        active_vertices += lod->activeVertexCount();
+        active_faces += lod->activeFaceCount();
+        visible_faces += vis_faces;
+        splits += ls.splits;
+        collapses += ls.collapses;
+        morphing += ls.morphing;
+        band_weighted += static_cast<double>(band) * vis_faces;
+      }
+      if (const VertexClustering* vc = obj.drawing->clustering()) {
+        const ClusterStats& cs = vc->stats();
+        oj["cluster"] = {{"faces", cs.faces},
+                         {"representatives", cs.representatives},
+                         {"absorbed", cs.absorbed},
+                         {"culled_vertices", cs.culled_vertices},
+                         {"culled_faces", cs.culled_faces},
+                         {"collapsed_faces", cs.collapsed_faces},
+                         {"duplicate_faces", cs.duplicate_faces}};
+        if (scene.size() == 1) j["cluster"] = oj["cluster"];
+      }
+      objects.push_back(oj);
+      total_faces_drawn += faces_drawn[i];
+      total_segments += segments_drawn[i];
+      total_strokes += visible[i].strokeCount();
+      total_specks += specks;
+      total_line_pixels += line_pixels;
+    }
+    // Line pixels of the whole image count a pixel two objects share once.
+    {
+      VisibleStrokes all;
+      for (const VisibleStrokes& v : visible) appendStrokes(v, all);
+      rasterizeStrokes(all, rp.width, rp.height, line_mask);
+      total_line_pixels = 0;
+      for (uint8_t v : line_mask.on) total_line_pixels += v;
+    }
+    j["faces_drawn"] = total_faces_drawn;
+    j["line_segments"] = total_segments;
     nlohmann::json lines, extracted;
     for (int k = 0; k < kLineKindCount; ++k) {
-      const char* name = lineKindName(static_cast<LineKind>(k));
-      lines[name] = rp.lines.kinds[k].enabled ? visible_segments[k] : 0;
-      extracted[name] = drawing.lines().count[k] / 2;
+      lines[lineKindName(static_cast<LineKind>(k))] = lines_total[k];
+      extracted[lineKindName(static_cast<LineKind>(k))] = extracted_total[k];
     }
     j["lines"] = lines;
-    if (const VertexClustering* vc = lod_drawing.clustering()) {
-      const ClusterStats& cs = vc->stats();
-      j["cluster"] = {{"faces", cs.faces},
-                      {"representatives", cs.representatives},
-                      {"absorbed", cs.absorbed},
-                      {"culled_vertices", cs.culled_vertices},
-                      {"culled_faces", cs.culled_faces},
-                      {"collapsed_faces", cs.collapsed_faces},
-                      {"duplicate_faces", cs.duplicate_faces}};
-    }
-    if (const AdaptiveMesh* lod = lod_drawing.lod()) {
-      const LodStats& ls = lod->stats();
-      float band = 0.0f;
-      uint32_t visible_faces = 0;
-      lod->measureBand(band, visible_faces);
-      j["lod"] = {{"active_vertices", lod->activeVertexCount()}, {"active_faces", lod->activeFaceCount()},
-                  {"visible_faces", visible_faces}, {"splits", ls.splits}, {"collapses", ls.collapses},
-                  {"morphing", ls.morphing}, {"band_fraction", band}, {"target_area", ls.target_area},
-                  {"adapt_steps", *steps}, {"cache", cache_note}};
+    if (any_lod) {
+      j["lod"] = {{"active_vertices", active_vertices}, {"active_faces", active_faces},
+                  {"visible_faces", visible_faces}, {"splits", splits}, {"collapses", collapses},
+                  {"morphing", morphing},
+                  {"band_fraction", visible_faces ? band_weighted / static_cast<double>(visible_faces) : 0.0},
+                  {"target_area", detail.params.target_area * detail.params.object_factor},
+                  {"adapt_steps", *steps}, {"cache", loaded.cache_note}};
     }
     j["lines_extracted"] = extracted;
-    j["strokes"] = visible.strokeCount();
-    j["specks"] = std::count_if(visible.length_px.begin(), visible.length_px.end(),
-                                [](float len) { return len < 3.0f; });
-    j["ms"] = {{"load", ms_load}, {"pm", ms_pm}, {"adapt", ms_adapt},   {"shape", t.shape},   {"view", t.view},
+    j["strokes"] = total_strokes;
+    j["specks"] = total_specks;
+    j["line_pixels"] = total_line_pixels;
+    j["objects"] = objects;
+    j["ms"] = {{"load", loaded.load_ms}, {"pm", loaded.pm_ms}, {"adapt", ms_adapt},   {"shape", t.shape},   {"view", t.view},
                {"extract", t.extract}, {"chain", t.chain}, {"setup", ms_setup},
                {"render", ms_render}, {"readback", ms_readback}, {"visibility", ms_visibility}, {"total", total.elapsed()}};
     const std::string text = j.dump(2) + "\n";
@@ -218,7 +318,7 @@ int runRender(const RenderOptions& o) {
 
 Command addRenderCommand(CLI::App& parent) {
   auto o = std::make_shared<RenderOptions>();
-  CLI::App* cmd = parent.add_subcommand("render", "Render a model headlessly to a PNG line drawing");
+  CLI::App* cmd = parent.add_subcommand("render", "Render a model or scene headlessly to a PNG line drawing");
   addViewOptions(*cmd, o->view);
   addDetailOptions(*cmd, o->detail);
   cmd->add_option("--max-adapt-frames", o->detail.max_adapt_frames,
@@ -235,7 +335,7 @@ Command addRenderCommand(CLI::App& parent) {
                   "Renderer: gl (OpenGL through --context) or soft (software rasteriser with "
                   "constant-depth scanlines, no OpenGL context; docs/softraster.md)")
       ->capture_default_str();
-  return {cmd, [o] { return runRender(*o); }};
+  return {cmd, [o, cmd] { return runRender(*cmd, *o); }};
 }
 
 }  // namespace lodline

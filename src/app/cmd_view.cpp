@@ -1,12 +1,13 @@
-// `lodline view MODEL`: the interactive viewer. Same parameters and same drawing code as
-// `render`; orbit/pan/zoom with mouse and keys; fps in the window title.
+// `lodline view MODEL|SCENE`: the interactive viewer. Same parameters and same drawing code as
+// `render` (ViewerSession), with a Dear ImGui panel for the parameters and live statistics.
 //
-// Mouse: left-drag orbits, right- or middle-drag pans, wheel zooms.
+// Mouse (outside the panel): left-drag orbits, right- or middle-drag pans, wheel zooms.
 // Keys: arrows orbit, +/- (or PageUp/PageDown) zoom, T toggles toon/lines, 1-4 toggle
 // contour/suggestive/crease/boundary lines, [ and ] halve/double the target triangle area
-// (detail control), G toggles geomorphs, C starts/stops recording the camera to a path file
-// (lodline-path.json, replayable with --play or `capture --path`), R resets the view, P
-// saves lodline-view.png, Esc or Q quits. --play FILE.json plays a camera path (looping).
+// (detail control), G toggles geomorphs, H hides/shows the panel, C starts/stops recording the
+// camera to a path file (lodline-path.json, replayable with --play or `capture --path`), R
+// resets the view, P saves lodline-view.png, S saves the view as lodline-view.json, Esc or Q
+// quits. --play FILE.json plays a camera path (looping).
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -15,136 +16,129 @@
 #include <vector>
 
 #include <glad/gl.h>
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 
 #include "app/commands.h"
+#include "app/model.h"
 #include "app/options.h"
 #include "core/timer.h"
-#include "app/model.h"
 #include "frame/camera_path.h"
+#include "io/atomic_file.h"
+#include "io/image.h"
 
 #ifdef LODLINE_HAVE_VIEWER
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "app/viewer_panel.h"
+#include "app/viewer_session.h"
 #include "gl/glfw_window.h"
-#include "gl/renderer.h"
 #endif
 
 namespace lodline {
+namespace {
+
+// Bound to the command's options: a scene's settings are written into these while loading.
+struct ViewCommandOptions {
+  ViewOptions view;
+  DetailOptions detail;
+  std::string play;
+  int exit_after = 0;     ///< frames; 0: run until closed
+  std::string snapshot;   ///< window image (panel included) written at exit
+};
+
+}  // namespace
 
 #ifdef LODLINE_HAVE_VIEWER
 namespace {
 
-struct ViewerState {
-  OrbitView orbit;
-  OrbitView initial;
-  glm::vec3 pan{0.0f};
-  RenderParams params;
-  DetailParams detail;
-  float fov_deg = 35.0f;
-  bool dirty = true;  // camera or line selection changed: lines must be recomputed
+struct WindowState {
+  ViewerSession* session = nullptr;
+  PanelState panel;
   bool dragging_orbit = false, dragging_pan = false;
   double last_x = 0.0, last_y = 0.0;
-  bool screenshot = false;
-  Bounds bounds;
-  // Camera-path recording (key C) and playback (--play).
+  bool screenshot = false, save_view = false;
+  // Camera-path recording (key C).
   bool recording = false;
   bool toggle_recording = false;
   std::vector<CameraKey> recorded;
   Stopwatch record_clock;
-  std::optional<CameraPath> playing;
-  Stopwatch play_clock;
 };
 
-Camera viewerCamera(const ViewerState& s, float aspect) {
-  Bounds shifted = s.bounds;
-  shifted.center += s.pan;
-  Camera cam = orbitCamera(shifted, s.orbit, s.fov_deg, aspect);
-  fitClipPlanes(cam, s.bounds);
-  return cam;
-}
-
-void zoom(ViewerState& s, float factor) {
-  s.orbit.distance = std::clamp(s.orbit.distance * factor, 0.05f, 200.0f);
-  s.dirty = true;
-}
+WindowState& stateOf(GLFWwindow* w) { return *static_cast<WindowState*>(glfwGetWindowUserPointer(w)); }
 
 void onKey(GLFWwindow* w, int key, int, int action, int) {
-  if (action == GLFW_RELEASE) return;
-  auto& s = *static_cast<ViewerState*>(glfwGetWindowUserPointer(w));
+  if (action == GLFW_RELEASE || ImGui::GetIO().WantCaptureKeyboard) return;
+  WindowState& s = stateOf(w);
+  ViewerSession& v = *s.session;
   switch (key) {
     case GLFW_KEY_ESCAPE:
     case GLFW_KEY_Q: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
-    case GLFW_KEY_LEFT: s.orbit.azimuth_deg -= 5.0f; s.dirty = true; break;
-    case GLFW_KEY_RIGHT: s.orbit.azimuth_deg += 5.0f; s.dirty = true; break;
-    case GLFW_KEY_UP: s.orbit.elevation_deg = std::min(89.0f, s.orbit.elevation_deg + 5.0f); s.dirty = true; break;
-    case GLFW_KEY_DOWN: s.orbit.elevation_deg = std::max(-89.0f, s.orbit.elevation_deg - 5.0f); s.dirty = true; break;
+    case GLFW_KEY_LEFT: v.orbit(-5.0f, 0.0f); break;
+    case GLFW_KEY_RIGHT: v.orbit(5.0f, 0.0f); break;
+    case GLFW_KEY_UP: v.orbit(0.0f, 5.0f); break;
+    case GLFW_KEY_DOWN: v.orbit(0.0f, -5.0f); break;
     case GLFW_KEY_EQUAL:
     case GLFW_KEY_KP_ADD:
-    case GLFW_KEY_PAGE_UP: zoom(s, 1.0f / 1.15f); break;
+    case GLFW_KEY_PAGE_UP: v.zoom(1.0f / 1.15f); break;
     case GLFW_KEY_MINUS:
     case GLFW_KEY_KP_SUBTRACT:
-    case GLFW_KEY_PAGE_DOWN: zoom(s, 1.15f); break;
-    case GLFW_KEY_T:
-      s.params.style = s.params.style == Style::kToon ? Style::kLines : Style::kToon;
-      break;
+    case GLFW_KEY_PAGE_DOWN: v.zoom(1.15f); break;
+    case GLFW_KEY_T: v.setStyleAll(v.frameParams().style == Style::kToon ? Style::kLines : Style::kToon); break;
     case GLFW_KEY_1:
     case GLFW_KEY_2:
     case GLFW_KEY_3:
     case GLFW_KEY_4: {
-      auto& k = s.params.lines.kinds[key - GLFW_KEY_1];
-      k.enabled = !k.enabled;
-      s.dirty = true;
+      const int k = key - GLFW_KEY_1;
+      const bool on = !v.frameParams().lines.kinds[k].enabled;
+      v.frameParams().lines.kinds[k].enabled = on;
+      for (auto& o : v.scene().objects()) o.style.lines.kinds[k].enabled = on;
+      for (auto& o : v.description().objects) o.style.erase("lines");
+      v.touch();
       break;
     }
-    case GLFW_KEY_LEFT_BRACKET: s.detail.target_area = std::max(0.25f, s.detail.target_area * 0.5f); break;
-    case GLFW_KEY_RIGHT_BRACKET: s.detail.target_area = std::min(4096.0f, s.detail.target_area * 2.0f); break;
-    case GLFW_KEY_G: s.detail.geomorphs = !s.detail.geomorphs; break;
-    case GLFW_KEY_R: s.orbit = s.initial; s.pan = glm::vec3(0.0f); s.dirty = true; break;
+    case GLFW_KEY_LEFT_BRACKET: v.detail().target_area = std::max(0.25f, v.detail().target_area * 0.5f); break;
+    case GLFW_KEY_RIGHT_BRACKET: v.detail().target_area = std::min(4096.0f, v.detail().target_area * 2.0f); break;
+    case GLFW_KEY_G: v.detail().geomorphs = !v.detail().geomorphs; break;
+    case GLFW_KEY_H: s.panel.visible = !s.panel.visible; break;
+    case GLFW_KEY_R: v.resetView(); break;
     case GLFW_KEY_P: s.screenshot = true; break;
+    case GLFW_KEY_S: s.save_view = true; break;
     case GLFW_KEY_C: s.toggle_recording = true; break;
     default: break;
   }
 }
 
 void onMouseButton(GLFWwindow* w, int button, int action, int) {
-  auto& s = *static_cast<ViewerState*>(glfwGetWindowUserPointer(w));
-  glfwGetCursorPos(w, &s.last_x, &s.last_y);
+  WindowState& s = stateOf(w);
   const bool down = action == GLFW_PRESS;
+  if (down && ImGui::GetIO().WantCaptureMouse) return;  // a click on the panel
+  glfwGetCursorPos(w, &s.last_x, &s.last_y);
   if (button == GLFW_MOUSE_BUTTON_LEFT) s.dragging_orbit = down;
   if (button == GLFW_MOUSE_BUTTON_RIGHT || button == GLFW_MOUSE_BUTTON_MIDDLE) s.dragging_pan = down;
 }
 
 void onCursor(GLFWwindow* w, double x, double y) {
-  auto& s = *static_cast<ViewerState*>(glfwGetWindowUserPointer(w));
+  WindowState& s = stateOf(w);
   const double dx = x - s.last_x, dy = y - s.last_y;
   s.last_x = x;
   s.last_y = y;
   if (s.dragging_orbit) {
-    s.orbit.azimuth_deg -= static_cast<float>(dx) * 0.4f;
-    s.orbit.elevation_deg = std::clamp(s.orbit.elevation_deg + static_cast<float>(dy) * 0.4f, -89.0f, 89.0f);
-    s.dirty = true;
+    s.session->orbit(-static_cast<float>(dx) * 0.4f, static_cast<float>(dy) * 0.4f);
   } else if (s.dragging_pan) {
     int width = 1, height = 1;
     glfwGetWindowSize(w, &width, &height);
-    const Camera cam = viewerCamera(s, static_cast<float>(width) / static_cast<float>(height));
-    const glm::vec3 fwd = cam.forward();
-    const glm::vec3 right = glm::normalize(glm::cross(fwd, cam.up));
-    const glm::vec3 up = glm::cross(right, fwd);
-    // One pixel moves the target by the size of a pixel at the target's distance.
-    const float dist = glm::length(cam.target - cam.eye);
-    const float px = 2.0f * dist * std::tan(glm::radians(s.fov_deg) * 0.5f) / static_cast<float>(height);
-    s.pan += (-static_cast<float>(dx) * right + static_cast<float>(dy) * up) * px;
-    s.dirty = true;
+    s.session->pan(static_cast<float>(dx), static_cast<float>(dy), width, height);
   }
 }
 
 void onScroll(GLFWwindow* w, double, double dy) {
-  auto& s = *static_cast<ViewerState*>(glfwGetWindowUserPointer(w));
-  zoom(s, static_cast<float>(std::pow(1.1, -dy)));
+  if (ImGui::GetIO().WantCaptureMouse) return;
+  stateOf(w).session->zoom(static_cast<float>(std::pow(1.1, -dy)));
 }
 
 // Starts or stops recording; on stop, writes the keys as lodline-path.json.
-void toggleRecording(ViewerState& s) {
+void toggleRecording(WindowState& s) {
   s.toggle_recording = false;
   if (!s.recording) {
     s.recorded.clear();
@@ -160,153 +154,151 @@ void toggleRecording(ViewerState& s) {
   }
   if (Status st = saveCameraPath("lodline-path.json", CameraPath(s.recorded)); !st) reportError(st.error());
   else
-    std::cerr << "lodline: wrote lodline-path.json (" << s.recorded.size() << " keys, "
-              << s.recorded.back().time << " s)\n";
+    std::cerr << "lodline: wrote lodline-path.json (" << s.recorded.size() << " keys, " << s.recorded.back().time
+              << " s)\n";
 }
 
-int runView(const ViewOptions& o, const DetailOptions& d, const std::string& play) {
-  auto resolved = resolveViewOptions(o);
-  if (!resolved) return reportError(resolved.error());
-  auto detail = resolveDetailOptions(d);
-  if (!detail) return reportError(detail.error());
-  auto model = loadModel(resolved->model, *detail);
-  if (!model) return reportError(model.error());
-  LodDrawing& lod_drawing = **model;
-  const LineDrawing& drawing = lod_drawing.drawing();
+Image readFramebuffer(int width, int height) {
+  Image img(width, height);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_BACK);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+  Image flipped(width, height);
+  for (int y = 0; y < height; ++y)
+    std::copy_n(img.pixel(0, height - 1 - y), static_cast<size_t>(width) * 4, flipped.pixel(0, y));
+  return flipped;
+}
 
-  ViewerState s;
-  s.params = resolved->render;
-  s.detail = detail->params;
-  s.fov_deg = resolved->fov_deg;
-  s.bounds = drawing.bounds();
-  s.orbit = resolved->orbit;
-  if (s.orbit.distance <= 0.0f) {
-    const Camera c = orbitCamera(s.bounds, s.orbit, s.fov_deg,
-                                 static_cast<float>(s.params.width) / static_cast<float>(s.params.height));
-    s.orbit.distance = glm::length(c.eye - c.target) / std::max(s.bounds.radius, 1e-6f);
-  }
-  s.initial = s.orbit;
-  if (!play.empty()) {
-    auto path = loadCameraPath(play);
+int runView(CLI::App& cmd, ViewCommandOptions& o) {
+  auto loaded = loadInput(cmd, o.view, o.detail);
+  if (!loaded) return reportError(loaded.error());
+  if (o.exit_after < 0) return reportError(Error::usage("--exit-after: must be >= 0 frames"));
+  if (!o.snapshot.empty() && o.exit_after == 0) return reportError(Error::usage("--snapshot needs --exit-after N"));
+  if (!o.snapshot.empty())
+    if (Status st = checkWritable(o.snapshot); !st) return reportError(st.error());
+  std::optional<CameraPath> play;
+  if (!o.play.empty()) {
+    auto path = loadCameraPath(o.play);
     if (!path) return reportError(path.error());
-    s.playing = std::move(path.value());
+    play = std::move(path.value());
   }
-
-  auto window = GlfwWindow::create(s.params.width, s.params.height,
-                                   "lodline - " + resolved->model.filename().string(), s.params.msaa);
+  const RenderParams rp = (*loaded)->view.render;
+  const std::string title = "lodline - " + (*loaded)->view.model.filename().string();
+  auto window = GlfwWindow::create(rp.width, rp.height, title, rp.msaa);
   if (!window) return reportError(window.error());
   GLFWwindow* w = window->handle();
+  WindowState s;
   glfwSetWindowUserPointer(w, &s);
+  // Ours first: ImGui's backend chains to them.
   glfwSetKeyCallback(w, onKey);
   glfwSetMouseButtonCallback(w, onMouseButton);
   glfwSetCursorPosCallback(w, onCursor);
   glfwSetScrollCallback(w, onScroll);
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+  ImGui::StyleColorsLight();
+  ImGui_ImplGlfw_InitForOpenGL(w, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  int status = 0;
   {
-    auto renderer = Renderer::create();
-    if (!renderer) return reportError(renderer.error());
-    if (s.params.msaa > 1) glEnable(GL_MULTISAMPLE);
-
-    Stopwatch fps_clock, frame_clock;
-    float mean_dt = 1.0f / 20.0f;
-    int frames = 0;
-    while (!glfwWindowShouldClose(w)) {
-      glfwPollEvents();
-      int fb_w = 1, fb_h = 1;
-      glfwGetFramebufferSize(w, &fb_w, &fb_h);
-      if (fb_w <= 0 || fb_h <= 0) {
-        glfwWaitEvents();
-        continue;
-      }
-      Camera cam = viewerCamera(s, static_cast<float>(fb_w) / static_cast<float>(fb_h));
-      if (s.playing) {
-        const double duration = std::max(s.playing->duration(), 1e-3);
-        cam = s.playing->at(s.playing->keys().front().time + std::fmod(s.play_clock.elapsed() / 1000.0, duration),
-                            s.bounds);
-        s.dirty = true;
-      }
-      if (s.toggle_recording) toggleRecording(s);
-      if (s.recording) {
-        const double t = s.record_clock.elapsed() / 1000.0;
-        // Keys every 0.1 s (times must increase strictly).
-        if (s.recorded.empty() || t - s.recorded.back().time >= 0.1)
-          s.recorded.push_back({t, cam.eye, cam.target, cam.up, cam.fov_deg});
-      }
-      // Detail control adapts every frame (geomorphs run on while the camera rests); full
-      // detail recomputes lines only when the view or the line selection changed.
-      const float dt = std::min(0.1f, static_cast<float>(frame_clock.lap() / 1000.0));
-      if (s.dirty || lod_drawing.detailControlled()) {
-        std::array<bool, kLineKindCount> enabled{};
-        for (int k = 0; k < kLineKindCount; ++k) enabled[k] = s.params.lines.kinds[k].enabled;
-        // Smoothing at the measured frame rate (Jeong §3.3), from a running mean of dt.
-        mean_dt = 0.9f * mean_dt + 0.1f * std::max(dt, 1e-3f);
-        const float smooth_w = detail->smoothing.enabled
-                            ? smoothingWeight(detail->smoothing.alpha, detail->smoothing.seconds, 1.0f / mean_dt)
-                            : 1.0f;
-        if (Status st = lod_drawing.frame(cam, fb_w, fb_h, s.detail, dt, enabled, smooth_w); !st)
-          return reportError(st.error());
-        if (lod_drawing.meshChanged())
-          renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces,
-                            drawing.mesh().marked_edges);
-        renderer->setLines(drawing.lines());
-        s.dirty = false;
-      }
-      glBindFramebuffer(GL_FRAMEBUFFER, 0);
-      renderer->draw(cam, s.params, fb_w, fb_h);
-      if (s.screenshot) {
-        Image img(fb_w, fb_h);
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glReadBuffer(GL_BACK);
-        glReadPixels(0, 0, fb_w, fb_h, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
-        Image flipped(fb_w, fb_h);
-        for (int y = 0; y < fb_h; ++y)
-          std::copy_n(img.pixel(0, fb_h - 1 - y), static_cast<size_t>(fb_w) * 4, flipped.pixel(0, y));
-        if (Status st = writePng("lodline-view.png", flipped); !st) reportError(st.error());
-        else std::cerr << "lodline: saved lodline-view.png\n";
-        s.screenshot = false;
-      }
-      glfwSwapBuffers(w);
-      ++frames;
-      if (fps_clock.elapsed() > 500.0) {
-        const double fps = frames * 1000.0 / fps_clock.lap();
-        frames = 0;
-        char title[256];
-        if (lod_drawing.lod())
-          std::snprintf(title, sizeof(title), "lodline - %s - %.1f fps - %zu faces (T %.3g px^2%s) - %zu line segments",
-                        resolved->model.filename().c_str(), fps, renderer->faceCount(), s.detail.target_area,
-                        s.detail.geomorphs ? "" : ", no geomorphs", renderer->segmentsDrawn());
-        else
-          std::snprintf(title, sizeof(title), "lodline - %s - %.1f fps - %zu faces - %zu line segments",
-                        resolved->model.filename().c_str(), fps, renderer->faceCount(), renderer->segmentsDrawn());
-        glfwSetWindowTitle(w, title);
+    auto session = ViewerSession::create(std::move(loaded.value()), o.view);
+    if (!session) {
+      status = reportError(session.error());
+    } else {
+      ViewerSession& v = **session;
+      s.session = &v;
+      if (play) v.play(std::move(play));
+      initPanel(v, s.panel);
+      if (rp.msaa > 1) glEnable(GL_MULTISAMPLE);
+      Stopwatch fps_clock, frame_clock;
+      int frames = 0, total_frames = 0;
+      while (!glfwWindowShouldClose(w)) {
+        glfwPollEvents();
+        int fb_w = 1, fb_h = 1;
+        glfwGetFramebufferSize(w, &fb_w, &fb_h);
+        if (fb_w <= 0 || fb_h <= 0) {
+          glfwWaitEvents();
+          continue;
+        }
+        const float dt = std::min(0.1f, static_cast<float>(frame_clock.lap() / 1000.0));
+        if (v.playing()) v.advancePlayback(dt);
+        if (s.toggle_recording) toggleRecording(s);
+        if (s.recording) {
+          const Camera cam = v.camera(fb_w, fb_h);
+          const double t = s.record_clock.elapsed() / 1000.0;
+          // Keys every 0.1 s (times must increase strictly).
+          if (s.recorded.empty() || t - s.recorded.back().time >= 0.1)
+            s.recorded.push_back({t, cam.eye, cam.target, cam.up, cam.fov_deg});
+        }
+        if (Status st = v.frame(fb_w, fb_h, dt); !st) {
+          status = reportError(st.error());
+          break;
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        v.draw(fb_w, fb_h);
+        if (s.screenshot) {  // the drawing, without the panel
+          if (Status st = writePng("lodline-view.png", readFramebuffer(fb_w, fb_h)); !st) reportError(st.error());
+          else std::cerr << "lodline: saved lodline-view.png\n";
+          s.screenshot = false;
+        }
+        if (s.save_view) {
+          if (Status st = v.saveView("lodline-view.json", fb_w, fb_h); !st) reportError(st.error());
+          else std::cerr << "lodline: saved lodline-view.json (lodline render lodline-view.json -o view.png)\n";
+          s.save_view = false;
+        }
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        drawPanel(v, s.panel, fb_w, fb_h);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        ++total_frames;
+        const bool last = o.exit_after > 0 && total_frames >= o.exit_after;
+        if (last && !o.snapshot.empty()) {
+          if (Status st = writePng(o.snapshot, readFramebuffer(fb_w, fb_h)); !st) status = reportError(st.error());
+        }
+        glfwSwapBuffers(w);
+        ++frames;
+        if (fps_clock.elapsed() > 500.0) {
+          s.panel.fps = static_cast<float>(frames * 1000.0 / fps_clock.lap());
+          frames = 0;
+          char buf[256];
+          std::snprintf(buf, sizeof(buf), "%s - %.1f fps - %zu faces (T %.3g px^2) - %zu line segments", title.c_str(),
+                        static_cast<double>(s.panel.fps), v.renderer().faceCount(), v.detail().target_area,
+                        v.renderer().segmentsDrawn());
+          glfwSetWindowTitle(w, buf);
+        }
+        if (last) break;
       }
     }
-  }  // GL objects die here, before the window and its context
-  return 0;
+  }  // GL objects die here, before ImGui's and the window's context
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  return status;
 }
 
 }  // namespace
 #endif
 
 Command addViewCommand(CLI::App& parent) {
-  struct Opts {
-    ViewOptions view;
-    DetailOptions detail;
-    std::string play;
-  };
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<ViewCommandOptions>();
   CLI::App* cmd = parent.add_subcommand(
       "view",
-      "Open a model in an interactive window.\n"
+      "Open a model or scene in an interactive window with a control panel.\n"
       "  Mouse: left-drag orbit, right/middle-drag pan, wheel zoom.\n"
       "  Keys: arrows orbit, +/- zoom, T toon/lines, 1-4 toggle contour/suggestive/crease/boundary,\n"
-      "        [ ] halve/double the target triangle area, G geomorphs on/off,\n"
-      "        C start/stop recording the camera to lodline-path.json,\n"
-      "        R reset view, P save lodline-view.png, Esc/Q quit.");
+      "        [ ] halve/double the target triangle area, G geomorphs on/off, H hide/show the panel,\n"
+      "        C start/stop recording the camera to lodline-path.json, R reset view,\n"
+      "        P save lodline-view.png, S save the view as lodline-view.json, Esc/Q quit.");
   addViewOptions(*cmd, o->view);
   addDetailOptions(*cmd, o->detail);
   cmd->add_option("--play", o->play, "Play a camera path file (.json, e.g. one recorded with C), looping");
+  cmd->add_option("--exit-after", o->exit_after, "Close after this many frames (0: stay open)")->capture_default_str();
+  cmd->add_option("--snapshot", o->snapshot, "With --exit-after: write the last frame, panel included, to this PNG");
 #ifdef LODLINE_HAVE_VIEWER
-  return {cmd, [o] { return runView(o->view, o->detail, o->play); }};
+  return {cmd, [o, cmd] { return runView(*cmd, *o); }};
 #else
   // The callback keeps the options alive: CLI11 writes into them while parsing.
   return {cmd, [o] {

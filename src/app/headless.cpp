@@ -36,6 +36,34 @@ void HeadlessRenderer::draw(const LineDrawing& drawing, const Camera& camera, co
   times_.render = sw.lap();
 }
 
+Status HeadlessRenderer::setMeshes(const SceneDrawing& scene, bool all) {
+  if (renderer_->objectCount() != scene.size()) {
+    if (Status s = renderer_->setObjectCount(scene.size()); !s) return s;
+    all = true;
+  }
+  for (size_t i = 0; i < scene.size(); ++i) {
+    const LodDrawing& d = *scene[i].drawing;
+    if (!all && !d.meshChanged()) continue;
+    const LineDrawing& ld = d.drawing();
+    renderer_->setMesh(i, ld.mesh().positions, ld.normals(), ld.mesh().faces, ld.mesh().marked_edges);
+  }
+  return {};
+}
+
+void HeadlessRenderer::draw(const SceneDrawing& scene, const Camera& camera, const RenderParams& frame) {
+  Stopwatch sw;
+  styles_.clear();
+  for (size_t i = 0; i < scene.size(); ++i) {
+    renderer_->setLines(i, scene[i].drawing->drawing().lines());
+    styles_.push_back(scene[i].style);
+  }
+  times_.upload = sw.lap();
+  target_->bind();
+  renderer_->draw(camera, frame, styles_, frame.width, frame.height);
+  glFinish();
+  times_.render = sw.lap();
+}
+
 Image HeadlessRenderer::readImage() {
   Stopwatch sw;
   Image image = target_->readback();

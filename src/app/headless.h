@@ -1,5 +1,6 @@
 // One headless OpenGL renderer (context + shaders + offscreen target) drawing frames of a
-// LineDrawing: shared by `render` (one frame) and `capture` (many).
+// scene (or of one LineDrawing): shared by `render` (one frame), `capture` (many) and the
+// benchmarks.
 #pragma once
 
 #include <memory>
@@ -7,6 +8,7 @@
 #include "core/render_params.h"
 #include "export/visibility.h"
 #include "frame/line_drawing.h"
+#include "frame/scene_drawing.h"
 #include "gl/context.h"
 #include "gl/renderer.h"
 #include "io/image.h"
@@ -23,10 +25,17 @@ class HeadlessRenderer {
  public:
   static Result<HeadlessRenderer> create(ContextBackend backend, const RenderParams& params);
 
-  /// Uploads the surface (call when the mesh changes).
+  /// Uploads the surface (call when the mesh changes) of one drawing, as object 0.
   void setMesh(const LineDrawing& drawing);
   /// Draws `drawing`'s current lines from `camera`; the image is then in image().
   void draw(const LineDrawing& drawing, const Camera& camera, const RenderParams& params, bool upload_lines = true);
+
+  /// Uploads the surface of every object of `scene` (`all`), or of those whose mesh changed
+  /// in the last frame. Errors: shader compilation for new objects.
+  Status setMeshes(const SceneDrawing& scene, bool all);
+  /// Draws every object of `scene` from `camera` in its own style, uploading its lines;
+  /// `frame` gives the background.
+  void draw(const SceneDrawing& scene, const Camera& camera, const RenderParams& frame);
   /// Reads back the colour image of the last draw().
   Image readImage();
   /// Reads back the depth of the last draw() (for visibility of lines).
@@ -43,6 +52,7 @@ class HeadlessRenderer {
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<OffscreenTarget> target_;
   FrameTimes times_;
+  std::vector<RenderParams> styles_;
 };
 
 }  // namespace lodline

@@ -2,11 +2,13 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <set>
 #include <sstream>
 
 #include <unistd.h>
 
 #include "core/timer.h"
+#include "core/worker_pool.h"
 #include "io/image.h"
 #include "io/load_mesh.h"
 #include "pm/pm_file.h"
@@ -64,6 +66,21 @@ std::filesystem::path defaultCacheDir() {
   return std::filesystem::temp_directory_path() / "lodline-cache";
 }
 
+Result<std::shared_ptr<const DetailMap>> readDetailMap(const std::filesystem::path& path, float scale) {
+  auto img = readPng(path);
+  if (!img) return img.error();
+  auto map = std::make_shared<DetailMap>();
+  map->width = img->width;
+  map->height = img->height;
+  map->values.resize(static_cast<size_t>(img->width) * img->height);
+  for (size_t i = 0; i < map->values.size(); ++i) {
+    const uint8_t* px = &img->rgba[i * 4];
+    const float grey = (0.299f * px[0] + 0.587f * px[1] + 0.114f * px[2]) / 255.0f;
+    map->values[i] = grey * scale;
+  }
+  return std::shared_ptr<const DetailMap>(std::move(map));
+}
+
 Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
   ResolvedDetail r;
   if (o.lod == "pm") r.mode = LodMode::kPm;
@@ -105,19 +122,12 @@ Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
   p.morph_time = o.morph_time;
   if (!(o.detail_map_scale > 0.0f)) return Error::usage("--detail-map-scale: must be > 0");
   if (!o.detail_map.empty()) {
-    auto img = readPng(o.detail_map);
-    if (!img) return img.error();
-    auto map = std::make_shared<DetailMap>();
-    map->width = img->width;
-    map->height = img->height;
-    map->values.resize(static_cast<size_t>(img->width) * img->height);
-    for (size_t i = 0; i < map->values.size(); ++i) {
-      const uint8_t* px = &img->rgba[i * 4];
-      const float grey = (0.299f * px[0] + 0.587f * px[1] + 0.114f * px[2]) / 255.0f;
-      map->values[i] = grey * o.detail_map_scale;
-    }
-    p.detail_map = std::move(map);
+    auto map = readDetailMap(o.detail_map, o.detail_map_scale);
+    if (!map) return map.error();
+    p.detail_map = std::move(map.value());
+    r.detail_map_file = o.detail_map;
   }
+  r.detail_map_scale = o.detail_map_scale;
   if (o.smoothing != "on" && o.smoothing != "off") return Error::usage("--smoothing: expected on or off");
   if (!(o.smoothing_alpha > 0.0f && o.smoothing_alpha < 1.0f)) return Error::usage("--smoothing-alpha: must be in (0, 1)");
   if (!(o.smoothing_time > 0.0f && o.smoothing_time <= 60.0f)) return Error::usage("--smoothing-time: must be in (0, 60] s");
@@ -139,30 +149,199 @@ PmProgress buildProgressBar(const std::string& label) {
   };
 }
 
-Result<std::unique_ptr<LodDrawing>> loadModel(const std::filesystem::path& model, const ResolvedDetail& detail,
-                                              double* load_ms, double* pm_ms, std::string* note) {
+namespace {
+
+// Options of lodline's drawing commands that only some of them have: a scene's settings may
+// name them (they apply where the command has them). The shared ones are found on `cmd`.
+const std::set<std::string>& commandSpecificOptions() {
+  static const std::set<std::string> names = {"max-adapt-frames", "backend", "context", "fps", "duration",
+                                              "path", "play"};
+  return names;
+}
+
+// Settings that are not drawing parameters: outputs and the input belong to the command line.
+const std::set<std::string>& forbiddenSettings() {
+  static const std::set<std::string> names = {"model", "output", "o", "svg", "stats", "metrics", "frames", "help"};
+  return names;
+}
+
+}  // namespace
+
+bool givenOnCommandLine(const CLI::App& cmd, const std::string& name) {
+  const CLI::Option* opt = cmd.get_option_no_throw("--" + name);
+  return opt && opt->count() > 0;
+}
+
+Status applySceneSettings(const Scene& scene, CLI::App& cmd) {
+  const std::string file = scene.file.string();
+  for (const auto& [key, value] : scene.settings.items()) {
+    const std::string where = file + ": settings." + key;
+    if (forbiddenSettings().count(key)) return Error::runtime(where + ": not a scene setting (give it on the command line)");
+    CLI::Option* opt = cmd.get_option_no_throw("--" + key);
+    if (!opt) {
+      // Shared drawing options every drawing command has; the rest are listed above.
+      CLI::App scratch;
+      ViewOptions v;
+      DetailOptions d;
+      addViewOptions(scratch, v);
+      addDetailOptions(scratch, d);
+      if (scratch.get_option_no_throw("--" + key) || commandSpecificOptions().count(key)) continue;
+      return Error::runtime(where + ": unknown setting (settings are render options by their long name, e.g. "
+                                    "\"target-area\"; see `lodline render --help`)");
+    }
+    if (opt->count() > 0) continue;  // the command line wins
+    std::vector<std::string> values;
+    if (value.is_array()) {
+      for (const auto& e : value) values.push_back(e.get<std::string>());
+    } else if (value.is_string()) {
+      values.push_back(value.get<std::string>());
+    } else if (value.is_boolean()) {
+      values.push_back(value.get<bool>() ? "true" : "false");
+    } else {
+      std::ostringstream s;
+      s.precision(9);
+      if (value.is_number_integer()) s << value.get<long long>();
+      else s << value.get<double>();
+      values.push_back(s.str());
+    }
+    // File settings are relative to the scene file, as its mesh paths are.
+    if ((key == "detail-map" || key == "play" || (key == "path" && !values.empty() &&
+                                                  std::filesystem::path(values[0]).extension() == ".json")) &&
+        !values.empty() && std::filesystem::path(values[0]).is_relative())
+      values[0] = (scene.file.parent_path() / values[0]).string();
+    try {
+      opt->clear();
+      for (const std::string& v : values) opt->add_result(v);
+      opt->run_callback();
+    } catch (const CLI::Error& e) {
+      return Error::runtime(where + ": " + e.what());
+    }
+  }
+  return {};
+}
+
+Result<TriMesh> loadObjectMesh(const SceneObject& object) {
+  TriMesh mesh;
+  if (object.preloaded) {
+    mesh = *object.preloaded;
+  } else {
+    auto m = loadMesh(object.mesh);
+    if (!m) return m.error();
+    mesh = std::move(m.value());
+  }
+  transformMesh(mesh, object.transform);
+  if (Status s = validateMesh(mesh, object.mesh.string() + " (after the transform of " + object.where + ")"); !s)
+    return s.error();
+  return mesh;
+}
+
+Result<std::unique_ptr<LoadedScene>> loadSceneObjects(Scene scene, const ViewOptions& view_options,
+                                                      const ResolvedView& view, const ResolvedDetail& detail) {
+  auto loaded = std::make_unique<LoadedScene>();
+  loaded->view = view;
+  loaded->detail = detail;
+  auto pool = std::make_shared<WorkerPool>(ShapeParams{}.threads);
   Stopwatch sw;
-  auto mesh = loadMesh(model);
-  if (!mesh) return mesh.error();
-  if (load_ms) *load_ms = sw.lap();
-  if (detail.full_detail) {
-    if (pm_ms) *pm_ms = 0.0;
-    return std::make_unique<LodDrawing>(std::move(mesh.value()));
+  for (const SceneObject& obj : scene.objects) {
+    auto style = resolveObjectStyle(view_options, obj.style, obj.where);
+    if (!style) return style.error();
+    if (scene.light_dir_eye) {
+      style->toon.light_dir_eye = *scene.light_dir_eye;
+      style->chamfer.light_dir_eye = *scene.light_dir_eye;
+    }
+    sw.lap();
+    auto mesh = loadObjectMesh(obj);
+    if (!mesh) return mesh.error();
+    loaded->load_ms += sw.lap();
+    SceneDrawing::Object o;
+    o.name = obj.name;
+    o.style = *style;
+    o.detail_factor = obj.detail_factor;
+    o.input_vertices = mesh->vertexCount();
+    o.input_faces = mesh->faceCount();
+    if (detail.mode == LodMode::kNone) {
+      o.drawing = std::make_unique<LodDrawing>(std::move(mesh.value()), view.line_params, pool);
+    } else if (detail.mode == LodMode::kCluster) {
+      o.drawing = std::make_unique<LodDrawing>(std::move(mesh.value()), detail.cluster, view.line_params, pool);
+      loaded->cache_note = "vertex clustering";
+    } else {
+      std::string note;
+      const uint64_t hash = meshContentHash(*mesh);
+      auto pm = loadOrBuildPm(*mesh, hash, detail.cache_dir, {},
+                              buildProgressBar("lodline: building progressive mesh of " + obj.name), &note);
+      if (!pm) return Error::runtime(obj.mesh.string() + ": " + pm.error().message);
+      if (!loaded->cache_note.empty()) loaded->cache_note += "; ";
+      loaded->cache_note += note;
+      auto shared = std::make_shared<const ProgressiveMesh>(std::move(pm.value()));
+      o.drawing = std::make_unique<LodDrawing>(std::move(mesh.value()), std::move(shared), view.line_params, pool);
+    }
+    loaded->pm_ms += sw.lap();
+    loaded->drawing.add(std::move(o));
   }
-  if (detail.mode == LodMode::kCluster) {
-    auto drawing = std::make_unique<LodDrawing>(std::move(mesh.value()), detail.cluster);
-    if (pm_ms) *pm_ms = sw.lap();
-    if (note) *note = "vertex clustering";
-    return drawing;
+  loaded->camera = scene.camera;
+  loaded->scene = std::move(scene);
+  return loaded;
+}
+
+Result<std::unique_ptr<LoadedScene>> loadInput(CLI::App& cmd, ViewOptions& view, DetailOptions& detail) {
+  if (view.models.size() != 1)
+    return Error::usage("give exactly one MODEL (a mesh, scene or glTF file; got " + std::to_string(view.models.size()) +
+                        ")");
+  Stopwatch sw;
+  auto scene = loadScene(std::filesystem::path(view.models[0]));
+  if (!scene) return scene.error();
+  const double scene_ms = sw.lap();
+  if (Status s = applySceneSettings(*scene, cmd); !s) return s.error();
+  auto resolved = resolveViewOptions(view);
+  if (!resolved) return resolved.error();
+  auto resolved_detail = resolveDetailOptions(detail);
+  if (!resolved_detail) return resolved_detail.error();
+  // The command line's --view and --fov win over the scene's camera.
+  if (scene->camera && givenOnCommandLine(cmd, "view")) scene->camera.reset();
+  if (scene->camera && scene->camera->fov_deg && !givenOnCommandLine(cmd, "fov")) resolved->fov_deg = *scene->camera->fov_deg;
+  if (scene->camera && scene->camera->view) {
+    auto orbit = parseOrbitView(*scene->camera->view);
+    if (!orbit) return Error::runtime(scene->file.string() + ": camera.view: " + orbit.error().message);
+    resolved->orbit = *orbit;
+    resolved->orbit_given = true;
   }
-  const uint64_t hash = meshContentHash(*mesh);
-  auto pm = loadOrBuildPm(*mesh, hash, detail.cache_dir, {},
-                          buildProgressBar("lodline: building progressive mesh of " + model.filename().string()),
-                          note);
-  if (!pm) return Error::runtime(model.string() + ": " + pm.error().message);
-  if (pm_ms) *pm_ms = sw.lap();
-  auto shared = std::make_shared<const ProgressiveMesh>(std::move(pm.value()));
-  return std::make_unique<LodDrawing>(std::move(mesh.value()), std::move(shared));
+  auto loaded = loadSceneObjects(std::move(scene.value()), view, *resolved, *resolved_detail);
+  if (!loaded) return loaded.error();
+  (*loaded)->load_ms += scene_ms;
+  return loaded;
+}
+
+Result<Camera> initialCamera(const LoadedScene& loaded, float aspect) {
+  const Bounds& bounds = loaded.drawing.bounds();
+  if (loaded.camera && loaded.camera->explicit_pose) {
+    Camera cam;
+    cam.eye = loaded.camera->eye;
+    cam.target = loaded.camera->target;
+    cam.up = loaded.camera->up;
+    cam.fov_deg = loaded.view.fov_deg;
+    fitClipPlanes(cam, bounds);
+    return cam;
+  }
+  if (loaded.camera && loaded.camera->path) {
+    auto path = scenePath(loaded, "", false, loaded.camera->duration.value_or(8.0), aspect);
+    if (!path) return path.error();
+    return path->at(path->keys().front().time, bounds);
+  }
+  return orbitCamera(bounds, loaded.view.orbit, loaded.view.fov_deg, aspect);
+}
+
+Result<CameraPath> scenePath(const LoadedScene& loaded, const std::string& name_or_file, bool given, double duration,
+                             float aspect) {
+  std::string name = name_or_file;
+  if (!given && loaded.camera && loaded.camera->path) {
+    name = *loaded.camera->path;
+    if (loaded.camera->duration) duration = *loaded.camera->duration;
+  }
+  const auto& names = builtinPathNames();
+  if (std::find(names.begin(), names.end(), name) != names.end() ||
+      std::filesystem::path(name).extension() != ".json")  // unknown names get the usage error
+    return builtinPath(name, loaded.drawing.bounds(), loaded.view.fov_deg, aspect, duration);
+  return loadCameraPath(name);
 }
 
 }  // namespace lodline

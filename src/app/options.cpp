@@ -7,7 +7,9 @@
 namespace lodline {
 
 void addViewOptions(CLI::App& cmd, ViewOptions& o) {
-  cmd.add_option("model", o.models, "Mesh file (.off, .obj, .ply, .stl); polygons are triangulated")
+  cmd.add_option("model", o.models,
+                 "Mesh file (.off, .obj, .ply, .stl; polygons are triangulated), scene file (.json, "
+                 "docs/scenes.md) or glTF 2.0 file (.gltf, .glb)")
       ->required();
   cmd.add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
   cmd.add_option("--view", o.view,
@@ -51,6 +53,14 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
                  "How highlights meet the faces: replace (the strip replaces the face bands it "
                  "rounds off) or alpha (the paper's blend with W = K*r_e/(d*r_max))")
       ->capture_default_str();
+  cmd.add_option("--suggestive-threshold", o.suggestive_threshold,
+                 "Suggestive contours where tan(theta)*Dw kr exceeds this / feature size^2 (larger: fewer)")
+      ->capture_default_str();
+  cmd.add_option("--suggestive-fade", o.suggestive_fade,
+                 "Fade of weak suggestive contours (0 = no fading)")
+      ->capture_default_str();
+  cmd.add_option("--crease-angle", o.crease_angle, "Dihedral angle in degrees above which an edge is a crease line")
+      ->capture_default_str();
 }
 
 Result<OrbitView> parseOrbitView(const std::string& s) {
@@ -79,7 +89,8 @@ Result<OrbitView> parseOrbitView(const std::string& s) {
 Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   ResolvedView r;
   if (o.models.size() != 1)
-    return Error::usage("exactly one MODEL is supported for now (got " + std::to_string(o.models.size()) + ")");
+    return Error::usage("give exactly one MODEL (a mesh, scene or glTF file; got " + std::to_string(o.models.size()) +
+                        ")");
   r.model = o.models[0];
   auto size = parseSize(o.size);
   if (!size) return size.error();
@@ -89,6 +100,7 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
     auto v = parseOrbitView(o.view);
     if (!v) return v.error();
     r.orbit = *v;
+    r.orbit_given = true;
   }
   if (!(o.fov_deg >= 1.0f && o.fov_deg <= 170.0f))
     return Error::usage("--fov: " + std::to_string(o.fov_deg) + " is out of range (1-170 degrees)");
@@ -163,6 +175,14 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
       r.render.lines.kinds[index].width_px = w;
     }
   }
+  if (!(o.suggestive_threshold >= 0.0f && o.suggestive_threshold <= 100.0f))
+    return Error::usage("--suggestive-threshold: must be in [0, 100]");
+  if (!(o.suggestive_fade >= 0.0f && o.suggestive_fade <= 100.0f))
+    return Error::usage("--suggestive-fade: must be in [0, 100]");
+  if (!(o.crease_angle >= 0.0f && o.crease_angle <= 180.0f)) return Error::usage("--crease-angle: must be in [0, 180] degrees");
+  r.line_params.suggestive_threshold = o.suggestive_threshold;
+  r.line_params.suggestive_fade = o.suggestive_fade;
+  r.line_params.crease_angle_deg = o.crease_angle;
   for (auto& k : r.render.lines.kinds) k.enabled = false;
   std::stringstream ss(o.lines);
   std::string item;
@@ -179,6 +199,48 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
                           "' (expected contour, suggestive, crease, boundary or none)");
   }
   return r;
+}
+
+}  // namespace lodline
+
+namespace lodline {
+
+Result<RenderParams> resolveObjectStyle(const ViewOptions& base, const nlohmann::json& style,
+                                        const std::string& where) {
+  ViewOptions o = base;
+  o.models = {"(object)"};  // styles do not depend on the input
+  auto text = [](const nlohmann::json& v) {
+    if (v.is_string()) return v.get<std::string>();
+    return v.dump();
+  };
+  auto number = [&](const nlohmann::json& v, const std::string& key, float& out) -> Status {
+    if (v.is_number()) {
+      out = v.get<float>();
+      return {};
+    }
+    return Error::runtime(where + "." + key + ": expected a number");
+  };
+  for (const auto& [key, v] : style.items()) {
+    if (key == "style") o.style = text(v);
+    else if (key == "lines") o.lines = text(v);
+    else if (key == "line-style") {
+      // Object line styles come after the frame's, so they win per kind.
+      if (v.is_array())
+        for (const auto& e : v) o.line_styles.push_back(text(e));
+      else
+        o.line_styles.push_back(text(v));
+    } else if (key == "line-width") {
+      if (Status s = number(v, key, o.line_width); !s) return s.error();
+    } else if (key == "chamfer") o.chamfer = text(v);
+    else if (key == "chamfer-radius") {
+      if (Status s = number(v, key, o.chamfer_radius); !s) return s.error();
+    } else {
+      return Error::runtime(where + ": unknown style key \"" + key + "\"");
+    }
+  }
+  auto r = resolveViewOptions(o);
+  if (!r) return Error::runtime(where + ": " + r.error().message);
+  return r->render;
 }
 
 }  // namespace lodline

@@ -1,5 +1,6 @@
-// Command-line options shared by `render` and `view` (and later `capture`): they fill the
-// same parameter structs the viewer edits, so a headless render reproduces the viewer.
+// Command-line options shared by `render`, `view` and `capture` (and the "settings" of scene
+// files): they fill the same parameter structs the viewer edits, so a headless render
+// reproduces the viewer.
 #pragma once
 
 #include <filesystem>
@@ -7,10 +8,12 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/camera.h"
 #include "core/render_params.h"
 #include "core/result.h"
+#include "lines/lines.h"
 
 namespace lodline {
 
@@ -33,13 +36,19 @@ struct ViewOptions {
   float chamfer_angle = 30.0f;    ///< sharp-edge threshold, degrees
   float chamfer_shininess = 32.0f;  ///< Blinn–Phong exponent n
   std::string chamfer_compose = "replace";  ///< replace or alpha (the paper's blend)
+  // Line thresholds (LineParams).
+  float suggestive_threshold = LineParams{}.suggestive_threshold;
+  float suggestive_fade = LineParams{}.suggestive_fade;
+  float crease_angle = LineParams{}.crease_angle_deg;
 };
 
 /// Everything a frame needs that does not depend on the model.
 struct ResolvedView {
-  std::filesystem::path model;
+  std::filesystem::path model;  ///< the input: a mesh, scene (.json) or glTF file
   RenderParams render;
+  LineParams line_params;       ///< thresholds of the line kinds (which kinds: render.lines)
   OrbitView orbit;
+  bool orbit_given = false;     ///< --view was given (else: the default framing)
   float fov_deg = 35.0f;
 };
 
@@ -51,5 +60,11 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o);
 
 /// Parses "AZ,EL,DIST" (degrees, degrees, bounding-sphere radii > 0).
 Result<OrbitView> parseOrbitView(const std::string& s);
+
+/// The style of one scene object: `base` with the object's style keys (render option names:
+/// style, lines, line-style, line-width, chamfer, chamfer-radius) applied, resolved as the
+/// command-line options are. Errors name `where` and the key.
+Result<RenderParams> resolveObjectStyle(const ViewOptions& base, const nlohmann::json& style,
+                                        const std::string& where);
 
 }  // namespace lodline

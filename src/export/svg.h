@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <glm/vec2.hpp>
 
@@ -49,5 +50,19 @@ struct SvgStrokes {
 /// path) name the file; on error no file is left at `path`.
 Status writeSvg(const std::filesystem::path& path, int width, int height,
                 const SvgStrokes& strokes, const SvgStyle& style = {});
+
+/// The strokes of one object of a scene, in its own line styles (`style.lines`,
+/// `style.decimals`; its page fields are unused).
+struct SvgLayer {
+  std::string name;  ///< written as the group's id (sanitised)
+  SvgStrokes strokes;
+  SvgStyle style;
+};
+
+/// Several objects in one SVG, in order (later layers on top), each in a <g id="name">
+/// group; the page (background) comes from `page`. One layer writes exactly what writeSvg()
+/// writes.
+Status writeSvgLayers(const std::filesystem::path& path, int width, int height, std::span<const SvgLayer> layers,
+                      const SvgStyle& page);
 
 }  // namespace lodline

@@ -70,6 +70,17 @@ void VisibleStrokes::clear() {
   length_px.clear();
 }
 
+void appendStrokes(const VisibleStrokes& from, VisibleStrokes& to) {
+  if (from.strokeCount() == 0) return;
+  const uint32_t base = static_cast<uint32_t>(to.points.size());
+  if (to.offsets.empty()) to.offsets.push_back(0);
+  to.points.insert(to.points.end(), from.points.begin(), from.points.end());
+  for (size_t s = 0; s < from.strokeCount(); ++s) to.offsets.push_back(base + from.offsets[s + 1]);
+  to.types.insert(to.types.end(), from.types.begin(), from.types.end());
+  to.opacity.insert(to.opacity.end(), from.opacity.begin(), from.opacity.end());
+  to.length_px.insert(to.length_px.end(), from.length_px.begin(), from.length_px.end());
+}
+
 bool isPointVisible(const Camera& camera, const DepthImage& depth, glm::vec3 p,
                     const VisibilityParams& params) {
   const Projector proj(camera, depth.width, depth.height);

@@ -48,6 +48,9 @@ struct VisibleStrokes {
   void clear();
 };
 
+/// Appends the strokes of `from` to `to` (scenes: every object's visible strokes as one set).
+void appendStrokes(const VisibleStrokes& from, VisibleStrokes& to);
+
 /// True when the model-space point `p` is not hidden by the surface in `depth`, as seen by
 /// `camera` (the camera `depth` was drawn with); points outside the image are not visible.
 bool isPointVisible(const Camera& camera, const DepthImage& depth, glm::vec3 p,

@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <numbers>
 
 #include "core/timer.h"
 
 namespace lodline {
 
-LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapeParams& shape_params)
-    : pool_(std::make_unique<WorkerPool>(shape_params.threads)),
+LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapeParams& shape_params,
+                         std::shared_ptr<WorkerPool> pool)
+    : pool_(pool ? std::move(pool) : std::make_shared<WorkerPool>(shape_params.threads)),
       mesh_(std::move(mesh)),
       params_(params),
       shape_(shape_params) {
@@ -19,18 +21,34 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
   Stopwatch sw;
   shape_.compute(mesh_);
   feature_size_ = computeFeatureSize(shape_.k1(), shape_.k2(), bounds_.radius);
-  // Crease vertices of the full-detail mesh: the same edge lines the extractor would draw.
+  // Per vertex of the full-detail mesh, the smallest n1·n2 over its edges with two faces
+  // (−2 for marked and non-manifold edges, which are always creases): the vertex lies on a
+  // crease of angle a exactly where this is below cos(a), the extractor's own test.
   {
-    LineParams creases_only;
-    creases_only.contours = creases_only.suggestive = creases_only.boundaries = false;
-    creases_only.creases = true;
-    creases_only.crease_angle_deg = params_.crease_angle_deg;
-    creases_only.marked_edges = params_.marked_edges;
-    LineSet edges;
-    LineScratch scratch;
-    extractEdgeLines(mesh_, shape_.adjacency(), shape_.faceNormals(), creases_only, scratch, edges);
-    full_crease_vertices_.assign(mesh_.positions.size(), 0);
-    for (size_t i = 0; i < edges.point_ids.size(); ++i) full_crease_vertices_[edges.point_ids[i]] = 1;
+    const MeshAdjacency& adj = shape_.adjacency();
+    const auto face_normals = shape_.faceNormals();
+    full_min_dot_.assign(mesh_.positions.size(), 2.0f);
+    auto lower = [&](uint32_t e, float d) {
+      for (uint32_t v : adj.edges[e]) full_min_dot_[v] = std::min(full_min_dot_[v], d);
+    };
+    for (const EdgeKey& k : mesh_.marked_edges)
+      if (const uint32_t e = adj.findEdge(k[0], k[1]); e != kNoIndex) marked_edge_ids_.push_back(e);
+    for (uint32_t e = 0; e < adj.edges.size(); ++e) {
+      const uint32_t count = adj.edge_face_count[e];
+      if (count > 2) {
+        marked_edge_ids_.push_back(e);
+      } else if (count == 2) {
+        const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
+        const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
+        if (glm::dot(n1, n1) == 0.0f || glm::dot(n2, n2) == 0.0f) continue;
+        lower(e, glm::dot(n1, n2));
+      }
+    }
+    full_min_dot_marked_ = full_min_dot_;
+    for (uint32_t e : marked_edge_ids_) {
+      for (uint32_t v : adj.edges[e]) full_min_dot_marked_[v] = -2.0f;
+    }
+    updateFullCreaseVertices();
   }
   timings_.shape = sw.lap();
 }
@@ -52,6 +70,21 @@ void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
   mesh_.marked_edges.clear();  // marked edges refer to full-detail vertex ids
   shape_.update(mesh_, changed);
   timings_.shape = sw.lap();
+}
+
+void LineDrawing::updateFullCreaseVertices() {
+  const float cos_limit = std::cos(params_.crease_angle_deg * std::numbers::pi_v<float> / 180.0f);
+  const std::vector<float>& min_dot = params_.marked_edges ? full_min_dot_marked_ : full_min_dot_;
+  full_crease_vertices_.resize(min_dot.size());
+  for (size_t v = 0; v < min_dot.size(); ++v) full_crease_vertices_[v] = min_dot[v] < cos_limit;
+  crease_angle_ = params_.crease_angle_deg;
+  marked_ = params_.marked_edges;
+  ++crease_version_;
+}
+
+void LineDrawing::setParams(const LineParams& params) {
+  params_ = params;
+  if (params_.crease_angle_deg != crease_angle_ || params_.marked_edges != marked_) updateFullCreaseVertices();
 }
 
 std::span<const glm::vec3> LineDrawing::normals() const {

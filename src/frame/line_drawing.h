@@ -29,8 +29,11 @@ class LineDrawing {
  public:
   /// Takes the full-detail mesh and computes its shape quantities (normals, curvature,
   /// derivatives), its bounds and its feature size (which stay those of the full-detail model
-  /// when level of detail later replaces the mesh).
-  explicit LineDrawing(TriMesh mesh, const LineParams& params = {}, const ShapeParams& shape_params = {});
+  /// when level of detail later replaces the mesh). `pool` runs the data-parallel loops; null:
+  /// a pool of ShapeParams::threads threads of its own. Drawings of one scene share one pool
+  /// (they run one after the other), so a scene wakes one set of workers, not one per object.
+  explicit LineDrawing(TriMesh mesh, const LineParams& params = {}, const ShapeParams& shape_params = {},
+                       std::shared_ptr<WorkerPool> pool = nullptr);
 
   /// Replaces the mesh by an adapted one (level of detail): `positions` per vertex slot,
   /// `faces` indexing them; `changed` lists the vertices whose position or incident faces
@@ -58,7 +61,11 @@ class LineDrawing {
   /// The smoothing state (level of detail moves it along the vertex hierarchy).
   TemporalSmoother& smoother() { return smoother_; }
 
-  void setParams(const LineParams& params) { params_ = params; }
+  /// New thresholds; a new crease angle also recomputes fullDetailCreaseVertices() (and
+  /// bumps creaseVersion()).
+  void setParams(const LineParams& params);
+  /// Counts changes of fullDetailCreaseVertices() (level of detail rebuilds its mask).
+  uint64_t creaseVersion() const { return crease_version_; }
   const LineParams& params() const { return params_; }
 
   const TriMesh& mesh() const { return mesh_; }
@@ -76,15 +83,24 @@ class LineDrawing {
   /// The threads of this drawing's data-parallel loops (shape stage, view quantities);
   /// level of detail runs its own on them too.
   WorkerPool& workers() { return *pool_; }
+  const std::shared_ptr<WorkerPool>& sharedWorkers() const { return pool_; }
 
  private:
-  std::unique_ptr<WorkerPool> pool_;  // ShapeParams::threads threads, caller included
+  std::shared_ptr<WorkerPool> pool_;  // ShapeParams::threads threads, caller included
   TriMesh mesh_;
   Bounds bounds_;
   LineParams params_;
   ShapeCache shape_;
   float feature_size_ = 1.0f;
+  void updateFullCreaseVertices();
   std::vector<uint8_t> full_crease_vertices_, crease_mask_;
+  // Smallest n1·n2 over each full-detail vertex's edges, without / with marked and
+  // non-manifold edges counted as creases (−2): see updateFullCreaseVertices().
+  std::vector<float> full_min_dot_, full_min_dot_marked_;
+  std::vector<uint32_t> marked_edge_ids_;
+  float crease_angle_ = -1.0f;
+  bool marked_ = false;
+  uint64_t crease_version_ = 0;
   TemporalSmoother smoother_;
   std::span<const glm::vec3> shading_normals_;
   ViewQuantities view_;

@@ -7,7 +7,8 @@
 
 namespace lodline {
 
-LodDrawing::LodDrawing(TriMesh full, const LineParams& params) : drawing_(std::move(full), params) {}
+LodDrawing::LodDrawing(TriMesh full, const LineParams& params, std::shared_ptr<WorkerPool> pool)
+    : drawing_(std::move(full), params, {}, std::move(pool)) {}
 
 namespace {
 // Geomorphs start a split's new vertex at its parent's position, so adapted meshes routinely
@@ -23,23 +24,31 @@ ShapeParams adaptiveShapeParams() {
 }
 }  // namespace
 
-LodDrawing::LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params)
-    : drawing_(std::move(full), params, adaptiveShapeParams()), pm_(std::move(pm)), lod_(std::make_unique<AdaptiveMesh>(*pm_)) {
+LodDrawing::LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params,
+                       std::shared_ptr<WorkerPool> pool)
+    : drawing_(std::move(full), params, adaptiveShapeParams(), std::move(pool)), pm_(std::move(pm)), lod_(std::make_unique<AdaptiveMesh>(*pm_)) {
   lod_->setWorkerPool(&drawing_.workers());
 }
 
-LodDrawing::LodDrawing(TriMesh full, const ClusterParams& cluster, const LineParams& params)
-    : drawing_(full, params, adaptiveShapeParams()),
+LodDrawing::LodDrawing(TriMesh full, const ClusterParams& cluster, const LineParams& params,
+                       std::shared_ptr<WorkerPool> pool)
+    : drawing_(full, params, adaptiveShapeParams(), std::move(pool)),
       cluster_(std::make_unique<VertexClustering>(std::move(full))),
       cluster_params_(cluster) {
   // Clustering folds the surface locally (non-manifold edges, small holes where collapsed
   // faces were): draw boundaries only for models that have some, and no non-manifold edges
   // as creases (the input's marked edges do not survive updateMesh anyway).
-  LineParams p = params;
   const auto boundary = cluster_->boundaryVertices();
-  p.boundaries = p.boundaries && std::find(boundary.begin(), boundary.end(), uint8_t{1}) != boundary.end();
-  p.marked_edges = false;
-  drawing_.setParams(p);
+  cluster_has_boundary_ = std::find(boundary.begin(), boundary.end(), uint8_t{1}) != boundary.end();
+  setLineParams(params);
+}
+
+void LodDrawing::setLineParams(LineParams params) {
+  if (cluster_) {
+    params.boundaries = params.boundaries && cluster_has_boundary_;
+    params.marked_edges = false;
+  }
+  drawing_.setParams(params);
 }
 
 Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const DetailParams& detail,
@@ -74,7 +83,7 @@ Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const 
   drawing_.smoother().followHierarchy(*lod_);
   adapt_ms_ = sw.lap();
   const LodChanges& ch = lod_->changes();
-  if (!first_ && !ch.everything && ch.dirty.empty()) return {};
+  if (!first_ && !ch.everything && ch.dirty.empty() && crease_version_ == drawing_.creaseVersion()) return {};
   lod_->exportFaces(faces_);
   if (first_ || ch.everything) {
     changed_.resize(lod_->slotCount());
@@ -90,6 +99,10 @@ Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const 
     const auto full = drawing_.fullDetailCreaseVertices();
     auto& mask = drawing_.creaseMask();
     mask.resize(nodes.size(), 0);
+    if (crease_version_ != drawing_.creaseVersion()) {  // a new crease angle: every slot
+      crease_version_ = drawing_.creaseVersion();
+      for (size_t s = 0; s < nodes.size(); ++s) mask[s] = nodes[s] != kPmNone && full[pm_->origin[nodes[s]]];
+    }
     for (uint32_t s : changed_) mask[s] = nodes[s] != kPmNone && full[pm_->origin[nodes[s]]];
   }
   drawing_.updateMesh(lod_->positions(), faces_, changed_);

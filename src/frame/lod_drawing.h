@@ -16,16 +16,19 @@ namespace lodline {
 
 class LodDrawing {
  public:
-  /// Full detail: the mesh is drawn as it is.
-  explicit LodDrawing(TriMesh full, const LineParams& params = {});
+  /// Full detail: the mesh is drawn as it is. In every constructor, `pool` runs the
+  /// data-parallel loops (null: a pool of its own; see LineDrawing).
+  explicit LodDrawing(TriMesh full, const LineParams& params = {}, std::shared_ptr<WorkerPool> pool = nullptr);
   /// Detail control: `full` is the input mesh (for bounds and feature size), `pm` its
   /// progressive mesh. Starts at the base mesh.
-  LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params = {});
+  LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params = {},
+             std::shared_ptr<WorkerPool> pool = nullptr);
 
   /// View-dependent vertex clustering every frame (Pan, Zhou, Shi; lod/vertex_clustering.h):
   /// `full` is clustered for each view with `cluster` (its foveation and focus are taken from
   /// the DetailParams passed to frame()).
-  LodDrawing(TriMesh full, const ClusterParams& cluster, const LineParams& params = {});
+  LodDrawing(TriMesh full, const ClusterParams& cluster, const LineParams& params = {},
+             std::shared_ptr<WorkerPool> pool = nullptr);
 
   /// True for any level of detail that changes with the view (progressive mesh or clustering).
   bool detailControlled() const { return lod_ != nullptr || cluster_ != nullptr; }
@@ -43,6 +46,9 @@ class LodDrawing {
   /// the detail a still image shows, and where captures start.
   Result<int> converge(const Camera& camera, int width, int height, const DetailParams& detail,
                        float dt, int max_steps, const std::array<bool, kLineKindCount>& enabled);
+
+  /// New line thresholds (the viewer's panel); they apply from the next frame.
+  void setLineParams(LineParams params);
 
   const LineDrawing& drawing() const { return drawing_; }
   const Bounds& bounds() const { return drawing_.bounds(); }
@@ -62,8 +68,10 @@ class LodDrawing {
   std::unique_ptr<AdaptiveMesh> lod_;
   std::unique_ptr<VertexClustering> cluster_;
   ClusterParams cluster_params_;
+  bool cluster_has_boundary_ = false;
   std::vector<std::array<uint32_t, 3>> faces_;
   std::vector<uint32_t> changed_;
+  uint64_t crease_version_ = 0;  // LineDrawing::creaseVersion() the crease mask was built for
   double adapt_ms_ = 0.0;
   bool mesh_changed_ = true;
   bool first_ = true;

@@ -46,78 +46,106 @@ Result<Renderer> Renderer::create() {
   r.toon_ = std::move(toon.value());
   r.depth_only_ = std::move(depth.value());
   r.line_ = std::move(line.value());
+  r.ramp_ = makeTexture();
+  if (Status s = r.setObjectCount(1); !s) return s.error();
+  return r;
+}
+
+Result<Renderer::Object> Renderer::makeObject() const {
+  Object o;
   auto chamfer = ChamferLayer::create();
   if (!chamfer) return chamfer.error();
-  r.chamfer_ = std::move(chamfer.value());
-
-  r.mesh_vao_ = makeVertexArray();
-  r.positions_ = makeBuffer();
-  r.normals_ = makeBuffer();
-  r.indices_ = makeBuffer();
-  glBindVertexArray(r.mesh_vao_.id());
-  glBindBuffer(GL_ARRAY_BUFFER, r.positions_.id());
+  o.chamfer = std::move(chamfer.value());
+  o.mesh_vao = makeVertexArray();
+  o.positions = makeBuffer();
+  o.normals = makeBuffer();
+  o.indices = makeBuffer();
+  glBindVertexArray(o.mesh_vao.id());
+  glBindBuffer(GL_ARRAY_BUFFER, o.positions.id());
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, r.normals_.id());
+  glBindBuffer(GL_ARRAY_BUFFER, o.normals.id());
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.indices_.id());
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, o.indices.id());
 
-  r.line_vao_ = makeVertexArray();
-  r.line_vertices_ = makeBuffer();
-  glBindVertexArray(r.line_vao_.id());
-  glBindBuffer(GL_ARRAY_BUFFER, r.line_vertices_.id());
+  o.line_vao = makeVertexArray();
+  o.line_vertices = makeBuffer();
+  glBindVertexArray(o.line_vao.id());
+  glBindBuffer(GL_ARRAY_BUFFER, o.line_vertices.id());
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(LineVertex), nullptr);
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(LineVertex),
                         reinterpret_cast<const void*>(offsetof(LineVertex, alpha)));
   glBindVertexArray(0);
-
-  r.ramp_ = makeTexture();
-  return r;
+  return o;
 }
 
-void Renderer::setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
-                       std::span<const std::array<uint32_t, 3>> faces,
-                       std::span<const EdgeKey> marked_edges) {
-  chamfer_.setMesh(positions, faces, marked_edges);
-  glBindVertexArray(0);
-  uploadArray(GL_ARRAY_BUFFER, positions_, positions);
-  uploadArray(GL_ARRAY_BUFFER, normals_, normals);
-  glBindVertexArray(mesh_vao_.id());
-  uploadArray(GL_ELEMENT_ARRAY_BUFFER, indices_, faces);
-  glBindVertexArray(0);
-  face_count_ = faces.size();
+Status Renderer::setObjectCount(size_t n) {
+  if (objects_.size() > n) objects_.resize(n);
+  while (objects_.size() < n) {
+    auto o = makeObject();
+    if (!o) return o.error();
+    objects_.push_back(std::move(o.value()));
+  }
+  return {};
 }
 
-void Renderer::setLines(const LineBuffer& lines) {
+void Renderer::setMesh(size_t object, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                       std::span<const std::array<uint32_t, 3>> faces, std::span<const EdgeKey> marked_edges) {
+  Object& o = objects_[object];
+  o.chamfer.setMesh(positions, faces, marked_edges);
   glBindVertexArray(0);
-  uploadArray(GL_ARRAY_BUFFER, line_vertices_, std::span<const LineVertex>(lines.vertices));
-  first_ = lines.first;
-  count_ = lines.count;
+  uploadArray(GL_ARRAY_BUFFER, o.positions, positions);
+  uploadArray(GL_ARRAY_BUFFER, o.normals, normals);
+  glBindVertexArray(o.mesh_vao.id());
+  uploadArray(GL_ELEMENT_ARRAY_BUFFER, o.indices, faces);
+  glBindVertexArray(0);
+  o.face_count = faces.size();
+}
+
+void Renderer::setLines(size_t object, const LineBuffer& lines) {
+  Object& o = objects_[object];
+  glBindVertexArray(0);
+  uploadArray(GL_ARRAY_BUFFER, o.line_vertices, std::span<const LineVertex>(lines.vertices));
+  o.first = lines.first;
+  o.count = lines.count;
+}
+
+size_t Renderer::faceCount() const {
+  size_t n = 0;
+  for (const Object& o : objects_) n += o.face_count;
+  return n;
+}
+
+size_t Renderer::segmentsDrawn() const {
+  size_t n = 0;
+  for (const Object& o : objects_) n += o.segments_drawn;
+  return n;
+}
+
+size_t Renderer::chamferEdgesDrawn() const {
+  size_t n = 0;
+  for (const Object& o : objects_) n += o.chamfer_drawn;
+  return n;
 }
 
 void Renderer::draw(const Camera& camera, const RenderParams& params, int width, int height) {
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  glViewport(0, 0, width, height);
-  glClearColor(params.background.r, params.background.g, params.background.b, params.background.a);
-  glClearDepth(1.0);
-  glDepthMask(GL_TRUE);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDisable(GL_CULL_FACE);  // open meshes show their inside; both sides are drawn
-  glDisable(GL_BLEND);
+  std::vector<RenderParams> styles(objects_.size(), params);
+  draw(camera, params, styles, width, height);
+}
 
-  // 1. Faces, pushed back slightly so visible lines on them pass the depth test.
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(1.0f, 2.0f);
-  if (params.style == Style::kToon) {
-    const ToonParams& t = params.toon;
-    const std::array<float, 5> key{t.tones[0], t.tones[1], t.tones[2], t.thresholds[0],
-                                   t.thresholds[1]};
+void Renderer::drawFaces(Object& o, const Camera& camera, const RenderParams& style, float aspect, int width,
+                         int height) {
+  if (style.style == Style::kShaded) {
+    // Blinn–Phong with crease-aware corner normals (the chamfer layer's material).
+    o.chamfer.drawShadedFaces(camera, style.chamfer, width, height);
+    return;
+  }
+  if (style.style == Style::kToon) {
+    const ToonParams& t = style.toon;
+    const std::array<float, 5> key{t.tones[0], t.tones[1], t.tones[2], t.thresholds[0], t.thresholds[1]};
     if (key != ramp_key_) {
       // Build the ramp: 256 texels over n·l ∈ [0, 1].
       std::vector<float> ramp(256);
@@ -141,64 +169,91 @@ void Renderer::draw(const Camera& camera, const RenderParams& params, int width,
     glUniform3fv(glGetUniformLocation(toon_.id(), "u_base_color"), 1, glm::value_ptr(t.base_color));
     const glm::vec3 l = glm::normalize(t.light_dir_eye);
     glUniform3fv(glGetUniformLocation(toon_.id(), "u_light_eye"), 1, glm::value_ptr(l));
-  } else if (params.style == Style::kShaded) {
-    glUseProgram(0);
   } else {
+    // Lines only: the faces take the background colour and only hide hidden lines.
     glUseProgram(depth_only_.id());
     setMatrices(depth_only_.id(), camera, aspect);
-    glUniform4fv(glGetUniformLocation(depth_only_.id(), "u_color"), 1,
-                 glm::value_ptr(params.background));
+    glUniform4fv(glGetUniformLocation(depth_only_.id(), "u_color"), 1, glm::value_ptr(style.background));
   }
-  if (params.style == Style::kShaded) {
-    // Blinn–Phong with crease-aware corner normals (the chamfer layer's material).
-    chamfer_.drawShadedFaces(camera, params.chamfer, width, height);
+  glBindVertexArray(o.mesh_vao.id());
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(o.face_count * 3), GL_UNSIGNED_INT, nullptr);
+}
+
+void Renderer::drawChamfer(Object& o, const Camera& camera, const RenderParams& style, const RenderParams& frame,
+                           int width, int height) {
+  o.chamfer_drawn = 0;
+  const ChamferParams& ch = style.chamfer;
+  if (!ch.enabled || !(style.style == Style::kShaded || (style.style == Style::kToon && ch.over_toon))) return;
+  if (style.style == Style::kShaded) {
+    o.chamfer.draw(camera, ch, width, height, true, glm::vec3(frame.background));
   } else {
-    glBindVertexArray(mesh_vao_.id());
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(face_count_ * 3), GL_UNSIGNED_INT, nullptr);
+    // Over toon: a Blinn–Phong whose range matches the ramp (darkest tone in the shade,
+    // brightest fully lit) under the toon light, so highlights sit on the toon tones.
+    ChamferParams over = ch;
+    const ToonParams& t = style.toon;
+    over.ambient = t.base_color * t.tones[0];
+    over.diffuse = t.base_color * (t.tones[2] - t.tones[0]);
+    over.light_dir_eye = t.light_dir_eye;
+    o.chamfer.draw(camera, over, width, height, false);
   }
-  glDisable(GL_POLYGON_OFFSET_FILL);
+  o.chamfer_drawn = o.chamfer.edgesDrawn();
+}
 
-  // 2. Chamfer highlights on sharp edges, blended over the faces (depth-tested against them).
-  chamfer_drawn_ = 0;
-  const ChamferParams& ch = params.chamfer;
-  if (ch.enabled && (params.style == Style::kShaded || (params.style == Style::kToon && ch.over_toon))) {
-    if (params.style == Style::kShaded) {
-      chamfer_.draw(camera, ch, width, height, true, glm::vec3(params.background));
-    } else {
-      // Over toon: a Blinn–Phong whose range matches the ramp (darkest tone in the shade,
-      // brightest fully lit) under the toon light, so highlights sit on the toon tones.
-      ChamferParams over = ch;
-      const ToonParams& t = params.toon;
-      over.ambient = t.base_color * t.tones[0];
-      over.diffuse = t.base_color * (t.tones[2] - t.tones[0]);
-      over.light_dir_eye = t.light_dir_eye;
-      chamfer_.draw(camera, over, width, height, false);
-    }
-    chamfer_drawn_ = chamfer_.edgesDrawn();
-  }
-
-  // 3. Lines: depth-tested against the faces, no depth writes, blended for faded lines.
-  glDepthFunc(GL_LEQUAL);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+void Renderer::drawLines(Object& o, const Camera& camera, const RenderParams& style, float aspect) {
   glUseProgram(line_.id());
   setMatrices(line_.id(), camera, aspect);
-  glBindVertexArray(line_vao_.id());
-  segments_drawn_ = 0;
+  glBindVertexArray(o.line_vao.id());
+  o.segments_drawn = 0;
   GLfloat width_range[2] = {1.0f, 1.0f};
   glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, width_range);
   const GLint color_loc = glGetUniformLocation(line_.id(), "u_color");
   for (int k = 0; k < kLineKindCount; ++k) {
-    const LineStyle& s = params.lines.kinds[k];
-    if (!s.enabled || count_[k] == 0) continue;
+    const LineStyle& s = style.lines.kinds[k];
+    if (!s.enabled || o.count[k] == 0) continue;
     // Highlighted sharp edges replace the crease lines drawn on them.
-    if (k == static_cast<int>(LineKind::kCrease) && chamfer_drawn_ > 0 && ch.replace_creases) continue;
+    if (k == static_cast<int>(LineKind::kCrease) && o.chamfer_drawn > 0 && style.chamfer.replace_creases) continue;
     glLineWidth(std::clamp(s.width_px, width_range[0], width_range[1]));
     glUniform4fv(color_loc, 1, glm::value_ptr(s.color));
-    glDrawArrays(GL_LINES, static_cast<GLint>(first_[k]), static_cast<GLsizei>(count_[k]));
-    segments_drawn_ += count_[k] / 2;
+    glDrawArrays(GL_LINES, static_cast<GLint>(o.first[k]), static_cast<GLsizei>(o.count[k]));
+    o.segments_drawn += o.count[k] / 2;
   }
+}
+
+void Renderer::draw(const Camera& camera, const RenderParams& frame, std::span<const RenderParams> styles, int width,
+                    int height) {
+  LODLINE_ASSERT(styles.size() == objects_.size());
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  glViewport(0, 0, width, height);
+  glClearColor(frame.background.r, frame.background.g, frame.background.b, frame.background.a);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);  // open meshes show their inside; both sides are drawn
+  glDisable(GL_BLEND);
+
+  // 1. Faces of every object, pushed back slightly so visible lines on them pass the depth
+  //    test. A lines-style object's faces take the frame's background colour.
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.0f, 2.0f);
+  for (size_t i = 0; i < objects_.size(); ++i) {
+    RenderParams style = styles[i];
+    style.background = frame.background;
+    drawFaces(objects_[i], camera, style, aspect, width, height);
+  }
+  glDisable(GL_POLYGON_OFFSET_FILL);
+
+  // 2. Chamfer highlights on sharp edges, blended over the faces (depth-tested against them).
+  for (size_t i = 0; i < objects_.size(); ++i) drawChamfer(objects_[i], camera, styles[i], frame, width, height);
+
+  // 3. Lines: depth-tested against every object's faces, no depth writes, blended for faded lines.
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  for (size_t i = 0; i < objects_.size(); ++i) drawLines(objects_[i], camera, styles[i], aspect);
   glLineWidth(1.0f);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);

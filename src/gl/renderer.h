@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -24,39 +25,68 @@ namespace lodline {
 
 class Renderer {
  public:
-  /// Compiles the shaders; needs a current context.
+  /// Compiles the shaders; needs a current context. Holds one object until setObjectCount().
   static Result<Renderer> create();
 
-  /// Uploads the surface: `positions` and `normals` hold one entry per vertex, `faces`
-  /// indexes them. Buffers are reused when the sizes fit. `marked_edges` (vertex index pairs,
-  /// e.g. TriMesh::marked_edges) always get chamfer highlights; other sharp edges are found
-  /// by dihedral angle (ChamferParams::threshold_deg) at the first draw that needs them.
-  void setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
-               std::span<const std::array<uint32_t, 3>> faces,
-               std::span<const EdgeKey> marked_edges = {});
-  /// Uploads the lines, grouped by kind.
-  void setLines(const LineBuffer& lines);
+  /// Number of objects (a mesh with its lines and chamfer layer each) the renderer holds;
+  /// objects beyond `n` are released, new ones start empty. Errors: shader compilation of a
+  /// new object's chamfer layer.
+  Status setObjectCount(size_t n);
+  size_t objectCount() const { return objects_.size(); }
 
-  /// Draws into the currently bound framebuffer of `width`×`height` px (clears it first).
+  /// Uploads the surface of `object`: `positions` and `normals` hold one entry per vertex,
+  /// `faces` indexes them. Buffers are reused when the sizes fit. `marked_edges` (vertex
+  /// index pairs, e.g. TriMesh::marked_edges) always get chamfer highlights; other sharp
+  /// edges are found by dihedral angle (ChamferParams::threshold_deg) at the first draw that
+  /// needs them.
+  void setMesh(size_t object, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+               std::span<const std::array<uint32_t, 3>> faces, std::span<const EdgeKey> marked_edges = {});
+  /// Uploads the lines of `object`, grouped by kind.
+  void setLines(size_t object, const LineBuffer& lines);
+  /// Object 0 (the only one of a single-model renderer).
+  void setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+               std::span<const std::array<uint32_t, 3>> faces, std::span<const EdgeKey> marked_edges = {}) {
+    setMesh(0, positions, normals, faces, marked_edges);
+  }
+  void setLines(const LineBuffer& lines) { setLines(0, lines); }
+
+  /// Draws every object into the currently bound framebuffer of `width`×`height` px (cleared
+  /// first to `frame.background`): all faces, each object in its own `styles[i]` (style,
+  /// toon, chamfer; the array holds objectCount() entries), then the chamfer highlights,
+  /// then all lines, so an object hides the lines of those behind it.
+  void draw(const Camera& camera, const RenderParams& frame, std::span<const RenderParams> styles, int width,
+            int height);
+  /// Every object in the frame's own style.
   void draw(const Camera& camera, const RenderParams& params, int width, int height);
 
-  size_t faceCount() const { return face_count_; }
-  /// Segments drawn by the last draw() (enabled kinds only).
-  size_t segmentsDrawn() const { return segments_drawn_; }
+  /// Faces uploaded, over all objects / of one object.
+  size_t faceCount() const;
+  size_t faceCount(size_t object) const { return objects_[object].face_count; }
+  /// Segments drawn by the last draw() (enabled kinds only), over all objects / of one.
+  size_t segmentsDrawn() const;
+  size_t segmentsDrawn(size_t object) const { return objects_[object].segments_drawn; }
   /// Sharp edges highlighted by the last draw() (0 when the chamfer layer was off).
-  size_t chamferEdgesDrawn() const { return chamfer_drawn_; }
-  /// The chamfer layer (per-vertex radii: chamfer().setMesh(...) after setMesh()).
-  ChamferLayer& chamfer() { return chamfer_; }
+  size_t chamferEdgesDrawn() const;
+  /// The chamfer layer of `object` (per-vertex radii: chamfer(i).setMesh(...) after setMesh()).
+  ChamferLayer& chamfer(size_t object = 0) { return objects_[object].chamfer; }
 
  private:
+  struct Object {
+    GlVertexArray mesh_vao, line_vao;
+    GlBuffer positions, normals, indices, line_vertices;
+    ChamferLayer chamfer;
+    size_t face_count = 0, segments_drawn = 0, chamfer_drawn = 0;
+    std::array<uint32_t, kLineKindCount> first{}, count{};
+  };
   Renderer() = default;
+  Result<Object> makeObject() const;
+  void drawFaces(Object& o, const Camera& camera, const RenderParams& style, float aspect, int width, int height);
+  void drawChamfer(Object& o, const Camera& camera, const RenderParams& style, const RenderParams& frame, int width,
+                   int height);
+  void drawLines(Object& o, const Camera& camera, const RenderParams& style, float aspect);
   GlProgram toon_, depth_only_, line_;
-  GlVertexArray mesh_vao_, line_vao_;
-  GlBuffer positions_, normals_, indices_, line_vertices_;
   GlTexture ramp_;
-  ChamferLayer chamfer_;
-  size_t face_count_ = 0, segments_drawn_ = 0, chamfer_drawn_ = 0;
-  std::array<uint32_t, kLineKindCount> first_{}, count_{};
+  std::vector<Object> objects_;
   std::array<float, 5> ramp_key_{};  // tones + thresholds the ramp texture was built from
 };
 

@@ -1,0 +1,211 @@
+#include "app/viewer_panel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace lodline {
+namespace {
+
+void copyText(std::array<char, 1024>& dst, const std::string& src) {
+  const size_t n = std::min(src.size(), dst.size() - 1);
+  std::memcpy(dst.data(), src.data(), n);
+  dst[n] = '\0';
+}
+
+// Colours are kept on the 8-bit grid a saved view writes, so `render` of a saved view draws
+// the same colours.
+void quantize(glm::vec4& c) {
+  for (int i = 0; i < 4; ++i) c[i] = std::round(std::clamp(c[i], 0.0f, 1.0f) * 255.0f) / 255.0f;
+}
+
+// Applies `edit` to the frame's parameters and to every object's style (the panel's style
+// controls act on the whole scene); object-specific keys `keys` of the scene file no longer
+// hold once the panel sets them.
+template <class Edit>
+void editAllStyles(ViewerSession& s, std::initializer_list<const char*> keys, Edit&& edit) {
+  edit(s.frameParams());
+  for (auto& o : s.scene().objects()) edit(o.style);
+  auto& objects = s.description().objects;
+  for (auto& o : objects)
+    for (const char* k : keys) o.style.erase(k);
+  s.touch();
+}
+
+const char* kStyles[] = {"lines", "toon", "shaded"};
+
+void detailSection(ViewerSession& s, PanelState& st) {
+  if (!ImGui::CollapsingHeader("Detail control", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  DetailParams& d = s.detail();
+  const char* mode = s.lodMode() == LodMode::kPm ? "progressive mesh" : s.lodMode() == LodMode::kCluster ? "vertex clustering" : "none (full detail)";
+  ImGui::Text("Level of detail: %s", mode);
+  ImGui::SliderFloat("T (px^2)", &d.target_area, 0.25f, 4096.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
+  {
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    st.target_area_slider = {a.x, a.y, b.x, b.y};
+  }
+  float tc = d.t_c, ts = d.t_s;
+  const bool tc_changed = ImGui::SliderFloat("t_c (collapse)", &tc, 0.05f, 1.5f, "%.3f");
+  const bool ts_changed = ImGui::SliderFloat("t_s (split)", &ts, 0.2f, 4.0f, "%.3f");
+  if (tc_changed || ts_changed) {
+    if (tc > 0.0f && 2.0f * tc < ts) {
+      d.t_c = tc;
+      d.t_s = ts;
+    } else {
+      st.message = "t_c/t_s need 0 < 2*t_c < t_s";
+    }
+  }
+  ImGui::Checkbox("Geomorphs", &d.geomorphs);
+  ImGui::SliderFloat("Morph time (s)", &d.morph_time, 0.05f, 5.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  ImGui::InputText("Detail map", st.detail_map.data(), st.detail_map.size());
+  ImGui::SliderFloat("Map scale", &st.detail_map_scale, 0.25f, 64.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::Button("Load map")) {
+    if (Status r = s.setDetailMap(st.detail_map.data(), st.detail_map_scale); !r) st.message = r.error().message;
+    else st.message = st.detail_map[0] ? std::string("detail map loaded") : std::string("detail map cleared");
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("No map")) {
+    st.detail_map[0] = '\0';
+    (void)s.setDetailMap("", st.detail_map_scale);
+    st.message = "detail map cleared";
+  }
+}
+
+void objectsSection(ViewerSession& s) {
+  if (!ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  auto& objects = s.description().objects;
+  for (size_t i = 0; i < s.scene().size(); ++i) {
+    SceneDrawing::Object& o = s.scene()[i];
+    ImGui::PushID(static_cast<int>(i));
+    ImGui::Text("%s", o.name.c_str());
+    ImGui::SliderFloat("factor on T", &o.detail_factor, 0.1f, 64.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
+    int style = static_cast<int>(o.style.style);
+    if (ImGui::Combo("style", &style, kStyles, 3)) {
+      o.style.style = static_cast<Style>(style);
+      if (i < objects.size()) objects[i].style["style"] = kStyles[style];
+      s.touch();
+    }
+    ImGui::PopID();
+  }
+}
+
+void smoothingSection(ViewerSession& s) {
+  if (!ImGui::CollapsingHeader("Temporal smoothing")) return;
+  SmoothingParams& p = s.smoothing();
+  ImGui::Checkbox("Smooth normals, kr, Dw kr", &p.enabled);
+  ImGui::SliderFloat("alpha", &p.alpha, 0.05f, 0.99f, "%.3f");
+  ImGui::SliderFloat("within (s)", &p.seconds, 0.05f, 5.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+}
+
+void linesSection(ViewerSession& s) {
+  if (!ImGui::CollapsingHeader("Lines", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  for (int k = 0; k < kLineKindCount; ++k) {
+    ImGui::PushID(k);
+    LineStyle ls = s.frameParams().lines.kinds[k];
+    bool changed = ImGui::Checkbox(lineKindName(static_cast<LineKind>(k)), &ls.enabled);
+    ImGui::SameLine(140.0f);
+    if (ImGui::ColorEdit4("colour", &ls.color.r, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel)) {
+      quantize(ls.color);
+      changed = true;
+    }
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(110.0f);
+    changed |= ImGui::SliderFloat("width", &ls.width_px, 0.5f, 8.0f, "%.2f px");
+    if (changed)
+      editAllStyles(s, {"lines", "line-style", "line-width"}, [&](RenderParams& p) { p.lines.kinds[k] = ls; });
+    ImGui::PopID();
+  }
+  LineParams lp = s.lineParams();
+  bool changed = ImGui::SliderFloat("Suggestive threshold", &lp.suggestive_threshold, 0.0f, 0.2f, "%.4f");
+  changed |= ImGui::SliderFloat("Suggestive fade", &lp.suggestive_fade, 0.0f, 0.2f, "%.4f");
+  changed |= ImGui::SliderFloat("Crease angle (deg)", &lp.crease_angle_deg, 1.0f, 179.0f, "%.1f");
+  if (changed) s.setLineParams(lp);
+}
+
+void styleSection(ViewerSession& s) {
+  if (!ImGui::CollapsingHeader("Style")) return;
+  int style = static_cast<int>(s.frameParams().style);
+  if (ImGui::Combo("Style (all objects)", &style, kStyles, 3)) s.setStyleAll(static_cast<Style>(style));
+  ChamferParams ch = s.frameParams().chamfer;
+  int mode = !ch.enabled ? 2 : ch.over_toon ? 1 : 0;
+  const char* modes[] = {"auto (shaded style)", "on (also over toon)", "off"};
+  bool changed = ImGui::Combo("Chamfer", &mode, modes, 3);
+  ch.enabled = mode != 2;
+  ch.over_toon = mode == 1;
+  changed |= ImGui::InputFloat("Radius r_e (0 = auto)", &ch.radius, 0.0f, 0.0f, "%.5g");
+  changed |= ImGui::InputFloat("K (0 = auto)", &ch.k, 0.0f, 0.0f, "%.5g");
+  changed |= ImGui::SliderFloat("Sharp angle (deg)", &ch.threshold_deg, 1.0f, 180.0f, "%.1f");
+  changed |= ImGui::SliderFloat("Shininess", &ch.shininess, 1.0f, 127.0f, "%.0f");
+  int compose = ch.compose == ChamferCompose::kAlpha ? 1 : 0;
+  const char* composes[] = {"replace", "alpha (paper)"};
+  if (ImGui::Combo("Compose", &compose, composes, 2)) {
+    ch.compose = compose == 1 ? ChamferCompose::kAlpha : ChamferCompose::kReplace;
+    changed = true;
+  }
+  if (changed) {
+    ch.radius = std::isfinite(ch.radius) ? std::max(ch.radius, 0.0f) : 0.0f;
+    ch.k = std::isfinite(ch.k) ? std::max(ch.k, 0.0f) : 0.0f;
+    editAllStyles(s, {"chamfer", "chamfer-radius"}, [&](RenderParams& p) { p.chamfer = ch; });
+  }
+}
+
+void statsSection(const ViewerSession& s, const PanelState& st) {
+  if (!ImGui::CollapsingHeader("Frame statistics", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  const ViewerStats& v = s.stats();
+  ImGui::Text("%.1f fps", static_cast<double>(st.fps));
+  if (ImGui::BeginTable("ms", 2)) {
+    auto row = [](const char* name, double ms) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(name);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.2f ms", ms);
+    };
+    row("adapt", v.adapt_ms);
+    row("shape", v.shape_ms);
+    row("view quantities", v.view_ms);
+    row("extract", v.extract_ms);
+    row("chain", v.chain_ms);
+    row("upload", v.upload_ms);
+    row("draw (submit)", v.draw_ms);
+    ImGui::EndTable();
+  }
+  ImGui::Text("active faces %zu, visible %zu", v.active_faces, v.visible_faces);
+  ImGui::Text("splits %zu, collapses %zu, morphing %zu", v.splits, v.collapses, v.morphing);
+  ImGui::Text("strokes %zu, specks %zu (before hiding)", v.strokes, v.specks);
+}
+
+}  // namespace
+
+void initPanel(const ViewerSession& session, PanelState& state) {
+  copyText(state.detail_map, session.detailMapFile());
+  state.detail_map_scale = session.detailMapScale();
+  copyText(state.save_path, "lodline-view.json");
+}
+
+void drawPanel(ViewerSession& session, PanelState& state, int width, int height) {
+  if (!state.visible) return;
+  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(380.0f, std::min(static_cast<float>(height) - 16.0f, 760.0f)), ImGuiCond_FirstUseEver);
+  ImGui::Begin("lodline");
+  ImGui::TextWrapped("%s (%zu object%s)", session.loaded().view.model.filename().string().c_str(), session.scene().size(),
+                     session.scene().size() == 1 ? "" : "s");
+  detailSection(session, state);
+  objectsSection(session);
+  smoothingSection(session);
+  linesSection(session);
+  styleSection(session);
+  statsSection(session, state);
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (ImGui::Button("Reset view")) session.resetView();
+    ImGui::InputText("Scene file", state.save_path.data(), state.save_path.size());
+    if (ImGui::Button("Save view")) {
+      if (Status r = session.saveView(state.save_path.data(), width, height); !r) state.message = r.error().message;
+      else state.message = std::string("saved ") + state.save_path.data() + " (lodline render reproduces it)";
+    }
+  }
+  if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
+  ImGui::End();
+}
+
+}  // namespace lodline

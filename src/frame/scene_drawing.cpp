@@ -1,0 +1,84 @@
+#include "frame/scene_drawing.h"
+
+#include <algorithm>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+namespace lodline {
+
+Bounds unionBounds(const Bounds& a, const Bounds& b) {
+  Bounds u;
+  u.min = glm::min(a.min, b.min);
+  u.max = glm::max(a.max, b.max);
+  u.center = 0.5f * (u.min + u.max);
+  u.radius = std::max(glm::length(a.center - u.center) + a.radius, glm::length(b.center - u.center) + b.radius);
+  return u;
+}
+
+void SceneDrawing::add(Object object) {
+  bounds_ = objects_.empty() ? object.drawing->bounds() : unionBounds(bounds_, object.drawing->bounds());
+  objects_.push_back(std::move(object));
+}
+
+bool SceneDrawing::detailControlled() const {
+  return std::any_of(objects_.begin(), objects_.end(), [](const Object& o) { return o.drawing->detailControlled(); });
+}
+
+std::array<bool, kLineKindCount> SceneDrawing::enabledKinds(const RenderParams& style) {
+  std::array<bool, kLineKindCount> enabled{};
+  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = style.lines.kinds[k].enabled;
+  return enabled;
+}
+
+DetailParams SceneDrawing::objectDetail(const DetailParams& detail, const Object& o) const {
+  DetailParams d = detail;
+  d.object_factor *= o.detail_factor;
+  return d;
+}
+
+Status SceneDrawing::frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
+                           float smoothing) {
+  const WorkerPool::Awake awake(pool());  // one wake-up for all objects' stages
+  for (Object& o : objects_)
+    if (Status s = o.drawing->frame(camera, width, height, objectDetail(detail, o), dt, enabledKinds(o.style), smoothing);
+        !s)
+      return s;
+  return {};
+}
+
+Result<int> SceneDrawing::converge(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
+                                   int max_steps) {
+  const WorkerPool::Awake awake(pool());
+  int steps = 0;
+  for (Object& o : objects_) {
+    auto s = o.drawing->converge(camera, width, height, objectDetail(detail, o), dt, max_steps, enabledKinds(o.style));
+    if (!s) return s.error();
+    steps = std::max(steps, *s);
+  }
+  return steps;
+}
+
+WorkerPool* SceneDrawing::pool() const {
+  return objects_.empty() ? nullptr : objects_.front().drawing->drawing().sharedWorkers().get();
+}
+
+double SceneDrawing::adaptMs() const {
+  double ms = 0.0;
+  for (const Object& o : objects_) ms += o.drawing->adaptMs();
+  return ms;
+}
+
+CpuTimings SceneDrawing::timings() const {
+  CpuTimings t;
+  for (const Object& o : objects_) {
+    const CpuTimings& ot = o.drawing->drawing().timings();
+    t.shape += ot.shape;
+    t.view += ot.view;
+    t.extract += ot.extract;
+    t.chain += ot.chain;
+  }
+  return t;
+}
+
+}  // namespace lodline
