@@ -53,3 +53,112 @@ TempDir::~TempDir() {
 }
 
 }  // namespace lodline::test
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+namespace lodline::test {
+namespace {
+
+std::string base64(const std::vector<uint8_t>& data) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < data.size(); i += 3) {
+    const uint32_t n = (uint32_t(data[i]) << 16) | (i + 1 < data.size() ? uint32_t(data[i + 1]) << 8 : 0) |
+                       (i + 2 < data.size() ? uint32_t(data[i + 2]) : 0);
+    out += k[(n >> 18) & 63];
+    out += k[(n >> 12) & 63];
+    out += i + 1 < data.size() ? k[(n >> 6) & 63] : '=';
+    out += i + 2 < data.size() ? k[n & 63] : '=';
+  }
+  return out;
+}
+
+}  // namespace
+
+void writeGltf(const std::filesystem::path& path, const std::vector<GltfTestNode>& nodes) {
+  std::vector<uint8_t> buffer;
+  nlohmann::json j;
+  j["asset"] = {{"version", "2.0"}};
+  j["scene"] = 0;
+  nlohmann::json roots = nlohmann::json::array(), jn = nlohmann::json::array(), meshes = nlohmann::json::array(),
+                 accessors = nlohmann::json::array(), views = nlohmann::json::array();
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const GltfTestNode& n = nodes[i];
+    auto append = [&](const void* data, size_t bytes) {
+      while (buffer.size() % 4) buffer.push_back(0);
+      const size_t offset = buffer.size();
+      buffer.resize(offset + bytes);
+      std::memcpy(buffer.data() + offset, data, bytes);
+      views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}});
+      return views.size() - 1;
+    };
+    const size_t pv = append(n.positions.data(), n.positions.size() * 12);
+    const size_t iv = append(n.indices.data(), n.indices.size() * 4);
+    std::array<float, 3> mn{1e30f, 1e30f, 1e30f}, mx{-1e30f, -1e30f, -1e30f};
+    for (const auto& p : n.positions)
+      for (int k = 0; k < 3; ++k) mn[k] = std::min(mn[k], p[k]), mx[k] = std::max(mx[k], p[k]);
+    accessors.push_back({{"bufferView", pv}, {"componentType", 5126}, {"count", n.positions.size()}, {"type", "VEC3"},
+                         {"min", mn}, {"max", mx}});
+    accessors.push_back({{"bufferView", iv}, {"componentType", 5125}, {"count", n.indices.size()}, {"type", "SCALAR"}});
+    meshes.push_back({{"primitives", {{{"attributes", {{"POSITION", accessors.size() - 2}}},
+                                       {"indices", accessors.size() - 1}, {"mode", 4}}}}});
+    nlohmann::json node = {{"mesh", i}, {"translation", n.translation}, {"rotation", n.rotation}, {"scale", n.scale}};
+    if (!n.name.empty()) node["name"] = n.name;
+    jn.push_back(node);
+    if (n.parent < 0) roots.push_back(i);
+  }
+  for (size_t i = 0; i < nodes.size(); ++i)
+    if (nodes[i].parent >= 0) jn[nodes[i].parent]["children"].push_back(i);
+  j["scenes"] = {{{"nodes", roots}}};
+  j["nodes"] = jn;
+  j["meshes"] = meshes;
+  j["accessors"] = accessors;
+  j["bufferViews"] = views;
+  const bool binary = path.extension() == ".glb";
+  while (buffer.size() % 4) buffer.push_back(0);
+  if (binary) {
+    j["buffers"] = {{{"byteLength", buffer.size()}}};
+    std::string text = j.dump();
+    while (text.size() % 4) text.push_back(' ');
+    std::ofstream out(path, std::ios::binary);
+    auto u32 = [&](uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); };
+    u32(0x46546C67);  // "glTF"
+    u32(2);
+    u32(static_cast<uint32_t>(12 + 8 + text.size() + 8 + buffer.size()));
+    u32(static_cast<uint32_t>(text.size()));
+    u32(0x4E4F534A);  // "JSON"
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    u32(static_cast<uint32_t>(buffer.size()));
+    u32(0x004E4942);  // "BIN\0"
+    out.write(reinterpret_cast<const char*>(buffer.data()), static_cast<std::streamsize>(buffer.size()));
+  } else {
+    j["buffers"] = {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer)}}};
+    std::ofstream(path) << j.dump(1);
+  }
+}
+
+GltfTestNode gltfCube() {
+  GltfTestNode n;
+  // Per face: the axis, its sign; corners counter-clockwise seen from outside.
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign : {-1, 1}) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const uint32_t base = static_cast<uint32_t>(n.positions.size());
+      const float cu[4] = {-1, 1, 1, -1}, cv[4] = {-1, -1, 1, 1};
+      for (int c = 0; c < 4; ++c) {
+        std::array<float, 3> p{};
+        p[axis] = static_cast<float>(sign);
+        p[u] = cu[c];
+        p[v] = sign > 0 ? cv[c] : -cv[c];
+        n.positions.push_back(p);
+      }
+      for (uint32_t t : {0u, 1u, 2u, 0u, 2u, 3u}) n.indices.push_back(base + t);
+    }
+  return n;
+}
+
+}  // namespace lodline::test

@@ -32,3 +32,30 @@ class TempDir {
 };
 
 }  // namespace lodline::test
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace lodline::test {
+
+/// One mesh node of a test glTF file: positions and triangle indices (uint32), placed by
+/// translation/rotation (quaternion x, y, z, w)/scale, optionally the child of `parent`.
+struct GltfTestNode {
+  std::vector<std::array<float, 3>> positions;
+  std::vector<uint32_t> indices;
+  std::array<float, 3> translation{0, 0, 0};
+  std::array<float, 4> rotation{0, 0, 0, 1};
+  std::array<float, 3> scale{1, 1, 1};
+  int parent = -1;
+  std::string name;
+};
+
+/// Writes a glTF 2.0 file of `nodes` (one mesh each): `.gltf` with the buffer embedded as a
+/// base64 data URI, or binary `.glb`, by `path`'s extension.
+void writeGltf(const std::filesystem::path& path, const std::vector<GltfTestNode>& nodes);
+
+/// A cube of half-size 1 with 24 vertices (4 per face, as glTF exporters write hard edges).
+GltfTestNode gltfCube();
+
+}  // namespace lodline::test

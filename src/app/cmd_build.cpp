@@ -8,6 +8,7 @@
 #include "app/model.h"
 #include "core/timer.h"
 #include "io/load_mesh.h"
+#include "io/scene_file.h"
 #include "pm/pm_file.h"
 
 namespace lodline {
@@ -24,7 +25,9 @@ Command addBuildCommand(CLI::App& parent) {
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = parent.add_subcommand(
       "build", "Build (or refresh) the cached progressive mesh of a model, or write it to -o FILE");
-  cmd->add_option("model", o->model, "Mesh file (.off, .obj, .ply, .stl)")->required();
+  cmd->add_option("model", o->model,
+                  "Mesh file (.off, .obj, .ply, .stl), or a scene (.json, .gltf, .glb): every object's progressive mesh")
+      ->required();
   cmd->add_option("-o,--output", o->output, "Write the progressive mesh to this file instead of the cache");
   cmd->add_option("--cache-dir", o->cache_dir,
                   "Cache directory (default $XDG_CACHE_HOME/lodline or ~/.cache/lodline)");
@@ -36,6 +39,32 @@ Command addBuildCommand(CLI::App& parent) {
                   "With --pre-simplify: write the simplified mesh here (.off); render/view it to use the cache");
   return {cmd, [o]() -> int {
             Stopwatch sw;
+            if (isSceneFile(o->model)) {
+              // A scene: the progressive mesh of every object (world space) into the cache.
+              if (!o->output.empty() || !o->pre_simplify.empty() || !o->mesh_out.empty())
+                return reportError(Error::usage("build: -o, --pre-simplify and --mesh-out take a single mesh, not a scene"));
+              auto scene = loadScene(o->model);
+              if (!scene) return reportError(scene.error());
+              const std::filesystem::path dir = o->cache_dir.empty() ? defaultCacheDir() : std::filesystem::path(o->cache_dir);
+              for (const SceneObject& obj : scene->objects) {
+                auto mesh = loadObjectMesh(obj);
+                if (!mesh) return reportError(mesh.error());
+                const uint64_t hash = meshContentHash(*mesh);
+                std::string note;
+                const auto progress = buildProgressBar("lodline: building " + obj.name);
+                auto pm = o->force ? buildProgressiveMesh(*mesh, {}, progress) : loadOrBuildPm(*mesh, hash, dir, {}, progress, &note);
+                if (!pm) return reportError(Error::runtime(obj.mesh.string() + ": " + pm.error().message));
+                if (o->force) {
+                  std::error_code ec;
+                  std::filesystem::create_directories(dir, ec);
+                  if (Status s = savePm(pmCachePath(dir, hash), *pm); !s) return reportError(s.error());
+                  note = "wrote " + pmCachePath(dir, hash).string();
+                }
+                std::cout << obj.name << ": " << note << "; " << mesh->faceCount() << " faces -> base mesh of "
+                          << pm->base_faces.size() << " faces (" << sw.lap() << " ms)\n";
+              }
+              return 0;
+            }
             auto mesh = loadMesh(o->model);
             if (!mesh) return reportError(mesh.error());
             if (!o->pre_simplify.empty()) {

@@ -72,7 +72,7 @@ void detailSection(ViewerSession& s, PanelState& st) {
 }
 
 void objectsSection(ViewerSession& s) {
-  if (!ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (!ImGui::CollapsingHeader("Objects", s.scene().size() > 1 ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
   auto& objects = s.description().objects;
   for (size_t i = 0; i < s.scene().size(); ++i) {
     SceneDrawing::Object& o = s.scene()[i];
@@ -98,7 +98,7 @@ void smoothingSection(ViewerSession& s) {
 }
 
 void linesSection(ViewerSession& s) {
-  if (!ImGui::CollapsingHeader("Lines", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (!ImGui::CollapsingHeader("Lines")) return;
   for (int k = 0; k < kLineKindCount; ++k) {
     ImGui::PushID(k);
     LineStyle ls = s.frameParams().lines.kinds[k];
@@ -153,21 +153,20 @@ void statsSection(const ViewerSession& s, const PanelState& st) {
   if (!ImGui::CollapsingHeader("Frame statistics", ImGuiTreeNodeFlags_DefaultOpen)) return;
   const ViewerStats& v = s.stats();
   ImGui::Text("%.1f fps", static_cast<double>(st.fps));
-  if (ImGui::BeginTable("ms", 2)) {
-    auto row = [](const char* name, double ms) {
-      ImGui::TableNextRow();
+  if (ImGui::BeginTable("ms", 4)) {
+    auto cell = [](const char* name, double ms) {
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(name);
       ImGui::TableNextColumn();
       ImGui::Text("%.2f ms", ms);
     };
-    row("adapt", v.adapt_ms);
-    row("shape", v.shape_ms);
-    row("view quantities", v.view_ms);
-    row("extract", v.extract_ms);
-    row("chain", v.chain_ms);
-    row("upload", v.upload_ms);
-    row("draw (submit)", v.draw_ms);
+    cell("adapt", v.adapt_ms);
+    cell("shape", v.shape_ms);
+    cell("view", v.view_ms);
+    cell("extract", v.extract_ms);
+    cell("chain", v.chain_ms);
+    cell("upload", v.upload_ms);
+    cell("draw", v.draw_ms);
     ImGui::EndTable();
   }
   ImGui::Text("active faces %zu, visible %zu", v.active_faces, v.visible_faces);
@@ -186,16 +185,17 @@ void initPanel(const ViewerSession& session, PanelState& state) {
 void drawPanel(ViewerSession& session, PanelState& state, int width, int height) {
   if (!state.visible) return;
   ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(380.0f, std::min(static_cast<float>(height) - 16.0f, 760.0f)), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(420.0f, std::min(static_cast<float>(height) - 16.0f, 820.0f)), ImGuiCond_FirstUseEver);
   ImGui::Begin("lodline");
+  ImGui::PushItemWidth(-170.0f);  // room for the labels
   ImGui::TextWrapped("%s (%zu object%s)", session.loaded().view.model.filename().string().c_str(), session.scene().size(),
                      session.scene().size() == 1 ? "" : "s");
+  statsSection(session, state);
   detailSection(session, state);
   objectsSection(session);
-  smoothingSection(session);
   linesSection(session);
+  smoothingSection(session);
   styleSection(session);
-  statsSection(session, state);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
     if (ImGui::Button("Reset view")) session.resetView();
     ImGui::InputText("Scene file", state.save_path.data(), state.save_path.size());
@@ -205,6 +205,7 @@ void drawPanel(ViewerSession& session, PanelState& state, int width, int height)
     }
   }
   if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 

@@ -1,0 +1,192 @@
+// Scenes through the `lodline` program: objects hide each other's lines, per-object detail
+// factors, per-object stats that add up to the totals, settings and their precedence, glTF
+// input, and one-line errors for bad scene files.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/camera.h"
+#include "io/generate.h"
+#include "io/image.h"
+#include "io/load_mesh.h"
+#include "test_util.h"
+
+namespace lodline {
+namespace {
+
+class SceneCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    setenv("XDG_CACHE_HOME", (dir_ / "cache").c_str(), 1);
+    ASSERT_TRUE(saveOff(dir_ / "sphere.off", makeIcoSphere(1.0f, 4)).ok());
+  }
+  std::filesystem::path write(const std::string& name, const nlohmann::json& j) {
+    const auto p = dir_ / name;
+    std::ofstream(p) << j.dump(1);
+    return p;
+  }
+  int run(const std::string& args, std::string* out = nullptr) { return test::runLodline("render " + args, out); }
+  nlohmann::json stats(const std::filesystem::path& p) { return nlohmann::json::parse(std::ifstream(p)); }
+  test::TempDir dir_;
+};
+
+// Camera of the two-sphere scenes: from +Z, looking at the origin.
+nlohmann::json frontCamera() { return {{"eye", {0, 0, 9}}, {"target", {0, 0, 0}}, {"fov", 35}}; }
+
+// Dark pixels (any channel < 128) inside the disc (centre, radius) of `image`.
+int darkInDisc(const Image& image, glm::vec2 centre, float radius) {
+  int n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      if (glm::length(glm::vec2(x + 0.5f, y + 0.5f) - centre) > radius) continue;
+      const uint8_t* p = image.pixel(x, y);
+      n += p[0] < 128 || p[1] < 128 || p[2] < 128;
+    }
+  return n;
+}
+
+TEST_F(SceneCli, AnObjectHidesTheLinesOfTheObjectBehindIt) {
+  const nlohmann::json front = {{"name", "front"}, {"mesh", "sphere.off"}, {"translate", {0, 0, 2}}};
+  const nlohmann::json back = {{"name", "back"}, {"mesh", "sphere.off"}, {"translate", {0.9, 0.3, -1}}};
+  const nlohmann::json settings = {{"style", "lines"}, {"lines", "contour"}, {"size", "480x360"}, {"msaa", 1}};
+  write("both.json", {{"settings", settings}, {"camera", frontCamera()}, {"objects", {front, back}}});
+  write("back.json", {{"settings", settings}, {"camera", frontCamera()}, {"objects", {back}}});
+  ASSERT_EQ(run((dir_ / "both.json").string() + " -o " + (dir_ / "both.png").string() + " --stats " +
+                (dir_ / "both.stats.json").string() + " --svg " + (dir_ / "both.svg").string()),
+            0);
+  ASSERT_EQ(run((dir_ / "back.json").string() + " -o " + (dir_ / "back.png").string()), 0);
+  auto both = readPng(dir_ / "both.png");
+  auto alone = readPng(dir_ / "back.png");
+  ASSERT_TRUE(both && alone);
+  // The front sphere's disc in the image (its contour is its rim; inside lies nothing of its own).
+  Camera cam;
+  cam.eye = {0, 0, 9};
+  cam.target = {0, 0, 0};
+  cam.fov_deg = 35.0f;
+  const glm::vec2 c = projectToPixels(cam, {0, 0, 2}, 480, 360);
+  const glm::vec2 rim = projectToPixels(cam, {0, 1, 2}, 480, 360);
+  const float r = glm::length(rim - c);
+  // Without the front sphere, the back sphere's contour crosses that disc...
+  EXPECT_GT(darkInDisc(*alone, c, 0.85f * r), 60);
+  // ...with it, the front sphere hides it completely.
+  EXPECT_EQ(darkInDisc(*both, c, 0.85f * r), 0);
+  // The hidden part is missing from the stats and the SVG too.
+  const auto s = stats(dir_ / "both.stats.json");
+  ASSERT_EQ(s["objects"].size(), 2u);
+  EXPECT_LT(s["objects"][1]["lines"]["contour"].get<int>(), s["objects"][1]["lines_extracted"]["contour"].get<int>() * 0.9);
+  std::ifstream svg(dir_ / "both.svg");
+  const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("<g id=\"o-front\">"), std::string::npos);
+  EXPECT_NE(text.find("<g id=\"o-back\">"), std::string::npos);
+}
+
+TEST_F(SceneCli, PerObjectStatsAddUpAndTheDetailFactorCoarsens) {
+  const nlohmann::json a = {{"name", "fine"}, {"mesh", "sphere.off"}, {"translate", {-1.3, 0, 0}}};
+  const nlohmann::json b = {{"name", "coarse"}, {"mesh", "sphere.off"}, {"translate", {1.3, 0, 0}}, {"detail_factor", 4}};
+  write("pair.json", {{"camera", frontCamera()}, {"settings", {{"size", "640x360"}}}, {"objects", {a, b}}});
+  ASSERT_EQ(run((dir_ / "pair.json").string() + " -o " + (dir_ / "pair.png").string() + " --stats " +
+                (dir_ / "pair.stats.json").string()),
+            0);
+  const auto s = stats(dir_ / "pair.stats.json");
+  ASSERT_EQ(s["objects"].size(), 2u);
+  const auto& fine = s["objects"][0];
+  const auto& coarse = s["objects"][1];
+  EXPECT_EQ(fine["name"], "fine");
+  EXPECT_EQ(coarse["detail_factor"], 4.0);
+  // T four times larger: roughly four times fewer faces (the same sphere, the same size on screen).
+  const double ratio = fine["lod"]["active_faces"].get<double>() / coarse["lod"]["active_faces"].get<double>();
+  EXPECT_GT(ratio, 2.5);
+  EXPECT_LT(ratio, 6.0);
+  EXPECT_NEAR(coarse["lod"]["target_area"].get<double>(), 64.0, 1e-3);
+  for (const char* key : {"faces_drawn", "strokes", "specks", "line_segments"})
+    EXPECT_EQ(s[key].get<int64_t>(), fine[key].get<int64_t>() + coarse[key].get<int64_t>()) << key;
+  EXPECT_EQ(s["lod"]["active_faces"].get<int64_t>(),
+            fine["lod"]["active_faces"].get<int64_t>() + coarse["lod"]["active_faces"].get<int64_t>());
+  EXPECT_EQ(s["model"]["faces"].get<int64_t>(), fine["faces"].get<int64_t>() + coarse["faces"].get<int64_t>());
+  EXPECT_EQ(s["lines"]["contour"].get<int64_t>(),
+            fine["lines"]["contour"].get<int64_t>() + coarse["lines"]["contour"].get<int64_t>());
+}
+
+TEST_F(SceneCli, SettingsApplyUnlessTheCommandLineGivesThem) {
+  write("s.json", {{"settings", {{"size", "320x240"}, {"target-area", 64}, {"lines", "contour"}}},
+                   {"objects", {{{"mesh", "sphere.off"}}}}});
+  ASSERT_EQ(run((dir_ / "s.json").string() + " -o " + (dir_ / "a.png").string() + " --stats " + (dir_ / "a.json").string()), 0);
+  auto a = readPng(dir_ / "a.png");
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->width, 320);
+  EXPECT_EQ(stats(dir_ / "a.json")["lod"]["target_area"], 64.0);
+  EXPECT_EQ(stats(dir_ / "a.json")["lines_extracted"]["suggestive"], 0);
+  ASSERT_EQ(run((dir_ / "s.json").string() + " --size 200x100 --target-area 8 -o " + (dir_ / "b.png").string() +
+                " --stats " + (dir_ / "b.json").string()),
+            0);
+  auto b = readPng(dir_ / "b.png");
+  ASSERT_TRUE(b);
+  EXPECT_EQ(b->width, 200);
+  EXPECT_EQ(stats(dir_ / "b.json")["lod"]["target_area"], 8.0);
+}
+
+TEST_F(SceneCli, BadSceneFilesFailWithOneLineAndNoOutput) {
+  const std::vector<std::pair<nlohmann::json, std::string>> cases = {
+      {{{"objects", {{{"mesh", "nowhere.off"}}}}}, "objects[0].mesh: no such file"},
+      {{{"objects", {{{"mesh", "sphere.off"}, {"scale", -2}}}}}, "objects[0].scale: must be > 0"},
+      {{{"objects", {{{"mesh", "sphere.off"}, {"shininess", 3}}}}}, "objects[0]: unknown key \"shininess\""},
+      {{{"objects", {{{"mesh", "sphere.off"}}}}, {"settings", {{"target-aera", 3}}}}, "settings.target-aera: unknown setting"},
+      {{{"objects", {{{"mesh", "sphere.off"}}}}, {"settings", {{"target-area", "big"}}}}, "settings.target-area"},
+      {{{"objects", {{{"mesh", "sphere.off"}}}}, {"settings", {{"output", "x.png"}}}}, "settings.output: not a scene setting"},
+      {{{"objects", {{{"mesh", "sphere.off"}, {"style", "watercolour"}}}}}, "objects[0]: --style"},
+      {{{"objects", {{{"scene", "bad.json"}}}}}, "include cycle"},
+  };
+  for (const auto& [j, expect] : cases) {
+    write("bad.json", j);
+    std::string out;
+    const auto png = dir_ / "never.png";
+    const int rc = run((dir_ / "bad.json").string() + " -o " + png.string(), &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_EQ(out.rfind("lodline: " + (dir_ / "bad.json").string(), 0), 0u) << out;
+    EXPECT_NE(out.find(expect), std::string::npos) << out;
+    EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+    EXPECT_FALSE(std::filesystem::exists(png));
+  }
+  std::ofstream(dir_ / "broken.json") << "{\"objects\": [ {\"mesh\": \"sphere.off\" ";
+  std::string out;
+  EXPECT_EQ(run((dir_ / "broken.json").string() + " -o " + (dir_ / "never.png").string(), &out), 1);
+  EXPECT_NE(out.find("broken.json: invalid JSON"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "never.png"));
+}
+
+TEST_F(SceneCli, GltfFilesRenderAsScenes) {
+  test::GltfTestNode a = test::gltfCube(), b = test::gltfCube();
+  a.name = "near";
+  b.name = "far";
+  b.translation = {2.5f, 0.5f, -3.0f};
+  test::writeGltf(dir_ / "cubes.glb", {a, b});
+  ASSERT_EQ(run((dir_ / "cubes.glb").string() + " -o " + (dir_ / "c.png").string() + " --stats " +
+                (dir_ / "c.json").string() + " --size 320x240"),
+            0);
+  const auto s = stats(dir_ / "c.json");
+  ASSERT_EQ(s["objects"].size(), 2u);
+  EXPECT_EQ(s["objects"][0]["name"], "near");
+  EXPECT_EQ(s["objects"][0]["faces"], 12);  // welded: a closed cube
+  EXPECT_GT(s["lines"]["crease"].get<int>() + s["lines"]["contour"].get<int>(), 0);
+  EXPECT_EQ(s["lines_extracted"]["boundary"], 0);  // split vertices were welded
+}
+
+TEST_F(SceneCli, BuildAndBenchTakeScenes) {
+  write("two.json", {{"objects", {{{"mesh", "sphere.off"}}, {{"mesh", "sphere.off"}, {"translate", {3, 0, 0}}, {"scale", 0.5}}}}});
+  std::string out;
+  ASSERT_EQ(test::runLodline("build " + (dir_ / "two.json").string(), &out), 0) << out;
+  EXPECT_NE(out.find("sphere#2"), std::string::npos) << out;
+  ASSERT_EQ(run((dir_ / "two.json").string() + " -o " + (dir_ / "t.png").string() + " --stats " + (dir_ / "t.json").string()), 0);
+  EXPECT_NE(stats(dir_ / "t.json")["lod"]["cache"].get<std::string>().find("loaded"), std::string::npos);
+  ASSERT_EQ(test::runLodline("bench walkthrough " + (dir_ / "two.json").string() + " --frames 4 --modes none,pm --size 320x180 --msaa 1 "
+                "--cache-dir " + (dir_ / "cache").string(), &out), 0) << out;
+  EXPECT_NE(out.find("in 2 objects"), std::string::npos) << out;
+  EXPECT_NE(out.find("| pm |"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace lodline

@@ -1,0 +1,198 @@
+// The viewer without a window (EGL surfaceless): its first frame is the picture `render`
+// writes, a saved view renders back to the same picture, and the panel's T slider, dragged
+// with real ImGui mouse input, changes the active face count.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include <glad/gl.h>
+#include <nlohmann/json.hpp>
+
+#include "app/model.h"
+#include "app/viewer_session.h"
+#include "gl/context.h"
+#include "gl/renderer.h"
+#include "io/generate.h"
+#include "io/image.h"
+#include "io/load_mesh.h"
+#include "test_util.h"
+
+#ifdef LODLINE_HAVE_VIEWER
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "app/viewer_panel.h"
+#endif
+
+namespace lodline {
+namespace {
+
+class Viewer : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    setenv("XDG_CACHE_HOME", (dir_ / "cache").c_str(), 1);
+    ASSERT_TRUE(saveOff(dir_ / "sphere.off", makeIcoSphere(1.0f, 4)).ok());
+    ASSERT_TRUE(saveOff(dir_ / "knot.off", makeTorusKnot(2, 3, 1.0f, 0.3f, 300, 24, 0.0f)).ok());
+    const nlohmann::json scene = {
+        {"settings", {{"size", "320x240"}, {"msaa", 1}}},
+        {"objects",
+         {{{"name", "knot"}, {"mesh", "knot.off"}, {"rotate", {10, 0, 0}}},
+          {{"name", "ball"}, {"mesh", "sphere.off"}, {"translate", {1.5, 0.4, -2.5}}, {"scale", 0.8},
+           {"detail_factor", 3}, {"style", "lines"}}}}};
+    std::ofstream(dir_ / "scene.json") << scene.dump(1);
+    auto ctx = createHeadlessContext(ContextBackend::kEgl);
+    if (!ctx) GTEST_SKIP() << ctx.error().message;
+    ctx_ = std::move(ctx.value());
+  }
+
+  // Loads `args` as `lodline view` would and opens a session on it.
+  std::unique_ptr<ViewerSession> open(const std::vector<std::string>& args) {
+    CLI::App app;
+    ViewOptions view;
+    DetailOptions detail;
+    addViewOptions(app, view);
+    addDetailOptions(app, detail);
+    std::vector<std::string> rev(args.rbegin(), args.rend());
+    app.parse(rev);
+    auto loaded = loadInput(app, view, detail);
+    EXPECT_TRUE(loaded) << (loaded ? "" : loaded.error().message);
+    if (!loaded) return nullptr;
+    auto s = ViewerSession::create(std::move(loaded.value()), view);
+    EXPECT_TRUE(s) << (s ? "" : s.error().message);
+    return s ? std::move(s.value()) : nullptr;
+  }
+
+  // The session's current frame drawn offscreen at w×h with `samples`.
+  Image draw(ViewerSession& s, int w, int h, int samples) {
+    auto target = OffscreenTarget::create(w, h, samples);
+    EXPECT_TRUE(target);
+    target->bind();
+    s.draw(w, h);
+    glFinish();
+    return target->readback();
+  }
+
+  static size_t differing(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height) return SIZE_MAX;
+    size_t n = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) n += std::memcmp(&a.rgba[i], &b.rgba[i], 4) != 0;
+    return n;
+  }
+
+  test::TempDir dir_;
+  std::unique_ptr<GlContext> ctx_;
+};
+
+TEST_F(Viewer, FirstFrameIsWhatRenderWrites) {
+  const std::string scene = (dir_ / "scene.json").string();
+  auto s = open({scene});
+  ASSERT_TRUE(s);
+  ASSERT_EQ(s->scene().size(), 2u);
+  ASSERT_TRUE(s->frame(320, 240, 1.0f / 30.0f).ok());
+  const Image viewer = draw(*s, 320, 240, 1);
+  ASSERT_EQ(test::runLodline("render " + scene + " -o " + (dir_ / "render.png").string()), 0);
+  auto rendered = readPng(dir_ / "render.png");
+  ASSERT_TRUE(rendered);
+  EXPECT_EQ(differing(viewer, *rendered), 0u);
+  // And the picture is not empty: both objects drew lines.
+  EXPECT_GT(s->renderer().segmentsDrawn(0), 50u);
+  EXPECT_GT(s->renderer().segmentsDrawn(1), 20u);
+}
+
+TEST_F(Viewer, ASavedViewRendersToTheSamePicture) {
+  auto s = open({(dir_ / "scene.json").string(), "--msaa", "1"});
+  ASSERT_TRUE(s);
+  ASSERT_TRUE(s->frame(320, 240, 1.0f / 30.0f).ok());
+  // Change what the panel and the mouse change: camera, T, a factor, line kinds and styles.
+  s->orbit(40.0f, -15.0f);
+  s->zoom(0.8f);
+  s->pan(12.0f, -7.0f, 320, 240);
+  s->detail().target_area = 9.0f;
+  s->scene()[1].detail_factor = 1.5f;
+  s->frameParams().lines.kinds[1].enabled = false;
+  for (auto& o : s->scene().objects()) o.style.lines.kinds[1].enabled = false;
+  LineParams lp = s->lineParams();
+  lp.crease_angle_deg = 45.0f;
+  s->setLineParams(lp);
+  s->setStyleAll(Style::kShaded);
+  const auto saved = dir_ / "views" / "saved.json";
+  std::filesystem::create_directories(saved.parent_path());
+  ASSERT_TRUE(s->saveView(saved, 300, 200).ok());
+  // A fresh session on the saved file converges to that camera and those parameters...
+  auto t = open({saved.string()});
+  ASSERT_TRUE(t);
+  EXPECT_FLOAT_EQ(t->detail().target_area, 9.0f);
+  EXPECT_FLOAT_EQ(t->scene()[1].detail_factor, 1.5f);
+  EXPECT_FALSE(t->scene()[0].style.lines.kinds[1].enabled);
+  EXPECT_EQ(t->scene()[0].style.style, Style::kShaded);
+  EXPECT_FLOAT_EQ(t->lineParams().crease_angle_deg, 45.0f);
+  const Camera a = s->camera(300, 200), b = t->camera(300, 200);
+  EXPECT_LT(glm::length(a.eye - b.eye), 1e-4f * glm::length(a.eye));
+  ASSERT_TRUE(t->frame(300, 200, 1.0f / 30.0f).ok());
+  const Image viewer = draw(*t, 300, 200, 1);
+  // ...and `render` of the saved file writes exactly that picture.
+  ASSERT_EQ(test::runLodline("render " + saved.string() + " -o " + (dir_ / "saved.png").string()), 0);
+  auto rendered = readPng(dir_ / "saved.png");
+  ASSERT_TRUE(rendered);
+  EXPECT_EQ(rendered->width, 300);
+  EXPECT_EQ(differing(viewer, *rendered), 0u);
+}
+
+#ifdef LODLINE_HAVE_VIEWER
+TEST_F(Viewer, DraggingThePanelsTargetAreaSliderChangesTheActiveFaces) {
+  auto s = open({(dir_ / "scene.json").string(), "--geomorphs", "off"});
+  ASSERT_TRUE(s);
+  const int w = 900, h = 760;
+  ASSERT_TRUE(s->frame(w, h, 1.0f / 30.0f).ok());
+  const size_t faces_before = s->stats().active_faces;
+  const float t_before = s->detail().target_area;
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DisplaySize = ImVec2(static_cast<float>(w), static_cast<float>(h));
+  io.DeltaTime = 1.0f / 30.0f;
+  ASSERT_TRUE(ImGui_ImplOpenGL3_Init("#version 330 core"));
+  PanelState panel;
+  initPanel(*s, panel);
+  auto target = OffscreenTarget::create(w, h, 1);
+  ASSERT_TRUE(target);
+  // One viewer frame with the panel; the mouse as given.
+  auto frame = [&](ImVec2 mouse, bool down) {
+    io.MousePos = mouse;
+    io.MouseDown[0] = down;
+    ASSERT_TRUE(s->frame(w, h, 1.0f / 30.0f).ok());
+    target->bind();
+    s->draw(w, h);
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    drawPanel(*s, panel, w, h);
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  };
+  frame(ImVec2(-100, -100), false);
+  frame(ImVec2(-100, -100), false);
+  const auto r = panel.target_area_slider;
+  ASSERT_GT(r[2] - r[0], 50.0f) << "the T slider was not laid out";
+  const float y = 0.5f * (r[1] + r[3]);
+  frame(ImVec2(r[0] + 0.5f * (r[2] - r[0]), y), false);  // hover
+  frame(ImVec2(r[0] + 0.5f * (r[2] - r[0]), y), true);   // press
+  frame(ImVec2(r[2] - 1.0f, y), true);                   // drag to the coarse end
+  frame(ImVec2(r[2] - 1.0f, y), false);                  // release
+  for (int i = 0; i < 4; ++i) frame(ImVec2(-100, -100), false);  // adapt (no geomorphs: at once)
+  EXPECT_GT(s->detail().target_area, 8.0f * t_before);
+  EXPECT_LT(s->stats().active_faces, faces_before / 2);
+  // The panel was drawn over the picture: its pixels differ from the bare drawing.
+  const Image with_panel = target->readback();
+  target->bind();
+  s->draw(w, h);
+  glFinish();
+  EXPECT_GT(differing(with_panel, target->readback()), 20000u);
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui::DestroyContext();
+}
+#endif
+
+}  // namespace
+}  // namespace lodline
