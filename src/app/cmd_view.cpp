@@ -56,6 +56,9 @@ struct WindowState {
   ViewerSession* session = nullptr;
   PanelState panel;
   bool dragging_orbit = false, dragging_pan = false;
+  // A press waits for the next ImGui frame, which knows whether the cursor is over the panel
+  // (a press in the same event batch as a jump onto the panel would otherwise orbit too).
+  bool pending_orbit = false, pending_pan = false;
   double last_x = 0.0, last_y = 0.0;
   bool screenshot = false, save_view = false;
   // Camera-path recording (key C).
@@ -112,10 +115,22 @@ void onKey(GLFWwindow* w, int key, int, int action, int) {
 void onMouseButton(GLFWwindow* w, int button, int action, int) {
   WindowState& s = stateOf(w);
   const bool down = action == GLFW_PRESS;
-  if (down && ImGui::GetIO().WantCaptureMouse) return;  // a click on the panel
   glfwGetCursorPos(w, &s.last_x, &s.last_y);
-  if (button == GLFW_MOUSE_BUTTON_LEFT) s.dragging_orbit = down;
-  if (button == GLFW_MOUSE_BUTTON_RIGHT || button == GLFW_MOUSE_BUTTON_MIDDLE) s.dragging_pan = down;
+  const bool left = button == GLFW_MOUSE_BUTTON_LEFT;
+  if (down) {
+    (left ? s.pending_orbit : s.pending_pan) = true;
+  } else {
+    (left ? s.dragging_orbit : s.dragging_pan) = false;
+    (left ? s.pending_orbit : s.pending_pan) = false;
+  }
+}
+
+// After ImGui::NewFrame(): presses not on the panel start dragging the camera.
+void takePendingPresses(WindowState& s) {
+  const bool panel = ImGui::GetIO().WantCaptureMouse;
+  if (s.pending_orbit && !panel) s.dragging_orbit = true;
+  if (s.pending_pan && !panel) s.dragging_pan = true;
+  s.pending_orbit = s.pending_pan = false;
 }
 
 void onCursor(GLFWwindow* w, double x, double y) {
@@ -250,6 +265,7 @@ int runView(CLI::App& cmd, ViewCommandOptions& o) {
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
+        takePendingPresses(s);
         drawPanel(v, s.panel, fb_w, fb_h);
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -14,7 +14,7 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
   cmd.add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
   cmd.add_option("--view", o.view,
                  "Camera as AZ,EL,DIST: azimuth and elevation in degrees, distance in "
-                 "bounding-sphere radii (default: a 3/4 view that frames the whole model)");
+                 "bounding-sphere radii, 0 = frame the whole model (default: 35,20,0, a 3/4 view)");
   cmd.add_option("--fov", o.fov_deg, "Vertical field of view in degrees (1-170)")->capture_default_str();
   cmd.add_option("--style", o.style,
                  "lines (lines on the background), toon (toon-shaded faces + lines) or shaded "
@@ -65,7 +65,7 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
 
 Result<OrbitView> parseOrbitView(const std::string& s) {
   const auto bad = Error::usage("--view: invalid value '" + s +
-                                "' (expected AZ,EL,DIST, e.g. 30,20,3; DIST in bounding radii > 1)");
+                                "' (expected AZ,EL,DIST, e.g. 30,20,3; DIST in bounding radii, 0 = frame the model)");
   OrbitView v;
   float vals[3];
   std::stringstream ss(s);
@@ -79,7 +79,7 @@ Result<OrbitView> parseOrbitView(const std::string& s) {
     if (ec != std::errc() || p != item.data() + item.size() || !std::isfinite(vals[n])) return bad;
     ++n;
   }
-  if (n != 3 || vals[2] <= 0.0f || vals[1] < -90.0f || vals[1] > 90.0f) return bad;
+  if (n != 3 || vals[2] < 0.0f || vals[1] < -90.0f || vals[1] > 90.0f) return bad;
   v.azimuth_deg = vals[0];
   v.elevation_deg = vals[1];
   v.distance = vals[2];

@@ -20,6 +20,7 @@
 
 #include "core/timer.h"
 #include "frame/lod_drawing.h"
+#include "frame/scene_drawing.h"
 #include "gl/context.h"
 #include "gl/renderer.h"
 #include "io/generate.h"
@@ -133,6 +134,121 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   state.counters["full_ms"] = bench::median(full_lines) + bench::median(full_draw);
 }
 
+// The scene case (issue 12): three objects of ~1.2M input faces together (two torus knots
+// and a torus, ~400k faces each, at different depths, one drawn coarser by its factor on T),
+// adapted and drawn as a scene, side by side in the same loop with the single 1.1M-face knot
+// at the same T. Both orbit 1 degree per frame; medians over the frames.
+void sceneFrame(benchmark::State& state, float target_area) {
+  static std::vector<std::shared_ptr<Model>> parts;
+  static const glm::vec3 offsets[3] = {{0.0f, 0.0f, 0.6f}, {1.4f, 0.5f, -1.2f}, {-1.5f, -0.4f, -2.4f}};
+  static const float factors[3] = {1.0f, 1.0f, 2.0f};
+  // Closer than the framing distance (~3.6 radii), so the parts fill about as much of the
+  // image as the single knot does.
+  constexpr float kSceneDistance = 2.0f;
+  if (parts.empty()) {
+    TriMesh meshes[3] = {makeTorusKnot(2, 3, 1.0f, 0.16f, 1600, 125, 0.18f),
+                         makeTorusKnot(3, 5, 1.0f, 0.12f, 1600, 125, 0.18f), makeTorus(1.0f, 0.35f, 640, 320)};
+    for (int i = 0; i < 3; ++i) {
+      auto m = std::make_shared<Model>();
+      m->mesh = std::move(meshes[i]);
+      for (glm::vec3& p : m->mesh.positions) p += offsets[i];
+      auto pm = loadOrBuildPm(m->mesh, meshContentHash(m->mesh), std::filesystem::temp_directory_path() / "lodline-bench-cache");
+      if (!pm) {
+        state.SkipWithError(pm.error().message.c_str());
+        return;
+      }
+      m->pm = std::make_shared<const ProgressiveMesh>(std::move(pm.value()));
+      parts.push_back(m);
+    }
+  }
+  auto knot = loadModel("knot1m");
+  auto ctx = createHeadlessContext(ContextBackend::kEgl);
+  if (!knot || !ctx) {
+    state.SkipWithError("no knot1m or no EGL context");
+    return;
+  }
+  RenderParams rp;
+  rp.msaa = 1;
+  auto scene_renderer = Renderer::create();
+  auto knot_renderer = Renderer::create();
+  auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
+  SceneDrawing scene;
+  auto pool = std::make_shared<WorkerPool>(ShapeParams{}.threads);
+  size_t input_faces = 0;
+  for (int i = 0; i < 3; ++i) {
+    SceneDrawing::Object o;
+    o.name = "part" + std::to_string(i);
+    o.drawing = std::make_unique<LodDrawing>(parts[i]->mesh, parts[i]->pm, LineParams{}, pool);
+    o.style = rp;
+    o.detail_factor = factors[i];
+    input_faces += parts[i]->mesh.faceCount();
+    scene.add(std::move(o));
+  }
+  (void)scene_renderer->setObjectCount(3);
+  std::vector<RenderParams> styles(3, rp);
+  LodDrawing single(knot->mesh, knot->pm);
+  std::array<bool, kLineKindCount> enabled{};
+  enabled.fill(true);
+  DetailParams detail;
+  detail.target_area = target_area;
+  const float aspect = 1280.0f / 720.0f;
+  (void)scene.converge(orbitCamera(scene.bounds(), {0.0f, 20.0f, kSceneDistance}, 35.0f, aspect), rp.width, rp.height, detail,
+                       1.0f / 30.0f, 300);
+  (void)single.converge(orbitCamera(single.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), rp.width, rp.height, detail,
+                        1.0f / 30.0f, 300, enabled);
+  for (size_t i = 0; i < scene.size(); ++i) {
+    const LineDrawing& d = scene[i].drawing->drawing();
+    scene_renderer->setMesh(i, d.mesh().positions, d.normals(), d.mesh().faces);
+  }
+  std::vector<double> scene_ms, scene_cpu, knot_ms, knot_cpu, scene_faces, knot_faces;
+  float az = 0.0f;
+  for (auto _ : state) {
+    az += 1.0f;
+    {
+      const Camera cam = orbitCamera(scene.bounds(), {az, 20.0f, kSceneDistance}, 35.0f, aspect);
+      Stopwatch sw;
+      (void)scene.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f);
+      scene_cpu.push_back(sw.elapsed());
+      double faces = 0.0;
+      for (size_t i = 0; i < scene.size(); ++i) {
+        const LodDrawing& l = *scene[i].drawing;
+        if (l.meshChanged())
+          scene_renderer->setMesh(i, l.drawing().mesh().positions, l.drawing().normals(), l.drawing().mesh().faces);
+        scene_renderer->setLines(i, l.drawing().lines());
+        faces += static_cast<double>(l.lod()->activeFaceCount());
+      }
+      target->bind();
+      scene_renderer->draw(cam, rp, styles, rp.width, rp.height);
+      glFinish();
+      scene_ms.push_back(sw.elapsed());
+      scene_faces.push_back(faces);
+    }
+    {
+      const Camera cam = orbitCamera(single.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
+      Stopwatch sw;
+      (void)single.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f, enabled);
+      knot_cpu.push_back(sw.elapsed());
+      if (single.meshChanged())
+        knot_renderer->setMesh(single.drawing().mesh().positions, single.drawing().normals(), single.drawing().mesh().faces);
+      knot_renderer->setLines(single.drawing().lines());
+      target->bind();
+      knot_renderer->draw(cam, rp, rp.width, rp.height);
+      glFinish();
+      knot_ms.push_back(sw.elapsed());
+      knot_faces.push_back(static_cast<double>(single.lod()->activeFaceCount()));
+    }
+  }
+  state.counters["scene_input_faces"] = static_cast<double>(input_faces);
+  state.counters["knot_input_faces"] = static_cast<double>(knot->mesh.faceCount());
+  state.counters["scene_active_faces"] = bench::median(scene_faces);
+  state.counters["knot_active_faces"] = bench::median(knot_faces);
+  state.counters["scene_cpu_ms"] = bench::median(scene_cpu);
+  state.counters["knot_cpu_ms"] = bench::median(knot_cpu);
+  state.counters["scene_ms"] = bench::median(scene_ms);
+  state.counters["knot_ms"] = bench::median(knot_ms);
+  state.counters["scene_over_knot"] = bench::median(scene_ms) / bench::median(knot_ms);
+}
+
 }  // namespace
 }  // namespace lodline
 
@@ -145,6 +261,10 @@ int main(int argc, char** argv) {
                                  [name, t](benchmark::State& s) { lodline::detailFrame(s, name, t); })
         ->Iterations(30)
         ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("detail_frame/scene3_vs_knot1m/T:16",
+                               [](benchmark::State& s) { lodline::sceneFrame(s, 16.0f); })
+      ->Iterations(30)
+      ->Unit(benchmark::kMillisecond);
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
