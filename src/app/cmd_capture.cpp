@@ -148,10 +148,14 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
   const bool want_metrics = !o.metrics.empty() || !o.stats.empty();
   VisibleStrokes visible, object_visible;
   LineMask prev_mask, mask;
+  // The motion-compensated measure also needs each frame's visible surface and camera.
+  SurfaceImage prev_surface, surface;
+  Camera prev_camera;
   bool have_prev = false;
   std::ostringstream csv;
-  csv << "frame,line_pixels,appeared,vanished,churn,strokes,specks,active_faces,splits,collapses,ms_total\n";
-  std::vector<double> churns, specks_per_frame, frame_ms;
+  csv << "frame,line_pixels,appeared,vanished,churn,dropped,appeared_raw,vanished_raw,churn_raw,strokes,specks,"
+         "active_faces,splits,collapses,ms_total\n";
+  std::vector<double> churns, raw_churns, specks_per_frame, frame_ms;
 
   // One step of the simulation at frame k (time k/fps): the state every later frame builds
   // on. Level of detail and temporal smoothing will keep state here; with full detail a
@@ -175,11 +179,12 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
       appendStrokes(object_visible, visible);
     }
   };
-  auto line_mask = [&](const Camera& cam, LineMask& m) {
-    (void)headless->setMeshes(scene, true);
+  auto line_mask = [&](const Camera& cam, LineMask& m, SurfaceImage& surf) -> Status {
+    if (Status s = headless->setMeshes(scene, true); !s) return s;
     headless->draw(scene, cam, rp);
     visible_lines(cam, headless->readDepth());
     rasterizeStrokes(visible, rp.width, rp.height, m);
+    return headless->drawSurface(cam, surf);
   };
   // Frame 0 starts from the detail converged for its camera (as a still render would), not
   // from the base mesh, so the first frames are not a refinement transient.
@@ -195,7 +200,8 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
   for (int64_t k = 0; k < range->first; ++k) {
     const Camera cam = simulate(k);
     if (want_metrics && k == range->first - 1) {
-      line_mask(cam, prev_mask);
+      if (Status s = line_mask(cam, prev_mask, prev_surface); !s) return reportError(s.error());
+      prev_camera = cam;
       have_prev = true;
     }
   }
@@ -226,11 +232,18 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
     if (want_metrics) {
       visible_lines(cam, headless->readDepth());
       rasterizeStrokes(visible, rp.width, rp.height, mask);
-      MaskChange change;
+      if (Status s = headless->drawSurface(cam, surface); !s) {
+        failure = s;
+        break;
+      }
+      MaskChange raw;
+      CompensatedChange change;
       if (have_prev) {
-        change = compareMasks(prev_mask, mask);
+        raw = compareMasks(prev_mask, mask);
+        change = compareMasksCompensated(prev_mask, prev_surface, prev_camera, mask, surface, cam);
       } else {
-        for (uint8_t v : mask.on) change.line_pixels += v;  // frame 0: nothing to compare with
+        for (uint8_t v : mask.on) raw.line_pixels += v;  // frame 0: nothing to compare with
+        change.line_pixels = raw.line_pixels;
       }
       const auto specks = std::count_if(visible.length_px.begin(), visible.length_px.end(),
                                         [](float len) { return len < 3.0f; });
@@ -244,11 +257,17 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
       }
       const double ms = frame_clock.elapsed();
       csv << k << ',' << change.line_pixels << ',' << change.appeared << ',' << change.vanished << ','
-          << change.churn() << ',' << visible.strokeCount() << ',' << specks << ',' << active_faces << ','
-          << splits << ',' << collapses << ',' << ms << '\n';
-      if (have_prev) churns.push_back(change.churn());
+          << change.churn() << ',' << change.dropped << ',' << raw.appeared << ',' << raw.vanished << ','
+          << raw.churn() << ',' << visible.strokeCount() << ',' << specks << ',' << active_faces << ',' << splits
+          << ',' << collapses << ',' << ms << '\n';
+      if (have_prev) {
+        churns.push_back(change.churn());
+        raw_churns.push_back(raw.churn());
+      }
       specks_per_frame.push_back(static_cast<double>(specks));
       std::swap(prev_mask, mask);
+      std::swap(prev_surface, surface);
+      prev_camera = cam;
       have_prev = true;
     }
     frame_ms.push_back(frame_clock.elapsed());
@@ -274,14 +293,16 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
         !s && failure)
       failure = s;
   }
-  double mean_churn = 0.0, mean_specks = 0.0;
+  double mean_churn = 0.0, mean_raw = 0.0, mean_specks = 0.0;
   for (double c : churns) mean_churn += c;
+  for (double c : raw_churns) mean_raw += c;
   for (double s : specks_per_frame) mean_specks += s;
   if (!churns.empty()) mean_churn /= static_cast<double>(churns.size());
+  if (!raw_churns.empty()) mean_raw /= static_cast<double>(raw_churns.size());
   if (!specks_per_frame.empty()) mean_specks /= static_cast<double>(specks_per_frame.size());
   if (want_metrics)
     std::cout << "frames " << done << "  churn mean " << mean_churn << " p95 " << percentile(churns, 0.95)
-              << "  specks mean " << mean_specks << '\n';
+              << "  churn_raw mean " << mean_raw << "  specks mean " << mean_specks << '\n';
   if (!o.stats.empty()) {
     nlohmann::json j;
     j["model"] = {{"path", loaded.view.model.string()}, {"vertices", model_vertices},
@@ -290,6 +311,7 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
     j["capture"] = {{"path", o.path}, {"fps", o.fps}, {"first_frame", range->first},
                     {"frames", done}, {"interrupted", interrupted}};
     j["coherence"] = {{"churn_mean", mean_churn}, {"churn_p95", percentile(churns, 0.95)},
+                      {"churn_raw_mean", mean_raw}, {"churn_raw_p95", percentile(raw_churns, 0.95)},
                       {"specks_mean", mean_specks}};
     double mean_ms = 0.0;
     for (double m : frame_ms) mean_ms += m;

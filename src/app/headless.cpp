@@ -64,6 +64,18 @@ void HeadlessRenderer::draw(const SceneDrawing& scene, const Camera& camera, con
   times_.render = sw.lap();
 }
 
+Status HeadlessRenderer::drawSurface(const Camera& camera, SurfaceImage& out) {
+  if (!surface_target_) {
+    auto t = SurfaceTarget::create(target_->width(), target_->height());
+    if (!t) return t.error();
+    surface_target_ = std::make_unique<SurfaceTarget>(std::move(t.value()));
+  }
+  surface_target_->bindAndClear();
+  renderer_->drawSurface(camera, target_->width(), target_->height());
+  surface_target_->readback(out);
+  return {};
+}
+
 Image HeadlessRenderer::readImage() {
   Stopwatch sw;
   Image image = target_->readback();

@@ -36,6 +36,9 @@ class HeadlessRenderer {
   /// Draws every object of `scene` from `camera` in its own style, uploading its lines;
   /// `frame` gives the background.
   void draw(const SceneDrawing& scene, const Camera& camera, const RenderParams& frame);
+  /// The surface pass (after setMeshes()/setMesh()): each pixel's nearest world position and
+  /// object id, for the motion-compensated coherence measure. Errors: framebuffer creation.
+  Status drawSurface(const Camera& camera, SurfaceImage& out);
   /// Reads back the colour image of the last draw().
   Image readImage();
   /// Reads back the depth of the last draw() (for visibility of lines).
@@ -51,6 +54,7 @@ class HeadlessRenderer {
   // Optional-like holders: destroyed before the context (declared after it).
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<OffscreenTarget> target_;
+  std::unique_ptr<SurfaceTarget> surface_target_;  // created by the first drawSurface()
   FrameTimes times_;
   std::vector<RenderParams> styles_;
 };

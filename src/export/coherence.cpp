@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 
 namespace lodline {
 namespace {
@@ -21,7 +25,131 @@ uint64_t unmatched(const LineMask& a, const LineMask& b, int r) {
   return n;
 }
 
+// Projection of world points by one camera into an image of the surface buffer's size.
+class Projection {
+ public:
+  Projection(const Camera& cam, int width, int height) : width_(width), height_(height) {
+    view_ = cam.view();
+    view_proj_ = cam.projection(static_cast<float>(width) / static_cast<float>(height)) * view_;
+  }
+  // Pixel position (x right, y down) and eye-space depth; false behind the eye.
+  bool project(glm::vec3 p, glm::vec2& px, float& depth) const {
+    const glm::vec4 c = view_proj_ * glm::vec4(p, 1.0f);
+    if (c.w <= 1e-12f) return false;
+    px = {(c.x / c.w * 0.5f + 0.5f) * static_cast<float>(width_), (0.5f - c.y / c.w * 0.5f) * static_cast<float>(height_)};
+    depth = -(view_ * glm::vec4(p, 1.0f)).z;
+    return true;
+  }
+  float depth(glm::vec3 p) const { return -(view_ * glm::vec4(p, 1.0f)).z; }
+
+ private:
+  int width_, height_;
+  glm::mat4 view_, view_proj_;
+};
+
+// Moves every line pixel of `from` (frame A) to frame B by its surface point's image motion;
+// `out` gets the moved pixel of each kept line pixel; returns the number dropped.
+uint64_t moveLinePixels(const LineMask& from, const SurfaceImage& surf_a, const Projection& proj_a,
+                        const SurfaceImage& surf_b, const Projection& proj_b, const CompensationParams& params,
+                        std::vector<glm::ivec2>& out) {
+  out.clear();
+  uint64_t dropped = 0;
+  const int w = from.width, h = from.height, r = params.search_radius;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!from.at(x, y)) continue;
+      // The surface point under the pixel, else the nearest covered pixel's.
+      const glm::vec4* t = &surf_a.at(x, y);
+      if (t->w <= 0.0f) {
+        t = nullptr;
+        int best = INT32_MAX;
+        for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy)
+          for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
+            const glm::vec4& c = surf_a.at(xx, yy);
+            const int d = (xx - x) * (xx - x) + (yy - y) * (yy - y);
+            if (c.w > 0.0f && d < best) {
+              best = d;
+              t = &c;
+            }
+          }
+      }
+      if (!t) {
+        ++dropped;
+        continue;
+      }
+      const glm::vec3 p(*t);
+      glm::vec2 pa, pb;
+      float da = 0.0f, db = 0.0f;
+      if (!proj_a.project(p, pa, da) || !proj_b.project(p, pb, db)) {
+        ++dropped;
+        continue;
+      }
+      const glm::vec2 moved = glm::vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f) + (pb - pa);
+      const int mx = static_cast<int>(std::floor(moved.x)), my = static_cast<int>(std::floor(moved.y));
+      if (mx < 0 || my < 0 || mx >= w || my >= h) {
+        ++dropped;
+        continue;
+      }
+      // Hidden in B: the surface around where the point now projects is nearer than the
+      // point. The farthest surface over a 3×3 neighbourhood is taken (background counts as
+      // infinitely far), so a contour point on the rim is not hidden by its own faces, as in
+      // the hidden-line test of the strokes (export/visibility.h).
+      const int sx = static_cast<int>(std::floor(pb.x)), sy = static_cast<int>(std::floor(pb.y));
+      float farthest = 0.0f;
+      bool open = false;
+      for (int yy = std::max(0, sy - 1); yy <= std::min(h - 1, sy + 1) && !open; ++yy)
+        for (int xx = std::max(0, sx - 1); xx <= std::min(w - 1, sx + 1) && !open; ++xx) {
+          const glm::vec4& s = surf_b.at(xx, yy);
+          if (s.w <= 0.0f) open = true;
+          else farthest = std::max(farthest, proj_b.depth(glm::vec3(s)));
+        }
+      if (!open && farthest < db * (1.0f - params.depth_tolerance)) {
+        ++dropped;
+        continue;
+      }
+      out.emplace_back(mx, my);
+    }
+  return dropped;
+}
+
+// Moved pixels with no pixel of `target` within Chebyshev distance r.
+uint64_t unmatchedMoved(const std::vector<glm::ivec2>& moved, const LineMask& target, int r) {
+  uint64_t n = 0;
+  for (const glm::ivec2& p : moved) {
+    bool found = false;
+    for (int yy = std::max(0, p.y - r); yy <= std::min(target.height - 1, p.y + r) && !found; ++yy)
+      for (int xx = std::max(0, p.x - r); xx <= std::min(target.width - 1, p.x + r) && !found; ++xx)
+        found = target.at(xx, yy);
+    n += !found;
+  }
+  return n;
+}
+
 }  // namespace
+
+CompensatedChange compareMasksCompensated(const LineMask& previous, const SurfaceImage& previous_surface,
+                                          const Camera& previous_camera, const LineMask& current,
+                                          const SurfaceImage& current_surface, const Camera& current_camera,
+                                          const CompensationParams& params) {
+  CompensatedChange c;
+  for (uint8_t v : current.on) c.line_pixels += v;
+  const int w = current.width, h = current.height;
+  auto same = [&](int ow, int oh) { return ow == w && oh == h; };
+  if (!same(previous.width, previous.height) || !same(previous_surface.width, previous_surface.height) ||
+      !same(current_surface.width, current_surface.height)) {
+    c.appeared = c.line_pixels;  // no comparable previous frame: everything is new
+    return c;
+  }
+  const Projection prev_proj(previous_camera, w, h), cur_proj(current_camera, w, h);
+  std::vector<glm::ivec2> moved;
+  // Forward: does each previous line pixel still have a line where its point went?
+  c.dropped += moveLinePixels(previous, previous_surface, prev_proj, current_surface, cur_proj, params, moved);
+  c.vanished = unmatchedMoved(moved, current, params.tolerance);
+  // Backward: was there a line where each current line pixel's point was before?
+  c.dropped += moveLinePixels(current, current_surface, cur_proj, previous_surface, prev_proj, params, moved);
+  c.appeared = unmatchedMoved(moved, previous, params.tolerance);
+  return c;
+}
 
 void rasterizeStrokes(const VisibleStrokes& strokes, int width, int height, LineMask& out) {
   out.width = width;

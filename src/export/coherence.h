@@ -1,11 +1,22 @@
 // Measuring temporal coherence of line drawings (lodline's own measure; no published system
 // reports one): per frame, the line pixels that appeared or vanished since the previous
 // frame, with a small spatial tolerance so a line that slides by a pixel does not count.
+//
+// The raw measure (compareMasks) counts every line pixel the camera moves by more than the
+// tolerance, so on a moving camera it mostly measures the motion. The motion-compensated one
+// (compareMasksCompensated) first moves each line pixel of one frame by the image motion of
+// the surface point under it — read from a surface buffer holding each pixel's visible world
+// position — to where that point projects in the other frame, drops it if the point is
+// hidden or off-screen there, and only then compares: what is left is lines popping in and
+// out, not lines travelling with the surface.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec4.hpp>
+
+#include "core/camera.h"
 #include "export/visibility.h"
 
 namespace lodline {
@@ -34,5 +45,55 @@ struct MaskChange {
 
 /// Compares two masks of the same size with a Chebyshev tolerance of `tolerance` pixels.
 MaskChange compareMasks(const LineMask& previous, const LineMask& current, int tolerance = 1);
+
+/// The visible surface of a frame, one texel per pixel, row 0 = top: xyz the world position
+/// of the nearest surface, w the object id + 1 (0: background). Drawn by the renderer's
+/// surface pass (gl/renderer.h, SurfaceTarget).
+struct SurfaceImage {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> texels;
+  const glm::vec4& at(int x, int y) const { return texels[static_cast<size_t>(y) * width + x]; }
+};
+
+struct CompensationParams {
+  /// Chebyshev tolerance of the comparison after moving, pixels (as compareMasks). Default 1.
+  int tolerance = 1;
+  /// A line pixel with no surface under it (the outer half of a contour drawn across the
+  /// silhouette) moves with the nearest surface pixel within this many pixels. Default 2.
+  int search_radius = 2;
+  /// A moved point is hidden when the farthest surface over the 3×3 pixels around its new
+  /// position is nearer than it by more than this fraction of its depth (background next to
+  /// it: visible). Default 0.01.
+  float depth_tolerance = 0.01f;
+};
+
+struct CompensatedChange {
+  uint64_t line_pixels = 0;  ///< pixels on in the current mask
+  /// Current line pixels whose surface point was visible in the previous frame, with no
+  /// previous line pixel within the tolerance of where that point was.
+  uint64_t appeared = 0;
+  /// Previous line pixels whose surface point is visible now, with no current line pixel
+  /// within the tolerance of where that point now is.
+  uint64_t vanished = 0;
+  /// Line pixels not compared because their point is hidden or off-screen in the other
+  /// frame (or no surface lies under or next to them): both directions together.
+  uint64_t dropped = 0;
+  /// (appeared + vanished) / line_pixels; 0 when there are no line pixels.
+  double churn() const {
+    return line_pixels ? static_cast<double>(appeared + vanished) / static_cast<double>(line_pixels) : 0.0;
+  }
+};
+
+/// The motion-compensated comparison of two frames: `previous`/`current` line masks, the
+/// surface images drawn with the same cameras, and those cameras. A line pixel moves by the
+/// image motion of its surface point (its projection by the other camera minus its projection
+/// by its own), so with an unchanged camera nothing moves and the result equals
+/// compareMasks(). All images must have the same size (otherwise everything counts as
+/// appeared).
+CompensatedChange compareMasksCompensated(const LineMask& previous, const SurfaceImage& previous_surface,
+                                          const Camera& previous_camera, const LineMask& current,
+                                          const SurfaceImage& current_surface, const Camera& current_camera,
+                                          const CompensationParams& params = {});
 
 }  // namespace lodline

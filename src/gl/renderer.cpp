@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <glm/matrix.hpp>
 
 #include "gl/shader.h"
 
@@ -46,6 +47,9 @@ Result<Renderer> Renderer::create() {
   r.toon_ = std::move(toon.value());
   r.depth_only_ = std::move(depth.value());
   r.line_ = std::move(line.value());
+  auto surface = loadProgram("mesh.vert", "surface.frag");
+  if (!surface) return surface.error();
+  r.surface_ = std::move(surface.value());
   r.ramp_ = makeTexture();
   if (Status s = r.setObjectCount(1); !s) return s.error();
   return r;
@@ -258,6 +262,70 @@ void Renderer::draw(const Camera& camera, const RenderParams& frame, std::span<c
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glBindVertexArray(0);
+}
+
+void Renderer::drawSurface(const Camera& camera, int width, int height) {
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  glViewport(0, 0, width, height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glUseProgram(surface_.id());
+  setMatrices(surface_.id(), camera, aspect);
+  const glm::mat4 inverse_view = glm::inverse(camera.view());
+  glUniformMatrix4fv(glGetUniformLocation(surface_.id(), "u_view_inverse"), 1, GL_FALSE, glm::value_ptr(inverse_view));
+  const GLint object_loc = glGetUniformLocation(surface_.id(), "u_object");
+  for (size_t i = 0; i < objects_.size(); ++i) {
+    glUniform1f(object_loc, static_cast<float>(i + 1));
+    glBindVertexArray(objects_[i].mesh_vao.id());
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(objects_[i].face_count * 3), GL_UNSIGNED_INT, nullptr);
+  }
+  glBindVertexArray(0);
+}
+
+Result<SurfaceTarget> SurfaceTarget::create(int width, int height) {
+  SurfaceTarget t;
+  t.width_ = width;
+  t.height_ = height;
+  t.color_ = makeRenderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, t.color_.id());
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
+  t.depth_ = makeRenderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, t.depth_.id());
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  t.fbo_ = makeFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo_.id());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color_.id());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth_.id());
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!complete) return Error::runtime("surface framebuffer (RGBA32F) is incomplete");
+  return t;
+}
+
+void SurfaceTarget::bindAndClear() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void SurfaceTarget::readback(SurfaceImage& out) const {
+  out.width = width_;
+  out.height = height_;
+  out.texels.resize(static_cast<size_t>(width_) * height_);
+  std::vector<glm::vec4> rows(out.texels.size());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, rows.data());
+  for (int y = 0; y < height_; ++y)
+    std::memcpy(&out.texels[static_cast<size_t>(y) * width_], &rows[static_cast<size_t>(height_ - 1 - y) * width_],
+                sizeof(glm::vec4) * width_);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 Result<OffscreenTarget> OffscreenTarget::create(int width, int height, int samples) {

@@ -16,6 +16,7 @@
 #include "core/line_buffer.h"
 #include "core/render_params.h"
 #include "core/result.h"
+#include "export/coherence.h"
 #include "export/visibility.h"
 #include "gl/chamfer_layer.h"
 #include "gl/gl_objects.h"
@@ -67,6 +68,11 @@ class Renderer {
   size_t segmentsDrawn(size_t object) const { return objects_[object].segments_drawn; }
   /// Sharp edges highlighted by the last draw() (0 when the chamfer layer was off).
   size_t chamferEdgesDrawn() const;
+  /// The surface pass of the coherence measure: every object's faces into the bound
+  /// framebuffer (a SurfaceTarget), each pixel the world position of the nearest surface and
+  /// the object's index + 1.
+  void drawSurface(const Camera& camera, int width, int height);
+
   /// The chamfer layer of `object` (per-vertex radii: chamfer(i).setMesh(...) after setMesh()).
   ChamferLayer& chamfer(size_t object = 0) { return objects_[object].chamfer; }
 
@@ -84,10 +90,27 @@ class Renderer {
   void drawChamfer(Object& o, const Camera& camera, const RenderParams& style, const RenderParams& frame, int width,
                    int height);
   void drawLines(Object& o, const Camera& camera, const RenderParams& style, float aspect);
-  GlProgram toon_, depth_only_, line_;
+  GlProgram toon_, depth_only_, line_, surface_;
   GlTexture ramp_;
   std::vector<Object> objects_;
   std::array<float, 5> ramp_key_{};  // tones + thresholds the ramp texture was built from
+};
+
+/// A single-sample RGBA32F framebuffer with depth for Renderer::drawSurface(), read back as a
+/// SurfaceImage (export/coherence.h).
+class SurfaceTarget {
+ public:
+  static Result<SurfaceTarget> create(int width, int height);
+  /// Binds and clears it (to background: all zero).
+  void bindAndClear() const;
+  /// Reads it back, top row first, into `out` (resized).
+  void readback(SurfaceImage& out) const;
+
+ private:
+  SurfaceTarget() = default;
+  int width_ = 0, height_ = 0;
+  GlFramebuffer fbo_;
+  GlRenderbuffer color_, depth_;
 };
 
 /// An offscreen multisampled framebuffer (colour RGBA8 + depth 24) with a resolve step and

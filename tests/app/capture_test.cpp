@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include <sys/wait.h>
 
@@ -99,13 +101,60 @@ TEST_F(Capture, MetricsCsvHasHeaderAndOneRowPerFrame) {
   std::ifstream in(csv);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "frame,line_pixels,appeared,vanished,churn,strokes,specks,active_faces,splits,collapses,ms_total");
+  EXPECT_EQ(line,
+            "frame,line_pixels,appeared,vanished,churn,dropped,appeared_raw,vanished_raw,churn_raw,strokes,specks,"
+            "active_faces,splits,collapses,ms_total");
   int rows = 0;
   while (std::getline(in, line)) {
     ++rows;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 10) << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 14) << line;
   }
   EXPECT_EQ(rows, 6);
+}
+
+// Per-frame columns of a metrics CSV by name.
+std::map<std::string, std::vector<double>> readCsv(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream hs(line);
+  for (std::string n; std::getline(hs, n, ',');) names.push_back(n);
+  std::map<std::string, std::vector<double>> cols;
+  while (std::getline(in, line)) {
+    std::stringstream ls(line);
+    std::string v;
+    for (size_t i = 0; i < names.size() && std::getline(ls, v, ','); ++i) cols[names[i]].push_back(std::stod(v));
+  }
+  return cols;
+}
+
+double meanAfterFirst(const std::vector<double>& v) {
+  double s = 0.0;
+  for (size_t i = 1; i < v.size(); ++i) s += v[i];
+  return v.size() > 1 ? s / static_cast<double>(v.size() - 1) : 0.0;
+}
+
+// A sphere away from the orbit's centre: its contour sweeps across the image (the raw measure
+// counts nearly every line pixel every frame), yet it never pops (the compensated one does not).
+TEST_F(Capture, CompensatedChurnSeparatesCameraMotionFromPopping) {
+  ASSERT_TRUE(saveOff(dir_ / "ball.off", makeIcoSphere(1.0f, 4)).ok());
+  ASSERT_TRUE(saveOff(dir_ / "pivot.off", makeIcoSphere(0.05f, 1)).ok());
+  std::ofstream(dir_ / "scene.json") << R"({"settings": {"lines": "contour", "size": "320x240", "msaa": 1,
+      "full-detail": true}, "objects": [{"mesh": "ball.off", "translate": [2.2, 0, 0]}, {"mesh": "pivot.off"}]})";
+  const auto csv = dir_ / "orbit.csv";
+  std::string out;
+  ASSERT_EQ(shell(std::string(LODLINE_BINARY) + " capture " + (dir_ / "scene.json").string() +
+                      " --path orbit --duration 4 --fps 15 -o " + (dir_ / "o").string() + "/ --metrics " + csv.string(),
+                  &out),
+            0)
+      << out;
+  const auto cols = readCsv(csv);
+  ASSERT_EQ(cols.at("churn").size(), 60u);
+  const double raw = meanAfterFirst(cols.at("churn_raw")), compensated = meanAfterFirst(cols.at("churn"));
+  EXPECT_GT(raw, 0.5);
+  EXPECT_LT(compensated, 0.05);
+  EXPECT_LT(compensated * 10.0, raw);
 }
 
 TEST_F(Capture, MissingFfmpegIsAClearError) {

@@ -1,5 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/camera.h"
 #include "export/coherence.h"
 
 namespace lodline {
@@ -67,6 +73,134 @@ TEST(Coherence, RasterizeStrokesIsContinuous) {
   EXPECT_TRUE(m.at(7, 2));
   EXPECT_TRUE(m.at(12, 6));
   EXPECT_FALSE(m.at(7, 6));
+}
+
+}  // namespace
+}  // namespace lodline
+
+// ---- motion-compensated comparison, on a ray-cast sphere (exact surfaces, no GL) ----
+
+namespace lodline {
+namespace {
+
+constexpr int kW = 200, kH = 160;
+
+Camera lookAt(glm::vec3 eye, glm::vec3 target) {
+  Camera c;
+  c.eye = eye;
+  c.target = target;
+  c.fov_deg = 35.0f;
+  c.near_plane = 0.5f;
+  c.far_plane = 50.0f;
+  return c;
+}
+
+// The visible surface of a sphere (object 1) seen by `cam`, by ray casting each pixel centre.
+SurfaceImage raycastSphere(const Camera& cam, glm::vec3 centre, float radius) {
+  SurfaceImage s;
+  s.width = kW;
+  s.height = kH;
+  s.texels.assign(static_cast<size_t>(kW) * kH, glm::vec4(0.0f));
+  const glm::vec3 f = cam.forward(), r = glm::normalize(glm::cross(f, cam.up)), u = glm::cross(r, f);
+  const float t = std::tan(glm::radians(cam.fov_deg) * 0.5f), aspect = static_cast<float>(kW) / kH;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const float nx = (2.0f * (x + 0.5f) / kW - 1.0f) * t * aspect, ny = (1.0f - 2.0f * (y + 0.5f) / kH) * t;
+      const glm::vec3 d = glm::normalize(f + nx * r + ny * u);
+      const glm::vec3 oc = cam.eye - centre;
+      const float b = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius, disc = b * b - c;
+      if (disc < 0.0f) continue;
+      const float hit = -b - std::sqrt(disc);
+      s.texels[static_cast<size_t>(y) * kW + x] = glm::vec4(cam.eye + hit * d, 1.0f);
+    }
+  return s;
+}
+
+// Its contour as drawn: the covered pixels with a background 4-neighbour.
+LineMask rim(const SurfaceImage& s) {
+  LineMask m = empty(kW, kH);
+  for (int y = 1; y < kH - 1; ++y)
+    for (int x = 1; x < kW - 1; ++x)
+      if (s.at(x, y).w > 0.0f && (s.at(x - 1, y).w == 0.0f || s.at(x + 1, y).w == 0.0f || s.at(x, y - 1).w == 0.0f ||
+                                  s.at(x, y + 1).w == 0.0f))
+        m.on[static_cast<size_t>(y) * kW + x] = 1;
+  return m;
+}
+
+TEST(CompensatedCoherence, ARigidOrbitOfASpheresContourDoesNotChurn) {
+  // In front of the orbit's centre: orbiting 1.5° (a slow orbit's step) about the origin moves
+  // its image by ~4 px. (Much larger steps move the surface points under the silhouette's
+  // pixels — up to ~10° around the sphere from the true rim — visibly off the new rim.)
+  const glm::vec3 centre(0.3f, 0.2f, 3.0f);
+  const Camera a = lookAt({0, 0, 8}, {0, 0, 0});
+  const float ang = glm::radians(1.5f);
+  const Camera b = lookAt({8 * std::sin(ang), 0, 8 * std::cos(ang)}, {0, 0, 0});
+  const SurfaceImage sa = raycastSphere(a, centre, 1.0f), sb = raycastSphere(b, centre, 1.0f);
+  const LineMask ma = rim(sa), mb = rim(sb);
+  const MaskChange raw = compareMasks(ma, mb);
+  const CompensatedChange comp = compareMasksCompensated(ma, sa, a, mb, sb, b);
+  EXPECT_GT(raw.churn(), 1.0);  // most pixels appear and vanish
+  EXPECT_LT(comp.churn(), 0.02);
+  EXPECT_LT(comp.dropped, comp.line_pixels / 10);
+}
+
+TEST(CompensatedCoherence, ALineRemovedInOneFrameCountsOnce) {
+  const Camera cam = lookAt({0, 0, 8}, {0, 0, 0});
+  const SurfaceImage s = raycastSphere(cam, {0, 0, 0}, 1.5f);
+  LineMask with = rim(s), without = rim(s);
+  hline(with, kH / 2, kW / 2 - 20, kW / 2 + 20);  // a 40-px line across the sphere's face
+  const CompensatedChange gone = compareMasksCompensated(with, s, cam, without, s, cam);
+  EXPECT_EQ(gone.vanished, 40u);
+  EXPECT_EQ(gone.appeared, 0u);
+  const CompensatedChange back = compareMasksCompensated(without, s, cam, with, s, cam);
+  EXPECT_EQ(back.appeared, 40u);
+  EXPECT_EQ(back.vanished, 0u);
+  // Moving with the camera, the removal still counts exactly the line's pixels.
+  const Camera moved = lookAt({0.3f, 0.1f, 8}, {0.3f, 0.1f, 0});
+  const SurfaceImage s2 = raycastSphere(moved, {0, 0, 0}, 1.5f);
+  LineMask moved_with = rim(s2);
+  // The same surface points as `with`'s line, seen by the moved camera.
+  for (int x = kW / 2 - 20; x < kW / 2 + 20; ++x) {
+    const glm::vec3 p(s.at(x, kH / 2));
+    const glm::vec2 px = projectToPixels(moved, p, kW, kH);
+    moved_with.on[static_cast<size_t>(std::floor(px.y)) * kW + static_cast<size_t>(std::floor(px.x))] = 1;
+  }
+  const CompensatedChange kept = compareMasksCompensated(with, s, cam, moved_with, s2, moved);
+  EXPECT_EQ(kept.appeared + kept.vanished, 0u);
+  const CompensatedChange lost = compareMasksCompensated(with, s, cam, rim(s2), s2, moved);
+  EXPECT_EQ(lost.vanished, 40u);
+  EXPECT_EQ(lost.appeared, 0u);
+  EXPECT_GT(compareMasks(with, rim(s2)).churn(), lost.churn());  // raw also counts the rim's motion
+}
+
+TEST(CompensatedCoherence, AStaticCameraGivesTheRawMeasure) {
+  const Camera cam = lookAt({0, 0, 8}, {0.2f, -0.1f, 0});
+  const SurfaceImage s = raycastSphere(cam, {0, 0, 0}, 1.5f);
+  LineMask a = rim(s), b = rim(s);
+  hline(a, 60, 80, 120);
+  hline(b, 62, 90, 130);   // shifted by 2 px and 10 px: partly matched, partly not
+  hline(b, 100, 70, 75);   // a new piece
+  const MaskChange raw = compareMasks(a, b);
+  const CompensatedChange comp = compareMasksCompensated(a, s, cam, b, s, cam);
+  EXPECT_EQ(comp.appeared, raw.appeared);
+  EXPECT_EQ(comp.vanished, raw.vanished);
+  EXPECT_EQ(comp.dropped, 0u);
+  EXPECT_GT(raw.appeared, 0u);
+  EXPECT_DOUBLE_EQ(comp.churn(), raw.churn());
+}
+
+TEST(CompensatedCoherence, PointsHiddenOrOffScreenInTheOtherFrameAreDropped) {
+  const Camera cam = lookAt({0, 0, 8}, {0, 0, 0});
+  const SurfaceImage s = raycastSphere(cam, {0, 0, 0}, 1.5f);
+  LineMask a = rim(s);
+  // Half a turn about the sphere: what was in front is now behind it.
+  const Camera back = lookAt({0, 0, -8}, {0, 0, 0});
+  const SurfaceImage sb = raycastSphere(back, {0, 0, 0}, 1.5f);
+  LineMask face = empty(kW, kH);
+  hline(face, kH / 2, kW / 2 - 10, kW / 2 + 10);  // on the front of the sphere
+  const CompensatedChange c = compareMasksCompensated(face, s, cam, rim(sb), sb, back);
+  EXPECT_EQ(c.vanished, 0u);  // not vanished: hidden behind the sphere now
+  EXPECT_GE(c.dropped, 20u);
 }
 
 }  // namespace
