@@ -34,6 +34,26 @@ void uploadArray(GLenum target, const GlBuffer& buffer, std::span<const T> data)
   }
 }
 
+// A framebuffer with a colour renderbuffer of `color_format` and a 24-bit depth renderbuffer,
+// `samples` per pixel (0: not multisampled). `what` names it in the error.
+Status makeTargetFramebuffer(GLenum color_format, int width, int height, GLsizei samples, const char* what,
+                             GlFramebuffer& fbo, GlRenderbuffer& color, GlRenderbuffer& depth) {
+  color = makeRenderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, color.id());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, color_format, width, height);
+  depth = makeRenderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, depth.id());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, width, height);
+  fbo = makeFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color.id());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.id());
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!complete) return Error::runtime(std::string(what) + " framebuffer is incomplete");
+  return {};
+}
+
 }  // namespace
 
 Result<Renderer> Renderer::create() {
@@ -289,19 +309,9 @@ Result<SurfaceTarget> SurfaceTarget::create(int width, int height) {
   SurfaceTarget t;
   t.width_ = width;
   t.height_ = height;
-  t.color_ = makeRenderbuffer();
-  glBindRenderbuffer(GL_RENDERBUFFER, t.color_.id());
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
-  t.depth_ = makeRenderbuffer();
-  glBindRenderbuffer(GL_RENDERBUFFER, t.depth_.id());
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-  t.fbo_ = makeFramebuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo_.id());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color_.id());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth_.id());
-  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (!complete) return Error::runtime("surface framebuffer (RGBA32F) is incomplete");
+  if (Status st = makeTargetFramebuffer(GL_RGBA32F, width, height, 0, "surface (RGBA32F)", t.fbo_, t.color_, t.depth_);
+      !st)
+    return st.error();
   return t;
 }
 
@@ -341,33 +351,12 @@ Result<OffscreenTarget> OffscreenTarget::create(int width, int height, int sampl
     return Error::runtime("image size " + std::to_string(width) + "x" + std::to_string(height) +
                           " exceeds the OpenGL limit of " + std::to_string(max_size) + " px");
   const GLsizei ms = t.samples_ > 1 ? t.samples_ : 0;
-  t.color_ = makeRenderbuffer();
-  glBindRenderbuffer(GL_RENDERBUFFER, t.color_.id());
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, ms, GL_RGBA8, width, height);
-  t.depth_ = makeRenderbuffer();
-  glBindRenderbuffer(GL_RENDERBUFFER, t.depth_.id());
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, ms, GL_DEPTH_COMPONENT24, width, height);
-  t.fbo_ = makeFramebuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo_.id());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color_.id());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth_.id());
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    return Error::runtime("offscreen framebuffer is incomplete");
-  t.resolve_color_ = makeRenderbuffer();
-  glBindRenderbuffer(GL_RENDERBUFFER, t.resolve_color_.id());
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
-  t.resolve_depth_ = makeRenderbuffer();
-  glBindRenderbuffer(GL_RENDERBUFFER, t.resolve_depth_.id());
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-  t.resolve_fbo_ = makeFramebuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, t.resolve_fbo_.id());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
-                            t.resolve_color_.id());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                            t.resolve_depth_.id());
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    return Error::runtime("resolve framebuffer is incomplete");
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (Status st = makeTargetFramebuffer(GL_RGBA8, width, height, ms, "offscreen", t.fbo_, t.color_, t.depth_); !st)
+    return st.error();
+  if (Status st = makeTargetFramebuffer(GL_RGBA8, width, height, 0, "resolve", t.resolve_fbo_, t.resolve_color_,
+                                        t.resolve_depth_);
+      !st)
+    return st.error();
   return t;
 }
 

@@ -201,6 +201,16 @@ void sceneFrame(benchmark::State& state, float target_area) {
     scene_renderer->setMesh(i, d.mesh().positions, d.normals(), d.mesh().faces);
   }
   std::vector<double> scene_ms, scene_cpu, knot_ms, knot_cpu, scene_faces, knot_faces;
+  std::vector<double> scene_adapt, scene_shape, scene_lines, knot_adapt, knot_shape, knot_lines, scene_changes,
+      knot_changes;
+  // Per-stage milliseconds of the last frame: adapt, shape (where the mesh changed), lines.
+  auto stages = [](const LodDrawing& l, double& a, double& sh, double& li, double& ch) {
+    a += l.adaptMs();
+    const CpuTimings& t = l.drawing().timings();
+    sh += l.meshChanged() ? t.shape : 0.0;
+    li += t.view + t.extract + t.chain;
+    ch += static_cast<double>(l.lod()->stats().splits + l.lod()->stats().collapses);
+  };
   float az = 0.0f;
   for (auto _ : state) {
     az += 1.0f;
@@ -209,7 +219,12 @@ void sceneFrame(benchmark::State& state, float target_area) {
       Stopwatch sw;
       (void)scene.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f);
       scene_cpu.push_back(sw.elapsed());
-      double faces = 0.0;
+      double faces = 0.0, a = 0.0, sh = 0.0, li = 0.0, ch = 0.0;
+      for (size_t i = 0; i < scene.size(); ++i) stages(*scene[i].drawing, a, sh, li, ch);
+      scene_adapt.push_back(a);
+      scene_shape.push_back(sh);
+      scene_lines.push_back(li);
+      scene_changes.push_back(ch);
       for (size_t i = 0; i < scene.size(); ++i) {
         const LodDrawing& l = *scene[i].drawing;
         if (l.meshChanged())
@@ -228,6 +243,12 @@ void sceneFrame(benchmark::State& state, float target_area) {
       Stopwatch sw;
       (void)single.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f, enabled);
       knot_cpu.push_back(sw.elapsed());
+      double a = 0.0, sh = 0.0, li = 0.0, ch = 0.0;
+      stages(single, a, sh, li, ch);
+      knot_adapt.push_back(a);
+      knot_shape.push_back(sh);
+      knot_lines.push_back(li);
+      knot_changes.push_back(ch);
       if (single.meshChanged())
         knot_renderer->setMesh(single.drawing().mesh().positions, single.drawing().normals(), single.drawing().mesh().faces);
       knot_renderer->setLines(single.drawing().lines());
@@ -247,6 +268,14 @@ void sceneFrame(benchmark::State& state, float target_area) {
   state.counters["scene_ms"] = bench::median(scene_ms);
   state.counters["knot_ms"] = bench::median(knot_ms);
   state.counters["scene_over_knot"] = bench::median(scene_ms) / bench::median(knot_ms);
+  state.counters["scene_adapt_ms"] = bench::median(scene_adapt);
+  state.counters["scene_shape_ms"] = bench::median(scene_shape);
+  state.counters["scene_lines_ms"] = bench::median(scene_lines);
+  state.counters["scene_ops"] = bench::median(scene_changes);
+  state.counters["knot_adapt_ms"] = bench::median(knot_adapt);
+  state.counters["knot_shape_ms"] = bench::median(knot_shape);
+  state.counters["knot_lines_ms"] = bench::median(knot_lines);
+  state.counters["knot_ops"] = bench::median(knot_changes);
 }
 
 }  // namespace
