@@ -14,6 +14,7 @@
 #include "app/options.h"
 #include "core/timer.h"
 #include "app/model.h"
+#include "export/coherence.h"
 #include "export/svg.h"
 #include "export/visibility.h"
 #include "io/atomic_file.h"
@@ -201,6 +202,10 @@ int runRender(const RenderOptions& o) {
     j["strokes"] = visible.strokeCount();
     j["specks"] = std::count_if(visible.length_px.begin(), visible.length_px.end(),
                                 [](float len) { return len < 3.0f; });
+    // Pixels under the visible strokes, rasterised 1 px wide (as capture's metrics count them).
+    LineMask line_mask;
+    rasterizeStrokes(visible, rp.width, rp.height, line_mask);
+    j["line_pixels"] = std::count(line_mask.on.begin(), line_mask.on.end(), uint8_t{1});
     j["ms"] = {{"load", ms_load}, {"pm", ms_pm}, {"adapt", ms_adapt},   {"shape", t.shape},   {"view", t.view},
                {"extract", t.extract}, {"chain", t.chain}, {"setup", ms_setup},
                {"render", ms_render}, {"readback", ms_readback}, {"visibility", ms_visibility}, {"total", total.elapsed()}};
