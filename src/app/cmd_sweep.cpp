@@ -106,7 +106,7 @@ struct Active {
 };
 
 // Renders the pending runs, `jobs` at a time; fills `results`. Returns false if interrupted.
-bool executeRuns(const std::string& exe, const std::string& model, const std::vector<Run>& runs,
+bool executeRuns(const std::string& exe, const std::vector<Run>& runs,
                  const std::filesystem::path& runs_dir, int jobs, std::vector<RunResult>& results) {
   std::vector<size_t> pending;
   for (size_t i = 0; i < runs.size(); ++i)
@@ -137,7 +137,7 @@ bool executeRuns(const std::string& exe, const std::string& model, const std::ve
       std::error_code ec;
       std::filesystem::remove(pngOf(runs_dir, run), ec);
       std::filesystem::remove(jsonOf(runs_dir, run), ec);
-      std::vector<std::string> args = {"render", model};
+      std::vector<std::string> args = {"render", run.model};
       args.insert(args.end(), run.args.begin(), run.args.end());
       for (const std::string& s : {std::string("-o"), pngOf(runs_dir, run).string(), std::string("--stats"),
                                    jsonOf(runs_dir, run).string()})
@@ -209,8 +209,8 @@ int runSweep(const SweepOptions& o) {
       return reportError(Error::usage("--caption " + c + ": not a result column (run, a varied key, or one of " +
                                       stat_names + ")"));
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(plan.model, ec))
-    return reportError(Error::runtime(plan.model + ": no such file"));
+  for (const auto& run : plan.runs)
+    if (!std::filesystem::is_regular_file(run.model, ec)) return reportError(Error::runtime(run.model + ": no such file"));
   auto font = Font::load(o.font);
   if (!font) return reportError(Error::runtime(font.error().message + " (install Debian's fonts-dejavu-core, or pass --font FILE.ttf)"));
 
@@ -227,7 +227,7 @@ int runSweep(const SweepOptions& o) {
   if (o.dry_run) {
     for (size_t i = 0; i < plan.runs.size(); ++i) {
       std::cout << plan.runs[i].name << "  " << (results[i].state == RunState::kComplete ? "done" : "pending")
-                << "  lodline render " << shellQuote(plan.model);
+                << "  lodline render " << shellQuote(plan.runs[i].model);
       for (const auto& a : plan.runs[i].args) std::cout << ' ' << shellQuote(a);
       std::cout << '\n';
     }
@@ -248,8 +248,10 @@ int runSweep(const SweepOptions& o) {
     if (!old.is_discarded() && (old.value("model", std::string()) != plan.model || old.value("fixed", nlohmann::json()) != plan.fixed)) {
       std::string was;
       for (const auto& t : old.value("fixed", nlohmann::json::array())) was += " " + t.get<std::string>();
+      const std::string old_model = old.value("model", std::string());
       return reportError(Error::usage(manifest_path.string() + ": this directory holds a sweep of " +
-                                      old.value("model", std::string("?")) + " with fixed options [" +
+                                      (old_model.empty() ? std::string("varied models") : old_model) +
+                                      " with fixed options [" +
                                       (was.empty() ? "" : was.substr(1)) + "]; use the same, choose another -o, or --force"));
     }
   }
@@ -269,7 +271,7 @@ int runSweep(const SweepOptions& o) {
   if (len <= 0) return reportError(Error::runtime("/proc/self/exe: cannot find the lodline executable"));
   exe[len] = 0;
 
-  const bool finished = executeRuns(exe, plan.model, plan.runs, runs_dir, o.jobs, results);
+  const bool finished = executeRuns(exe, plan.runs, runs_dir, o.jobs, results);
 
   // Stats of every run with outputs (rendered now or kept from before).
   for (size_t i = 0; i < plan.runs.size(); ++i) {
@@ -322,14 +324,16 @@ Command addSweepCommand(CLI::App& parent) {
   CLI::App* cmd = parent.add_subcommand(
       "sweep", "Render a parameter sweep (cross product of --vary lists) into PNGs, stats, results.csv, "
                "contact sheets and charts");
-  cmd->add_option("model", o->plan.model, "Mesh or scene file, passed to every `lodline render` unchanged")->required();
+  cmd->add_option("model", o->plan.model,
+                  "Mesh or scene file, passed to every `lodline render` unchanged (or --vary model=A,B,...)");
   cmd->add_option("render-options", o->plan.passthrough,
                   "Render options for every run, after `--` (e.g. -- --style lines --size 480x270)");
   cmd->add_option("-o,--output", o->output,
                   "Sweep directory: runs/NAME.png and .json per run, results.csv, sheet*.png, chart_*.svg");
   cmd->add_option("--vary", o->plan.vary,
                   "KEY=V1,V2,...: a render option without its dashes (target-area, detail-map, lod, size, ...) "
-                  "or view.az, view.el, view.dist (one part of --view AZ,EL,DIST); values are split at ';' "
+                  "or view.az, view.el, view.dist (one part of --view AZ,EL,DIST), or model (files, instead of "
+                  "MODEL); an empty value passes no option (render's default); values are split at ';' "
                   "instead of ',' when the list holds a ';' (view=0,20,3;90,20,3). Repeatable: runs are the "
                   "cross product, first axis slowest")
       ->allow_extra_args(false);

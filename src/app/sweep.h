@@ -17,19 +17,20 @@ namespace lodline::sweep {
 
 /// One --vary list.
 struct Axis {
-  std::string key;                  ///< render option without dashes, or view.az / view.el / view.dist
+  std::string key;                  ///< render option without dashes, view.az / view.el / view.dist, or model
   std::vector<std::string> values;  ///< as given; an empty value passes no option (render's default)
 };
 
 struct Run {
   std::string name;                 ///< file-name stem made of the varied values
+  std::string model;                ///< MODEL, or this run's value of --vary model
   std::vector<size_t> index;        ///< value index per axis
   std::vector<std::string> args;    ///< render options of this run (besides MODEL, -o, --stats)
   std::filesystem::path cache_dir;  ///< where its progressive mesh is cached
 };
 
 struct Plan {
-  std::string model;
+  std::string model;               ///< MODEL; empty when the model is varied (each Run has its own)
   bool zip = false;                ///< runs pair the lists instead of crossing them
   std::vector<Axis> axes;
   std::vector<std::string> fixed;  ///< render options of every run (--set, then those after --)
@@ -38,7 +39,7 @@ struct Plan {
 
 /// The command-line input of a plan.
 struct PlanOptions {
-  std::string model;
+  std::string model;                     ///< MODEL; empty with --vary model=A,B,...
   std::vector<std::string> vary;         ///< KEY=V1,V2,... (split at ';' when the list holds one)
   std::vector<std::string> set;          ///< KEY=VALUE
   std::vector<std::string> passthrough;  ///< render options after `--`

@@ -153,7 +153,9 @@ Result<std::vector<std::filesystem::path>> writeSheets(const Plan& plan, const s
   std::vector<std::filesystem::path> files;
   const auto& axes = plan.axes;
   const bool zip = plan.zip;
-  const std::string model_name = std::filesystem::path(plan.model).filename().string();
+  // "camel.off: " before titles (nothing when the model is varied: it is an axis).
+  const std::string model_name =
+      plan.model.empty() ? std::string() : std::filesystem::path(plan.model).filename().string() + ": ";
   std::string fixed;
   for (const auto& t : plan.fixed) fixed += (fixed.empty() ? "" : " ") + t;
   if (fixed.size() > 120) fixed = fixed.substr(0, 117) + "...";
@@ -192,8 +194,8 @@ Result<std::vector<std::filesystem::path>> writeSheets(const Plan& plan, const s
     }
     sheet.title.push_back(!o.title.empty() ? o.title
                           : zip || axes.size() == 1
-                              ? model_name + ": " + std::string(zip ? "paired runs" : "sweep of " + axes[0].key)
-                              : model_name + ": rows " + axes[0].key + ", columns " + axes[1].key);
+                              ? model_name + std::string(zip ? "paired runs" : "sweep of " + axes[0].key)
+                              : model_name + "rows " + axes[0].key + ", columns " + axes[1].key);
     std::string extra;
     for (size_t k = 0; k < combo.size(); ++k)
       extra += (extra.empty() ? "" : ", ") + axes[k + 2].key + " = " + displayValue(axes[k + 2].values[combo[k]]);
@@ -233,12 +235,14 @@ Result<std::vector<std::filesystem::path>> writeCharts(const Plan& plan, const s
                                                        const std::vector<std::string>& columns) {
   std::vector<std::filesystem::path> files;
   const auto& axes = plan.axes;
-  const std::string model_name = std::filesystem::path(plan.model).filename().string();
+  // "camel.off: " before titles (nothing when the model is varied: it is an axis).
+  const std::string model_name =
+      plan.model.empty() ? std::string() : std::filesystem::path(plan.model).filename().string() + ": ";
   for (const auto& column : columns) {
     if (!findStatColumn(column)) return Error::usage("--chart " + column + ": not a result column");
     const StatColumn& c = *findStatColumn(column);
     LineChart chart;
-    chart.title = model_name + ": " + column + " against " + axes[0].key;
+    chart.title = model_name + column + " against " + axes[0].key;
     chart.x_label = axes[0].key;
     chart.y_label = column;
     auto y_of = [&](size_t i) {

@@ -143,7 +143,7 @@ Result<Axis> parseVary(const std::string& spec) {
 }
 
 Status checkKey(const std::string& key, const std::string& flag, const CLI::App& render) {
-  if (viewComponent(key) >= 0) return {};
+  if (viewComponent(key) >= 0 || (key == "model" && flag == "--vary")) return {};
   if (ownedKey(key))
     return Error::usage(flag + " " + key + ": sweep sets -o, --stats and --svg of each run itself (DIR/runs/NAME.png, .json)");
   if (!render.get_option_no_throw("--" + key))
@@ -176,6 +176,17 @@ Result<Plan> makePlan(const PlanOptions& o) {
   }
   if (keys.count("view") && (keys.count("view.az") || keys.count("view.el") || keys.count("view.dist")))
     return Error::usage("--vary view: vary either the whole --view or its components view.az/el/dist, not both");
+  // The model: MODEL, or one per value of --vary model.
+  if (keys.count("model") && !o.model.empty())
+    return Error::usage("--vary model: give either MODEL or --vary model=A,B,..., not both");
+  if (!keys.count("model") && o.model.empty()) return Error::usage("sweep: give a MODEL (or --vary model=A,B,...)");
+  std::string check_model = o.model;  // a model to check the fixed options with
+  for (const auto& a : plan.axes)
+    if (a.key == "model") {
+      for (const auto& v : a.values)
+        if (v.empty()) return Error::usage("--vary model: empty model name");
+      check_model = a.values[0];
+    }
 
   // Fixed options: --set KEY=VALUE as --KEY=VALUE, then everything after --.
   std::array<std::optional<std::string>, 3> set_view;
@@ -219,9 +230,9 @@ Result<Plan> makePlan(const PlanOptions& o) {
     }
     plan.fixed = std::move(kept);
   }
-  if (Status s = checkRenderSyntax(o.model, plan.fixed); !s)
+  if (Status s = checkRenderSyntax(check_model, plan.fixed); !s)
     return Error::usage("sweep: fixed render options: " + s.error().message);
-  if (auto c = checkRenderValues(o.model, plan.fixed); !c)
+  if (auto c = checkRenderValues(check_model, plan.fixed); !c)
     return Error{c.error().kind, "sweep: fixed render options: " + c.error().message};
 
   // The runs: cross product (first axis slowest) or paired lists.
@@ -254,10 +265,12 @@ Result<Plan> makePlan(const PlanOptions& o) {
   // option (render's default).
   auto makeRun = [&](const std::vector<std::pair<std::string, std::string>>& varied) -> Result<Run> {
     Run run;
+    run.model = o.model;
     run.args = plan.fixed;
     std::optional<std::string> comps[3];
     for (const auto& [key, value] : varied)
-      if (const int c = viewComponent(key); c >= 0) comps[c] = value;
+      if (key == "model") run.model = value;
+      else if (const int c = viewComponent(key); c >= 0) comps[c] = value;
       else if (!value.empty()) run.args.push_back("--" + key + "=" + value);  // empty: render's default
     if (view_parts) {
       OrbitView v;
@@ -275,7 +288,7 @@ Result<Plan> makePlan(const PlanOptions& o) {
         *parts[c] = static_cast<float>(*number);
       }
       if (v.distance == 0.0f) {  // the distance that frames the model, as render's default view
-        auto checked = checkRenderValues(o.model, run.args);
+        auto checked = checkRenderValues(run.model, run.args);
         if (!checked) return checked.error();
         Bounds unit;
         unit.radius = 1.0f;
@@ -287,8 +300,8 @@ Result<Plan> makePlan(const PlanOptions& o) {
       run.args.push_back("--view=" + formatFloat(v.azimuth_deg) + "," + formatFloat(v.elevation_deg) + "," +
                          formatFloat(v.distance));
     }
-    if (Status s = checkRenderSyntax(o.model, run.args); !s) return s.error();
-    auto checked = checkRenderValues(o.model, run.args);
+    if (Status s = checkRenderSyntax(run.model, run.args); !s) return s.error();
+    auto checked = checkRenderValues(run.model, run.args);
     if (!checked) return checked.error();
     run.cache_dir = checked->cache_dir;
     return run;

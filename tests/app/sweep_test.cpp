@@ -159,6 +159,33 @@ TEST_F(Sweep, ZipPlanPairsTheLists) {
   EXPECT_NE(bad.output.find("same length"), std::string::npos) << bad.output;
 }
 
+TEST_F(Sweep, ModelsCanBeAnAxis) {
+  const std::string sphere = (dir_ / "sphere.off").string();
+  ASSERT_TRUE(saveOff(sphere, makeIcoSphere(1.0f, 4)).ok());
+  const fs::path out = dir_ / "models";
+  CliRun r;
+  r.code = test::runLodline("sweep --vary model=" + model_ + "," + sphere +
+                                " --vary target-area=8,32 --set size=96x64 --set msaa=1 -o " + out.string(),
+                            &r.output);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto rows = readCsv(out / "results.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].at("model"), model_);
+  EXPECT_EQ(rows[2].at("model"), sphere);
+  EXPECT_EQ(rows[0].at("run").rfind("model-knot-", 0), 0u) << rows[0].at("run");
+  EXPECT_EQ(rows[2].at("faces"), "5120");  // the level-4 icosphere
+  EXPECT_NE(rows[0].at("faces"), rows[2].at("faces"));
+  EXPECT_TRUE(fs::exists(out / "sheet.png"));
+  // MODEL and --vary model exclude each other; one of them is needed.
+  CliRun both;
+  both.code = test::runLodline("sweep " + model_ + " --vary model=" + sphere + " -o " + out.string(), &both.output);
+  EXPECT_EQ(both.code, 2) << both.output;
+  CliRun none;
+  none.code = test::runLodline("sweep --vary target-area=8 -o " + out.string(), &none.output);
+  EXPECT_EQ(none.code, 2) << none.output;
+  EXPECT_NE(none.output.find("MODEL"), std::string::npos) << none.output;
+}
+
 TEST_F(Sweep, RenderOptionsAfterDoubleDashAndFramingDistance) {
   // Options after -- reach every run; with only the azimuth varied, the distance is the one
   // render's default view frames the model with (35° fov, 96x64: ~3.6 radii).
