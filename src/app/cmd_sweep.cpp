@@ -241,11 +241,11 @@ int runSweep(const SweepOptions& o) {
   std::filesystem::create_directories(runs_dir, ec);
   if (ec || !std::filesystem::is_directory(runs_dir))
     return reportError(Error::runtime(o.output + ": cannot create directory: " + (ec ? ec.message() : "not a directory")));
-  nlohmann::json manifest = {{"model", plan.model}, {"fixed", plan.fixed}};
+  nlohmann::json manifest = {{"model", plan.model}, {"fixed", plan.fixed_given}};
   const auto manifest_path = dir / "sweep.json";
   if (std::ifstream in(manifest_path); in && !o.force) {
     nlohmann::json old = nlohmann::json::parse(in, nullptr, false);
-    if (!old.is_discarded() && (old.value("model", std::string()) != plan.model || old.value("fixed", nlohmann::json()) != plan.fixed)) {
+    if (!old.is_discarded() && (old.value("model", std::string()) != plan.model || old.value("fixed", nlohmann::json()) != plan.fixed_given)) {
       std::string was;
       for (const auto& t : old.value("fixed", nlohmann::json::array())) was += " " + t.get<std::string>();
       const std::string old_model = old.value("model", std::string());

@@ -34,6 +34,9 @@ struct Plan {
   bool zip = false;                ///< runs pair the lists instead of crossing them
   std::vector<Axis> axes;
   std::vector<std::string> fixed;  ///< render options of every run (--set, then those after --)
+  /// The fixed options as given (--set KEY=VALUE as --KEY=VALUE, view.* parts included; `fixed`
+  /// folds those into each run's --view): for titles and for recognising the same sweep.
+  std::vector<std::string> fixed_given;
   std::vector<Run> runs;           ///< cross product with the first axis slowest, or the pairs
 };
 

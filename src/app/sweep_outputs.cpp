@@ -157,7 +157,7 @@ Result<std::vector<std::filesystem::path>> writeSheets(const Plan& plan, const s
   const std::string model_name =
       plan.model.empty() ? std::string() : std::filesystem::path(plan.model).filename().string() + ": ";
   std::string fixed;
-  for (const auto& t : plan.fixed) fixed += (fixed.empty() ? "" : " ") + t;
+  for (const auto& t : plan.fixed_given) fixed += (fixed.empty() ? "" : " ") + t;
   if (fixed.size() > 120) fixed = fixed.substr(0, 117) + "...";
   // Cell width: --cell-width, else the first render's width up to 320 px.
   ContactSheetParams params;

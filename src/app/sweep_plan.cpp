@@ -199,6 +199,7 @@ Result<Plan> makePlan(const PlanOptions& o) {
     if (keys.count(key)) return Error::usage("--set " + key + ": also varied by --vary " + key + "; fix it or vary it");
     if (const int c = viewComponent(key); c >= 0) set_view[c] = value;
     else plan.fixed.push_back("--" + key + "=" + value);
+    plan.fixed_given.push_back("--" + key + "=" + value);
   }
   for (const auto& t : o.passthrough) {
     const std::string key = tokenKey(t);
@@ -208,6 +209,7 @@ Result<Plan> makePlan(const PlanOptions& o) {
     if (!key.empty() && keys.count(key))
       return Error::usage("after --: " + t + " is also varied by --vary " + key + "; fix it or vary it");
     plan.fixed.push_back(t);
+    plan.fixed_given.push_back(t);
   }
 
   // View components: the base --view (fixed options, else the default 3/4 view at the framing

@@ -333,6 +333,9 @@ TEST_F(Sweep, WritesRunsCsvAndSheetThenSkipsWhatIsDone) {
   CliRun other = sweep("--vary target-area=4,32 --vary view.dist=3,6 --set style=lines -o " + out.string());
   EXPECT_EQ(other.code, 2) << other.output;
   EXPECT_NE(other.output.find("sweep.json"), std::string::npos) << other.output;
+  // Also when the fixed part is a view component (folded into each run's --view).
+  CliRun view = sweep("--vary target-area=4,32 --vary view.dist=3,6 --set view.el=40 -o " + out.string());
+  EXPECT_EQ(view.code, 2) << view.output;
 }
 
 TEST_F(Sweep, HeldOutMeshFourTargetsByThreeDistances) {
