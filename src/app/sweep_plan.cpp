@@ -148,7 +148,7 @@ Status checkKey(const std::string& key, const std::string& flag, const CLI::App&
     return Error::usage(flag + " " + key + ": sweep sets -o, --stats and --svg of each run itself (DIR/runs/NAME.png, .json)");
   if (!render.get_option_no_throw("--" + key))
     return Error::usage(flag + " " + key + ": `lodline render` has no option --" + key +
-                        " (keys are render options without the dashes, or view.az, view.el, view.dist)");
+                        " (keys are render options without the dashes, view.az, view.el, view.dist or model)");
   return {};
 }
 
