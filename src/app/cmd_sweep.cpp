@@ -117,8 +117,6 @@ bool executeRuns(const std::string& exe, const std::vector<Run>& runs,
                          return r.state == RunState::kComplete;
                        });
   const bool tty = isatty(STDERR_FILENO);
-  std::signal(SIGINT, onSweepInterrupt);
-  std::signal(SIGTERM, onSweepInterrupt);
   std::vector<Active> active;
   size_t next = 0, finished = 0, failed = 0;
   bool stopping = false;
@@ -147,6 +145,8 @@ bool executeRuns(const std::string& exe, const std::vector<Run>& runs,
         results[i] = {RunState::kFailed, child.error().message, {}};
         ++finished;
         ++failed;
+        if (tty) std::fputs("\r\033[K", stderr);
+        std::cerr << "lodline: sweep: run " << run.name << " failed: " << results[i].error << '\n';
         continue;
       }
       active.push_back({i, std::move(child.value())});
@@ -185,8 +185,6 @@ bool executeRuns(const std::string& exe, const std::vector<Run>& runs,
     }
   }
   if (tty && !pending.empty()) std::fputc('\n', stderr);
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
   return !stopping;
 }
 
@@ -244,15 +242,19 @@ int runSweep(const SweepOptions& o) {
   nlohmann::json manifest = {{"model", plan.model}, {"fixed", plan.fixed_given}};
   const auto manifest_path = dir / "sweep.json";
   if (std::ifstream in(manifest_path); in && !o.force) {
-    nlohmann::json old = nlohmann::json::parse(in, nullptr, false);
-    if (!old.is_discarded() && (old.value("model", std::string()) != plan.model || old.value("fixed", nlohmann::json()) != plan.fixed_given)) {
+    const nlohmann::json old = nlohmann::json::parse(in, nullptr, false);
+    const auto* old_model = old.is_object() && old.contains("model") ? old["model"].get_ptr<const std::string*>() : nullptr;
+    const bool old_fixed_ok = old.is_object() && old.contains("fixed") && old["fixed"].is_array() &&
+                              std::all_of(old["fixed"].begin(), old["fixed"].end(), [](const auto& t) { return t.is_string(); });
+    if (!old_model || !old_fixed_ok)
+      return reportError(Error::usage(manifest_path.string() + ": not a sweep manifest; choose another -o, or --force"));
+    if (*old_model != plan.model || old["fixed"] != manifest["fixed"]) {
       std::string was;
-      for (const auto& t : old.value("fixed", nlohmann::json::array())) was += " " + t.get<std::string>();
-      const std::string old_model = old.value("model", std::string());
+      for (const auto& t : old["fixed"]) was += " " + t.get<std::string>();
       return reportError(Error::usage(manifest_path.string() + ": this directory holds a sweep of " +
-                                      (old_model.empty() ? std::string("varied models") : old_model) +
-                                      " with fixed options [" +
-                                      (was.empty() ? "" : was.substr(1)) + "]; use the same, choose another -o, or --force"));
+                                      (old_model->empty() ? std::string("varied models") : *old_model) +
+                                      " with fixed options [" + (was.empty() ? "" : was.substr(1)) +
+                                      "]; use the same, choose another -o, or --force"));
     }
   }
   nlohmann::json axes_json = nlohmann::json::array();
@@ -271,6 +273,10 @@ int runSweep(const SweepOptions& o) {
   if (len <= 0) return reportError(Error::runtime("/proc/self/exe: cannot find the lodline executable"));
   exe[len] = 0;
 
+  // Ctrl-C from here on stops the renders; the summaries are still written (and are not
+  // themselves cut short).
+  std::signal(SIGINT, onSweepInterrupt);
+  std::signal(SIGTERM, onSweepInterrupt);
   const bool finished = executeRuns(exe, plan.runs, runs_dir, o.jobs, results);
 
   // Stats of every run with outputs (rendered now or kept from before).
@@ -309,6 +315,8 @@ int runSweep(const SweepOptions& o) {
   if (not_run) std::cout << ", " << not_run << " not run";
   std::cout << " (" << secs << " s)\n";
   for (const auto& f : written) std::cout << "  " << f.string() << '\n';
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   if (!failure) return reportError(failure.error());
   if (!finished) {
     std::cerr << "lodline: sweep interrupted; " << not_run << " run(s) not done (rerun the same command to finish)\n";

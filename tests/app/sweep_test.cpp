@@ -336,6 +336,11 @@ TEST_F(Sweep, WritesRunsCsvAndSheetThenSkipsWhatIsDone) {
   // Also when the fixed part is a view component (folded into each run's --view).
   CliRun view = sweep("--vary target-area=4,32 --vary view.dist=3,6 --set view.el=40 -o " + out.string());
   EXPECT_EQ(view.code, 2) << view.output;
+  // A manifest that is not one is not overwritten silently.
+  std::ofstream(out / "sweep.json") << "{\"model\": 3}";
+  CliRun bad = sweep(vary);
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("not a sweep manifest"), std::string::npos) << bad.output;
 }
 
 TEST_F(Sweep, HeldOutMeshFourTargetsByThreeDistances) {
