@@ -407,7 +407,7 @@ TEST_F(Sweep, ParallelJobsGiveTheSameImages) {
   const std::string vary = "--vary target-area=8,32 --vary view.az=0,120 --vary lod=pm,none";
   CliRun one = sweep(vary + " -o " + a.string());
   ASSERT_EQ(one.code, 0) << one.output;
-  CliRun two = sweep(vary + " --jobs 3 -o " + b.string());
+  CliRun two = sweep(vary + " --jobs 3 --chart active_faces -o " + b.string());
   ASSERT_EQ(two.code, 0) << two.output;
   EXPECT_NE(two.output.find("8 rendered"), std::string::npos) << two.output;
   const auto files = filesIn(a / "runs");
@@ -421,6 +421,16 @@ TEST_F(Sweep, ParallelJobsGiveTheSameImages) {
   EXPECT_TRUE(fs::exists(b / "sheet_lod-pm.png"));
   EXPECT_TRUE(fs::exists(b / "sheet_lod-none.png"));
   EXPECT_FALSE(fs::exists(b / "sheet.png"));
+  // The chart: active faces against T, one line per (view.az, lod) pair.
+  const std::string svg = readAll(b / "chart_active_faces.svg");
+  size_t points = 0, lines = 0;
+  for (size_t p = svg.find("<circle class=\"point\""); p != std::string::npos; p = svg.find("<circle class=\"point\"", p + 1))
+    ++points;
+  for (size_t p = svg.find("<g class=\"series\""); p != std::string::npos; p = svg.find("<g class=\"series\"", p + 1))
+    ++lines;
+  EXPECT_EQ(points, 8u);
+  EXPECT_EQ(lines, 4u);
+  EXPECT_NE(svg.find("view.az = 120, lod = none"), std::string::npos);
 }
 
 TEST_F(Sweep, InterruptStopsTheRendersAndKeepsTheRunsDone) {
