@@ -26,7 +26,7 @@ packages=(
   libglfw3-dev libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libstb-dev libpng-dev
-  glslang-tools ffmpeg xvfb xauth librsvg2-bin
+  glslang-tools ffmpeg xvfb xauth librsvg2-bin fonts-dejavu-core
   libimgui-dev libtinygltf-dev xdotool
 )
 missing=()

@@ -19,9 +19,9 @@ Command addGenerateCommand(CLI::App& parent) {
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = parent.add_subcommand(
       "generate", "Write an analytic test surface as an OFF file (knot = the default model)");
-  cmd->add_option("shape", o->shape, "sphere, uvsphere, torus, cylinder, ellipsoid, grid or knot")
+  cmd->add_option("shape", o->shape, "sphere, uvsphere, torus, cylinder, ellipsoid, grid, terrain or knot")
       ->required()
-      ->check(CLI::IsMember({"sphere", "uvsphere", "torus", "cylinder", "ellipsoid", "grid", "knot"}));
+      ->check(CLI::IsMember({"sphere", "uvsphere", "torus", "cylinder", "ellipsoid", "grid", "terrain", "knot"}));
   cmd->add_option("-o,--output", o->output, "Output .off file")->required();
   cmd->add_option("--resolution", o->resolution,
                   "Subdivision level (sphere, ellipsoid) or segments (others); 0 = a sensible default");
@@ -38,6 +38,7 @@ Command addGenerateCommand(CLI::App& parent) {
             else if (o->shape == "cylinder") m = makeCylinder(0.5f, 2.0f, r > 0 ? r : 64, r > 0 ? r : 32);
             else if (o->shape == "ellipsoid") m = makeEllipsoid(1.0f, 0.6f, 0.4f, r > 0 ? r : 4);
             else if (o->shape == "grid") m = makeGrid(2.0f, r > 0 ? r : 64);
+            else if (o->shape == "terrain") m = makeTerrain(2.0f, r > 0 ? r : 256);
             else m = makeTorusKnot(2, 3, 1.0f, 0.16f, r > 0 ? r : 720, r > 0 ? std::max(8, r / 15) : 48, 0.18f);
             if (Status s = saveOff(o->output, m); !s) return reportError(s.error());
             std::cout << "wrote " << o->output << ": " << m.vertexCount() << " vertices, "

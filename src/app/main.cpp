@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   const std::vector<lodline::Command> commands = {
       lodline::addRenderCommand(app), lodline::addViewCommand(app), lodline::addCaptureCommand(app),
       lodline::addBuildCommand(app), lodline::addGenerateCommand(app),
-      lodline::addSimplifyCommand(app), lodline::addCompareCommand(app), lodline::addBenchCommand(app)};
+      lodline::addSimplifyCommand(app), lodline::addCompareCommand(app), lodline::addBenchCommand(app),
+      lodline::addSweepCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

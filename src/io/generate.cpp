@@ -146,6 +146,21 @@ TriMesh makeGrid(float size, int n) {
   return m;
 }
 
+TriMesh makeTerrain(float size, int n) {
+  TriMesh m = makeGrid(size, n);
+  // Three octaves of crossed sinusoids at unrelated frequencies and phases: hills, ridges
+  // across them and small bumps, so contours and suggestive contours appear at every depth.
+  const float w = 2.0f * kPi / size;
+  for (glm::vec3& p : m.positions) {
+    const float x = p.x * w, z = p.z * w;
+    p.y = size * (0.06f * std::sin(1.3f * x + 0.4f) * std::cos(0.9f * z) +
+                  0.03f * std::sin(3.1f * x + 2.3f * z + 1.1f) +
+                  0.015f * std::sin(6.7f * x + 0.7f) * std::sin(7.3f * z + 2.9f) +
+                  0.005f * std::cos(13.9f * x - 12.1f * z + 0.3f));
+  }
+  return m;
+}
+
 TriMesh makeTorusKnot(int p, int q, float R, float tube, int segments, int sides, float bumps) {
   auto curve = [&](float s) {
     const float r = R * (0.5f + 0.25f * std::cos(q * s));

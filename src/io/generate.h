@@ -30,6 +30,11 @@ TriMesh makeEllipsoid(float a, float b, float c, int level);
 /// facing +Y. Open (one boundary loop).
 TriMesh makeGrid(float size, int n);
 
+/// Rolling terrain over the XZ square of side `size`: the grid of makeGrid(size, n) lifted by
+/// four fixed sinusoids (no randomness; |y| ≤ 0.11·size), for detail control by depth
+/// (`--depth-falloff`) seen from a low camera. Open (one boundary loop), faces +Y.
+TriMesh makeTerrain(float size, int n);
+
 /// A tube of radius `tube` around a (p, q) torus knot of radius R, with `segments` along the
 /// knot and `sides` around the tube, plus sinusoidal bumps of relative height `bumps` (0:
 /// smooth) so that suggestive contours have something to find. The default model.
