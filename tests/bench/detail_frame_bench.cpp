@@ -204,7 +204,14 @@ void sceneFrame(benchmark::State& state, float target_area) {
   std::vector<double> scene_adapt, scene_shape, scene_lines, knot_adapt, knot_shape, knot_lines, scene_changes,
       knot_changes;
   // Per-stage milliseconds of the last frame: adapt, shape (where the mesh changed), lines.
-  auto stages = [](const LodDrawing& l, double& a, double& sh, double& li, double& ch) {
+  std::vector<double> scene_curv, knot_curv, scene_full, knot_full;
+  double curv_acc = 0.0, full_acc = 0.0;
+  auto stages = [&](const LodDrawing& l, double& a, double& sh, double& li, double& ch) {
+    if (l.meshChanged()) {
+      const ShapeUpdateStats& us = l.drawing().shape().lastStats();
+      curv_acc += us.curvature_vertices;
+      full_acc += us.full ? 1.0 : 0.0;
+    }
     a += l.adaptMs();
     const CpuTimings& t = l.drawing().timings();
     sh += l.meshChanged() ? t.shape : 0.0;
@@ -220,7 +227,10 @@ void sceneFrame(benchmark::State& state, float target_area) {
       (void)scene.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f);
       scene_cpu.push_back(sw.elapsed());
       double faces = 0.0, a = 0.0, sh = 0.0, li = 0.0, ch = 0.0;
+      curv_acc = full_acc = 0.0;
       for (size_t i = 0; i < scene.size(); ++i) stages(*scene[i].drawing, a, sh, li, ch);
+      scene_curv.push_back(curv_acc);
+      scene_full.push_back(full_acc);
       scene_adapt.push_back(a);
       scene_shape.push_back(sh);
       scene_lines.push_back(li);
@@ -244,7 +254,10 @@ void sceneFrame(benchmark::State& state, float target_area) {
       (void)single.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f, enabled);
       knot_cpu.push_back(sw.elapsed());
       double a = 0.0, sh = 0.0, li = 0.0, ch = 0.0;
+      curv_acc = full_acc = 0.0;
       stages(single, a, sh, li, ch);
+      knot_curv.push_back(curv_acc);
+      knot_full.push_back(full_acc);
       knot_adapt.push_back(a);
       knot_shape.push_back(sh);
       knot_lines.push_back(li);
@@ -276,6 +289,13 @@ void sceneFrame(benchmark::State& state, float target_area) {
   state.counters["knot_shape_ms"] = bench::median(knot_shape);
   state.counters["knot_lines_ms"] = bench::median(knot_lines);
   state.counters["knot_ops"] = bench::median(knot_changes);
+  state.counters["scene_curvature_vertices"] = bench::median(scene_curv);
+  state.counters["knot_curvature_vertices"] = bench::median(knot_curv);
+  double sf = 0.0, kf = 0.0;
+  for (double v : scene_full) sf += v;
+  for (double v : knot_full) kf += v;
+  state.counters["scene_full_recomputes"] = sf;
+  state.counters["knot_full_recomputes"] = kf;
 }
 
 }  // namespace
