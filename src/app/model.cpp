@@ -220,21 +220,6 @@ Status applySceneSettings(const Scene& scene, CLI::App& cmd) {
   return {};
 }
 
-Result<TriMesh> loadObjectMesh(const SceneObject& object) {
-  TriMesh mesh;
-  if (object.preloaded) {
-    mesh = *object.preloaded;
-  } else {
-    auto m = loadMesh(object.mesh);
-    if (!m) return m.error();
-    mesh = std::move(m.value());
-  }
-  transformMesh(mesh, object.transform);
-  if (Status s = validateMesh(mesh, object.mesh.string() + " (after the transform of " + object.where + ")"); !s)
-    return s.error();
-  return mesh;
-}
-
 Result<std::unique_ptr<LoadedScene>> loadSceneObjects(Scene scene, const ViewOptions& view_options,
                                                       const ResolvedView& view, const ResolvedDetail& detail) {
   auto loaded = std::make_unique<LoadedScene>();

@@ -102,10 +102,6 @@ Result<std::unique_ptr<LoadedScene>> loadInput(CLI::App& cmd, ViewOptions& view,
 Result<std::unique_ptr<LoadedScene>> loadSceneObjects(Scene scene, const ViewOptions& view_options,
                                                       const ResolvedView& view, const ResolvedDetail& detail);
 
-/// A world-space mesh of one scene object (loaded from its file or taken from the glTF
-/// already read, transform applied), validated.
-Result<TriMesh> loadObjectMesh(const SceneObject& object);
-
 /// The frame's camera for an image of aspect `aspect`: the scene's camera (a path at its
 /// start time), else the orbit of ResolvedView around the scene's bounds; clip planes fitted.
 Result<Camera> initialCamera(const LoadedScene& loaded, float aspect);

@@ -13,6 +13,7 @@
 #include <glm/matrix.hpp>
 
 #include "io/load_gltf.h"
+#include "io/load_mesh.h"
 
 namespace lodline {
 namespace {
@@ -426,6 +427,20 @@ void transformMesh(TriMesh& mesh, const glm::mat4& transform) {
   for (glm::vec3& p : mesh.positions) p = glm::vec3(transform * glm::vec4(p, 1.0f));
   if (glm::determinant(glm::mat3(transform)) < 0.0f)
     for (auto& f : mesh.faces) std::swap(f[1], f[2]);
+}
+
+Result<TriMesh> loadObjectMesh(const SceneObject& object) {
+  TriMesh mesh;
+  if (object.preloaded) {
+    mesh = *object.preloaded;
+  } else {
+    auto m = loadMesh(object.mesh);
+    if (!m) return m.error();
+    mesh = std::move(m.value());
+  }
+  transformMesh(mesh, object.transform);
+  if (Status s = validateMesh(mesh, object.mesh.string() + " (placed by " + object.where + ")"); !s) return s.error();
+  return mesh;
 }
 
 Result<Scene> parseScene(const std::string& text, const std::filesystem::path& file) {

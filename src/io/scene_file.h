@@ -93,6 +93,11 @@ bool isSceneFile(const std::filesystem::path& path);
 /// that one object; the mesh is not read here).
 Result<Scene> loadScene(const std::filesystem::path& path);
 
+/// The world-space mesh of one object: read from its file (or taken from the glTF already
+/// read), its transform applied, validated (a transform that overflows is an error naming the
+/// mesh and the object).
+Result<TriMesh> loadObjectMesh(const SceneObject& object);
+
 /// Reads a scene from JSON text; `file` names it in errors and resolves relative paths.
 Result<Scene> parseScene(const std::string& text, const std::filesystem::path& file);
 
