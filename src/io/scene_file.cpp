@@ -387,14 +387,25 @@ Status readSceneText(Reader& r, const std::string& text, const std::filesystem::
   return {};
 }
 
+// The first of several objects with a name keeps it; the others get "#2", "#3", ... (a
+// suffix that no other object already uses).
 void uniqueNames(std::vector<SceneObject>& objects) {
-  std::map<std::string, int> seen;
-  for (auto& o : objects) ++seen[o.name];
+  std::map<std::string, int> count;
+  for (const auto& o : objects) ++count[o.name];
+  std::set<std::string> taken;
+  for (const auto& o : objects) taken.insert(o.name);
   std::map<std::string, int> next;
+  std::set<std::string> first_kept;
   for (auto& o : objects) {
-    if (seen[o.name] < 2) continue;
-    const int n = ++next[o.name];
-    if (n > 1) o.name += "#" + std::to_string(n);
+    if (count[o.name] < 2 || first_kept.insert(o.name).second) continue;
+    std::string name;
+    for (int& n = next[o.name];;) {
+      name = o.name;
+      name.push_back('#');
+      name.append(std::to_string(n < 2 ? (n = 2) : ++n));
+      if (taken.insert(name).second) break;
+    }
+    o.name = std::move(name);
   }
 }
 

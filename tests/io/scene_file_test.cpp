@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -80,6 +81,17 @@ TEST_F(SceneFile, ReadsObjectsTransformsStylesCameraAndLight) {
   EXPECT_FLOAT_EQ(*s->camera->fov_deg, 40.0f);
   ASSERT_TRUE(s->light_dir_eye);
   EXPECT_FLOAT_EQ(s->light_dir_eye->y, 1.0f);
+}
+
+TEST_F(SceneFile, NamesAreMadeUnique) {
+  auto s = loadScene(write("names.json", R"({"objects": [{"mesh": "sphere.off", "name": "a"}, {"mesh": "sphere.off", "name": "a"},
+      {"mesh": "sphere.off", "name": "a#2"}, {"mesh": "sphere.off", "name": "a"}]})"));
+  ASSERT_TRUE(s) << s.error().message;
+  std::set<std::string> names;
+  for (const auto& o : s->objects) names.insert(o.name);
+  EXPECT_EQ(names.size(), 4u);
+  EXPECT_EQ(s->objects[0].name, "a");
+  EXPECT_EQ(s->objects[2].name, "a#2");
 }
 
 TEST_F(SceneFile, IncludesComposeTransformsFactorsAndStyles) {
