@@ -105,7 +105,7 @@ Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
   p.morph_time = o.morph_time;
   if (!(o.detail_map_scale > 0.0f)) return Error::usage("--detail-map-scale: must be > 0");
   if (!o.detail_map.empty()) {
-    auto img = readPng(o.detail_map);
+    auto img = readPng(o.detail_map, kMaxDetailMapPixels);
     if (!img) return img.error();
     auto map = std::make_shared<DetailMap>();
     map->width = img->width;
