@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "io/atomic_file.h"
+#include "io/input_check.h"
 
 namespace lodline {
 
@@ -221,11 +222,16 @@ Status savePm(const std::filesystem::path& path, const ProgressiveMesh& pm) {
 
 Result<ProgressiveMesh> loadPm(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::error_code ec;
-  const auto file_size = std::filesystem::file_size(path, ec);
-  if (ec) return Error::runtime(name + ": cannot read progressive mesh file: " + ec.message());
+  if (Status s = checkInputFile(path, "progressive mesh file"); !s) return s.error();
+  // The size of the file opened, not of the path: a writer may rename a new cache over the
+  // path at any moment (writeFileAtomically), and the open file stays the old one.
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error::runtime(name + ": cannot open progressive mesh file");
+  in.seekg(0, std::ios::end);
+  const std::streamoff end = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (end < 0 || !in) return Error::runtime(name + ": cannot read progressive mesh file");
+  const uint64_t file_size = static_cast<uint64_t>(end);
   if (file_size < sizeof(FileHeader))
     return Error::runtime(name + ": truncated progressive mesh file (" +
                           std::to_string(file_size) + " bytes, header needs 64)");
@@ -282,6 +288,7 @@ Result<ProgressiveMesh> loadOrBuildPm(const TriMesh& mesh, uint64_t content_hash
                                       std::string* note) {
   const std::filesystem::path path = pmCachePath(cache_dir, content_hash);
   const uint64_t params_hash = buildParamsHash(params);
+  removeStaleTemporaries(path);  // left by a build that was killed while writing
   std::string why = "no cache";
   std::error_code ec;
   if (std::filesystem::exists(path, ec)) {
