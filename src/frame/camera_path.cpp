@@ -111,7 +111,8 @@ const std::vector<std::string>& builtinPathNames() {
 
 Result<CameraPath> builtinPath(const std::string& name, const Bounds& bounds, float fov_deg,
                                float aspect, double duration) {
-  if (!(duration > 0.0)) return Error::usage("a camera path needs a positive duration");
+  if (!(duration > 0.0 && duration <= kMaxTime))
+    return Error::usage("a camera path needs a positive duration of at most 1e9 seconds");
   const Camera framing = orbitCamera(bounds, {35.0f, 20.0f, 0.0f}, fov_deg, aspect);
   const float frame_dist = glm::length(framing.eye - framing.target);
   const glm::vec3 c = bounds.center;
