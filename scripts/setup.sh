@@ -27,6 +27,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libstb-dev libpng-dev
   glslang-tools ffmpeg xvfb xauth librsvg2-bin
+  clang-14 libclang-rt-14-dev util-linux
 )
 missing=()
 for p in "${packages[@]}"; do
