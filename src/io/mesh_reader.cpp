@@ -229,8 +229,10 @@ Result<PolygonMesh> Reader::off() {
   const std::string_view wv = t.word('#');
   const std::string_view wf = t.word('#');
   if (!parseInt(wv, nv) || !parseInt(wf, nf))
-    return errorAt(t.pos(), "malformed OFF header (expected vertex, face and edge counts, found " + quote(wv) +
-                                     " " + quote(wf) + ")");
+    return errorAt(t.pos(), "malformed OFF header (expected vertex, face and edge counts, found " +
+                                (wv.empty() ? std::string("the end of the file")
+                                            : quote(wv) + (wf.empty() ? std::string() : " " + quote(wf))) +
+                                ")");
   if (nv < 0 || nf < 0) return errorAt(t.pos(), "malformed OFF header (negative counts)");
   (void)t.wordOnLine('#');  // the edge count, unused
   t.skipLine();
