@@ -28,6 +28,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libstb-dev libpng-dev
   glslang-tools ffmpeg xvfb xauth librsvg2-bin fonts-dejavu-core
   libimgui-dev libtinygltf-dev xdotool
+  clang-14 libclang-rt-14-dev util-linux
 )
 missing=()
 for p in "${packages[@]}"; do

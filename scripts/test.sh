@@ -1,12 +1,23 @@
 #!/usr/bin/env bash
 # lodline test command (README, .ci/run): set-up (packages, CGAL meshes, Release build),
-# the whole CTest suite, then the same suite built with AddressSanitizer + UBSan.
+# the whole CTest suite, then the same suite built with AddressSanitizer + UBSan, a short
+# soak under it, and every fuzz target for a short bounded time (docs/reliability.md).
 #
-#   scripts/test.sh [--no-sanitize]
+#   scripts/test.sh [--no-sanitize] [--no-fuzz]
+#
+# LODLINE_CI_FUZZ_SECONDS (default 10) sets the time per fuzz target, LODLINE_CI_SOAK_FRAMES
+# (default 300) the soak's length.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 sanitize=1
-[ "${1:-}" = "--no-sanitize" ] && sanitize=0
+fuzz=1
+for arg in "$@"; do
+  case "$arg" in
+    --no-sanitize) sanitize=0 ;;
+    --no-fuzz) fuzz=0 ;;
+    *) echo "test.sh: unknown option '$arg'" >&2; exit 2 ;;
+  esac
+done
 jobs=$(nproc)
 
 "$here/scripts/setup.sh"
@@ -22,4 +33,11 @@ if [ $sanitize -eq 1 ]; then
   export ASAN_OPTIONS="detect_odr_violation=0:abort_on_error=0"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
   ctest --test-dir "$here/build-asan" --output-on-failure -j "$jobs"
+  # A short soak: a randomised capture under the sanitizers, memory sampled.
+  "$here/scripts/soak.sh" "${LODLINE_CI_SOAK_FRAMES:-300}" --build-dir "$here/build-asan"
+fi
+
+if [ $fuzz -eq 1 ]; then
+  # clang + libFuzzer build (build-fuzz), then each target for a short bounded time.
+  "$here/scripts/fuzz.sh" "${LODLINE_CI_FUZZ_SECONDS:-10}" --jobs "$jobs"
 fi

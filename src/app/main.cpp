@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "lodline: " << e.what() << "\n(run `lodline --help` for usage)\n";
+    std::cerr << "lodline: " << e.what() << " (run `lodline --help` for usage)\n";  // one line
     return 2;
   }
   for (const auto& c : commands)

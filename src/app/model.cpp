@@ -67,7 +67,7 @@ std::filesystem::path defaultCacheDir() {
 }
 
 Result<std::shared_ptr<const DetailMap>> readDetailMap(const std::filesystem::path& path, float scale) {
-  auto img = readPng(path);
+  auto img = readPng(path, kMaxDetailMapPixels);
   if (!img) return img.error();
   auto map = std::make_shared<DetailMap>();
   map->width = img->width;

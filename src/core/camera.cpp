@@ -46,6 +46,9 @@ void fitClipPlanes(Camera& cam, const Bounds& bounds) {
   const float d = glm::dot(bounds.center - cam.eye, cam.forward());
   cam.far_plane = std::max(d + 1.05f * r, 1e-3f);
   cam.near_plane = std::max(d - 1.05f * r, cam.far_plane * 1e-3f);
+  // Far enough from the model, d - 1.05 r and d + 1.05 r round to the same float: keep the
+  // depth range non-empty (an empty one makes the projection divide by zero).
+  if (!(cam.near_plane < cam.far_plane)) cam.near_plane = 0.5f * cam.far_plane;
 }
 
 float pixelAreaFactor(const Camera& cam, int image_height) {

@@ -8,11 +8,13 @@
 #include <vector>
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "io/atomic_file.h"
+#include "io/input_check.h"
 
 extern char** environ;
 
@@ -28,6 +30,7 @@ Result<VideoWriter> VideoWriter::open(const std::filesystem::path& path, const V
   VideoWriter w;
   w.path_ = path;
   w.params_ = params;
+  removeStaleTemporaries(path);  // parts of captures that were killed (SIGKILL) before
   const auto dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
   std::string tmp_name(".");  // append(): see io/atomic_file.cpp on GCC 12's -Wrestrict
   tmp_name.append(path.filename().string()).append(".part").append(std::to_string(getpid())).append(".mp4");
@@ -35,6 +38,14 @@ Result<VideoWriter> VideoWriter::open(const std::filesystem::path& path, const V
 
   int pipe_fds[2];
   if (pipe(pipe_fds) != 0) return Error::runtime(path.string() + ": pipe failed: " + std::strerror(errno));
+  // ffmpeg's stderr goes to an in-memory file read by finish(): its messages become part of
+  // our one-line error, and a file (unlike a pipe) never blocks ffmpeg however much it says.
+  const int log_fd = memfd_create("lodline-ffmpeg-log", MFD_CLOEXEC);
+  if (log_fd < 0) {
+    close(pipe_fds[0]);
+    close(pipe_fds[1]);
+    return Error::runtime(path.string() + ": cannot create ffmpeg's log: " + std::strerror(errno));
+  }
   const std::string size = std::to_string(params.width) + "x" + std::to_string(params.height);
   const std::string rate = std::to_string(params.fps);
   const std::string crf = std::to_string(params.crf);
@@ -54,6 +65,7 @@ Result<VideoWriter> VideoWriter::open(const std::filesystem::path& path, const V
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, pipe_fds[0], STDIN_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, log_fd, STDERR_FILENO);
   posix_spawn_file_actions_addclose(&actions, pipe_fds[1]);
   posix_spawnattr_t attr;
   posix_spawnattr_init(&attr);
@@ -68,17 +80,20 @@ Result<VideoWriter> VideoWriter::open(const std::filesystem::path& path, const V
   close(pipe_fds[0]);
   if (rc != 0) {
     close(pipe_fds[1]);
+    close(log_fd);
     w.pid_ = -1;
     return Error::runtime(path.string() + ": cannot start ffmpeg: " + std::strerror(rc));
   }
   w.fd_ = pipe_fds[1];
+  w.log_fd_ = log_fd;
   fcntl(w.fd_, F_SETFD, FD_CLOEXEC);
   return w;
 }
 
 VideoWriter::VideoWriter(VideoWriter&& o) noexcept
     : path_(std::move(o.path_)), tmp_(std::move(o.tmp_)), params_(o.params_),
-      fd_(std::exchange(o.fd_, -1)), pid_(std::exchange(o.pid_, -1)), frames_(o.frames_) {}
+      fd_(std::exchange(o.fd_, -1)), log_fd_(std::exchange(o.log_fd_, -1)), pid_(std::exchange(o.pid_, -1)),
+      frames_(o.frames_) {}
 
 VideoWriter::~VideoWriter() { abandon(); }
 
@@ -90,6 +105,8 @@ void VideoWriter::abandon() {
     waitpid(pid_, &status, 0);
   }
   pid_ = -1;
+  if (log_fd_ >= 0) close(log_fd_);
+  log_fd_ = -1;
   std::error_code ec;
   if (!tmp_.empty()) std::filesystem::remove(tmp_, ec);
 }
@@ -107,8 +124,18 @@ Status VideoWriter::write(std::span<const uint8_t> rgba) {
     const ssize_t n = ::write(fd_, rgba.data() + done, rgba.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
+      const std::string why = std::strerror(n < 0 ? errno : EPIPE);
       sigaction(SIGPIPE, &old, nullptr);
-      return Error::runtime(path_.string() + ": ffmpeg stopped accepting frames (" + std::strerror(errno) + ")");
+      // ffmpeg's own reason, when it gave one (e.g. "No space left on device").
+      std::string log;
+      if (log_fd_ >= 0) {
+        char buf[1024];
+        const ssize_t m = pread(log_fd_, buf, sizeof(buf), 0);
+        if (m > 0) log.assign(buf, static_cast<size_t>(m));
+      }
+      log = printableText(log.substr(0, log.find('\n')));
+      return Error::runtime(path_.string() + ": ffmpeg stopped accepting frames (" + why + ")" +
+                            (log.empty() ? std::string() : ": " + log));
     }
     done += static_cast<size_t>(n);
   }
@@ -126,11 +153,23 @@ Status VideoWriter::finish() {
     }
   }
   pid_ = -1;
+  // ffmpeg runs with -loglevel error: anything it printed is an error.
+  std::string log;
+  if (log_fd_ >= 0) {
+    char buf[4096];
+    const ssize_t n = pread(log_fd_, buf, sizeof(buf), 0);
+    if (n > 0) log.assign(buf, static_cast<size_t>(n));
+    close(log_fd_);
+    log_fd_ = -1;
+  }
+  const std::string first_line = printableText(log.substr(0, log.find('\n')));
   std::error_code ec;
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !log.empty()) {
     std::filesystem::remove(tmp_, ec);
+    tmp_.clear();
     return Error::runtime(path_.string() + ": ffmpeg failed (exit status " +
-                          std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+                          std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                          (first_line.empty() ? std::string(")") : "): " + first_line));
   }
   if (frames_ == 0) {
     std::filesystem::remove(tmp_, ec);

@@ -37,7 +37,9 @@ class VideoWriter {
   /// Sends one frame: width·height·4 bytes, RGBA, top row first.
   Status write(std::span<const uint8_t> rgba);
   /// Closes the pipe, waits for ffmpeg and renames the file into place. With no frame
-  /// written, removes it and returns an error.
+  /// written, or when ffmpeg failed (a non-zero exit, or any error it printed: ffmpeg exits
+  /// with 0 when closing the file fails, e.g. on a full disk), removes it and returns an
+  /// error quoting ffmpeg's first error line. ffmpeg's messages never reach stderr.
   Status finish();
   int framesWritten() const { return frames_; }
 
@@ -47,6 +49,7 @@ class VideoWriter {
   std::filesystem::path path_, tmp_;
   VideoParams params_;
   int fd_ = -1;
+  int log_fd_ = -1;  ///< ffmpeg's stderr (an anonymous in-memory file)
   pid_t pid_ = -1;
   int frames_ = 0;
 };

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.h"
+#include "io/input_check.h"
 
 namespace lodline {
 namespace {
@@ -21,15 +22,30 @@ T catmullRom(const T& p0, const T& p1, const T& p2, const T& p3, float t) {
                  (-p0 + 3.0f * p1 - 3.0f * p2 + p3) * t3);
 }
 
+// Largest coordinate and time a path may hold: interpolation (sums of a few multiples of
+// the keys) then stays finite in float, and frame counts stay far below 2^63.
+constexpr double kMaxCoordinate = 1e15;
+constexpr double kMaxTime = 1e9;  // seconds
+
 glm::vec3 readVec3(const nlohmann::json& j, const char* key, const std::string& where) {
   const auto& v = j.at(key);
   if (!v.is_array() || v.size() != 3) throw std::runtime_error(where + ": '" + key + "' must be [x, y, z]");
   glm::vec3 out;
   for (int i = 0; i < 3; ++i) {
     if (!v[i].is_number()) throw std::runtime_error(where + ": '" + key + "' must hold numbers");
-    out[i] = v[i].get<float>();
+    // As double first: a value beyond float's range must not be narrowed (undefined).
+    const double d = v[i].get<double>();
+    if (!(std::abs(d) <= kMaxCoordinate))
+      throw std::runtime_error(where + ": '" + key + "' coordinates must be within +-1e15");
+    out[i] = static_cast<float>(d);
   }
   return out;
+}
+
+// Any unit vector perpendicular to `d` (unit).
+glm::vec3 perpendicular(const glm::vec3& d) {
+  const glm::vec3 axis = std::abs(d.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  return glm::normalize(glm::cross(glm::cross(d, axis), d));
 }
 
 }  // namespace
@@ -45,6 +61,9 @@ std::string CameraPath::validate() const {
         return where + ": non-finite coordinate";
     if (glm::length(k.eye - k.target) < 1e-12f) return where + ": eye and target coincide";
     if (glm::length(k.up) < 1e-12f) return where + ": up is zero";
+    if (glm::length(glm::cross(glm::normalize(k.target - k.eye), glm::normalize(k.up))) < 1e-6f)
+      return where + ": up is parallel to the view direction";
+    if (!(std::abs(k.time) <= kMaxTime)) return where + ": time must be within +-1e9 seconds";
     if (!(k.fov_deg >= 1.0f && k.fov_deg <= 170.0f)) return where + ": fov must be 1-170 degrees";
     if (i > 0 && !(k.time > keys_[i - 1].time)) return where + ": times must increase";
   }
@@ -73,6 +92,13 @@ Camera CameraPath::at(double t, const Bounds& bounds) const {
   cam.target = catmullRom(k0.target, k1.target, k2.target, k3.target, u);
   glm::vec3 up = glm::normalize(k1.up) * (1.0f - u) + glm::normalize(k2.up) * u;
   cam.up = glm::length(up) > 1e-6f ? glm::normalize(up) : glm::vec3(0, 1, 0);
+  // Between valid keys the splines may still bring eye onto target, or the view direction
+  // onto up: keep the camera defined (the key's direction, a perpendicular up).
+  const glm::vec3 key_dir = glm::normalize(k1.target - k1.eye);
+  const float scale = std::max({glm::length(cam.eye), glm::length(cam.target), 1.0f});
+  if (!(glm::length(cam.target - cam.eye) > 1e-5f * scale)) cam.target = cam.eye + key_dir * (1e-3f * scale);
+  const glm::vec3 dir = glm::normalize(cam.target - cam.eye);
+  if (!(glm::length(glm::cross(dir, cam.up)) > 1e-4f)) cam.up = perpendicular(dir);
   cam.fov_deg = k1.fov_deg + (k2.fov_deg - k1.fov_deg) * u;
   fitClipPlanes(cam, bounds);
   return cam;
@@ -85,7 +111,8 @@ const std::vector<std::string>& builtinPathNames() {
 
 Result<CameraPath> builtinPath(const std::string& name, const Bounds& bounds, float fov_deg,
                                float aspect, double duration) {
-  if (!(duration > 0.0)) return Error::usage("a camera path needs a positive duration");
+  if (!(duration > 0.0 && duration <= kMaxTime))
+    return Error::usage("a camera path needs a positive duration of at most 1e9 seconds");
   const Camera framing = orbitCamera(bounds, {35.0f, 20.0f, 0.0f}, fov_deg, aspect);
   const float frame_dist = glm::length(framing.eye - framing.target);
   const glm::vec3 c = bounds.center;
@@ -134,6 +161,7 @@ Result<CameraPath> builtinPath(const std::string& name, const Bounds& bounds, fl
 }
 
 Result<CameraPath> loadCameraPath(const std::filesystem::path& path) {
+  if (Status s = checkInputFile(path, "camera path (.json)"); !s) return s.error();
   std::ifstream in(path);
   if (!in) return Error::runtime(path.string() + ": cannot open camera path");
   std::vector<CameraKey> keys;
@@ -149,17 +177,21 @@ Result<CameraPath> loadCameraPath(const std::filesystem::path& path) {
       if (!k.contains("time") || !k["time"].is_number()) return Error::runtime(where + ": missing numeric \"time\"");
       key.time = k["time"].get<double>();
       if (!k.contains("eye") || !k.contains("target")) return Error::runtime(where + ": needs \"eye\" and \"target\"");
-      key.eye = readVec3(k, "eye", where);
-      key.target = readVec3(k, "target", where);
-      if (k.contains("up")) key.up = readVec3(k, "up", where);
+      const std::string key_name = "key " + std::to_string(i - 1);
+      key.eye = readVec3(k, "eye", key_name);
+      key.target = readVec3(k, "target", key_name);
+      if (k.contains("up")) key.up = readVec3(k, "up", key_name);
       if (k.contains("fov")) {
         if (!k["fov"].is_number()) return Error::runtime(where + ": \"fov\" must be a number");
-        key.fov_deg = k["fov"].get<float>();
+        const double fov = k["fov"].get<double>();
+        if (!(fov >= 1.0 && fov <= 170.0)) return Error::runtime(where + ": fov must be 1-170 degrees");
+        key.fov_deg = static_cast<float>(fov);
       }
       keys.push_back(key);
     }
   } catch (const std::exception& e) {
-    return Error::runtime(path.string() + ": invalid camera path: " + e.what());
+    // nlohmann's messages quote the file's bytes: keep the line printable.
+    return Error::runtime(path.string() + ": invalid camera path: " + printableText(e.what()));
   }
   CameraPath p(std::move(keys));
   if (const std::string why = p.validate(); !why.empty()) return Error::runtime(path.string() + ": " + why);

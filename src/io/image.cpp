@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "io/atomic_file.h"
+#include "io/input_check.h"
 
 namespace lodline {
 
@@ -30,16 +31,24 @@ Status writePng(const std::filesystem::path& path, const Image& image) {
   });
 }
 
-Result<Image> readPng(const std::filesystem::path& path) {
+Result<Image> readPng(const std::filesystem::path& path, uint64_t max_pixels) {
+  if (Status s = checkInputFile(path, "PNG image"); !s) return s.error();
   png_image png;
   std::memset(&png, 0, sizeof(png));
   png.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_file(&png, path.c_str()))
     return Error::runtime(path.string() + ": cannot read PNG: " + png.message);
   png.format = PNG_FORMAT_RGBA;
-  if (png.width == 0 || png.height == 0 || png.width > 32768 || png.height > 32768) {
+  const uint64_t pixels = static_cast<uint64_t>(png.width) * png.height;
+  if (pixels == 0) {
     png_image_free(&png);
-    return Error::runtime(path.string() + ": unsupported PNG size");
+    return Error::runtime(path.string() + ": PNG has no pixels");
+  }
+  if (pixels > max_pixels) {
+    const std::string size = std::to_string(png.width) + "x" + std::to_string(png.height);
+    png_image_free(&png);
+    return Error::runtime(path.string() + ": PNG of " + size + " pixels is too large (at most " +
+                          std::to_string(max_pixels) + " pixels here)");
   }
   Image image(static_cast<int>(png.width), static_cast<int>(png.height));
   if (!png_image_finish_read(&png, nullptr, image.rgba.data(), 0, nullptr))

@@ -7,14 +7,16 @@
 #include <iomanip>
 #include <iostream>
 #include <mutex>
+#include <span>
 #include <sstream>
 #include <system_error>
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include "io/atomic_file.h"
+#include "io/input_check.h"
+#include "io/mesh_reader.h"
 
 namespace lodline {
 namespace {
@@ -24,8 +26,8 @@ struct OmTraits : OpenMesh::DefaultTraits {
 };
 using OmMesh = OpenMesh::PolyMesh_ArrayKernelT<OmTraits>;
 
-// Routes OpenMesh's omerr/omlog into a string during a read, so its complaints become part
-// of our one-line error instead of stray stderr output. OpenMesh's multiplexing stream
+// Routes OpenMesh's omerr/omlog into a string while a mesh is built, so its complaints
+// ("complex edge") never reach stderr as stray lines. OpenMesh's multiplexing stream
 // never frees a disconnected target, so the capture buffer is connected once per process
 // (and OpenMesh's messages stay out of stderr from then on); a mutex serialises reads.
 class OmMessageCapture {
@@ -63,68 +65,38 @@ std::string lowerExtension(const std::filesystem::path& path) {
   return ext;
 }
 
-size_t countOccurrences(const std::string& text, const std::string& what) {
-  size_t n = 0;
-  for (size_t pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-  return n;
-}
-
-// Cheap sanity check of an OFF header against the file size, so that a hostile header
-// ("OFF 2000000000 1 0") is refused before OpenMesh reserves memory for it.
-Status checkOffHeader(const std::filesystem::path& path, uintmax_t file_size) {
+// The whole file: the readers parse from memory (size known first, so a file that grows
+// while it is read is read only up to that size).
+Result<std::string> readWholeFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  std::string magic;
-  in >> magic;
-  if (magic.find("OFF") == std::string::npos) return {};  // let OpenMesh judge
-  if (magic.find("BINARY") != std::string::npos) return {};
-  long long nv = -1, nf = -1, ne = -1;
-  // Skip comments between the magic and the counts.
-  while (in >> std::ws && in.peek() == '#') {
-    std::string line;
-    std::getline(in, line);
-  }
-  in >> nv >> nf >> ne;
-  if (!in) return Error::runtime(path.string() + ": malformed OFF header (expected vertex, face and edge counts)");
-  if (nv < 0 || nf < 0) return Error::runtime(path.string() + ": malformed OFF header (negative counts)");
-  // Each vertex needs ≥ 6 bytes ("0 0 0\n"), each face ≥ 8 ("3 0 1 2\n").
-  const long double need = 6.0L * nv + 8.0L * nf;
-  if (need > static_cast<long double>(file_size))
-    return Error::runtime(path.string() + ": truncated OFF file (header announces " +
-                          std::to_string(nv) + " vertices and " + std::to_string(nf) +
-                          " faces, the file has only " + std::to_string(file_size) + " bytes)");
-  return {};
+  if (!in) return Error::runtime(path.string() + ": cannot open for reading");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) return Error::runtime(path.string() + ": cannot read (not seekable)");
+  in.seekg(0, std::ios::beg);
+  std::string bytes(static_cast<size_t>(size), '\0');
+  in.read(bytes.data(), size);
+  if (in.gcount() != size) return Error::runtime(path.string() + ": read error");
+  return bytes;
 }
 
-// OBJ polylines ("l a b c ...", 1-based or negative indices) mark sharp edges: OpenMesh's
-// reader ignores them, so they are read here. Vertices keep the order of the "v" lines.
-Status readObjMarkedEdges(const std::filesystem::path& path, size_t vertex_count, std::vector<EdgeKey>& out) {
-  std::ifstream in(path);
-  std::string line;
-  size_t line_no = 0, v_count = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.size() > 1 && line[0] == 'v' && (line[1] == ' ' || line[1] == '\t')) ++v_count;
-    if (line.size() < 2 || line[0] != 'l' || (line[1] != ' ' && line[1] != '\t')) continue;
-    std::istringstream ls(line.substr(2));
-    std::string tok;
-    long long prev = -1;
-    while (ls >> tok) {
-      long long idx = 0;
-      try {
-        idx = std::stoll(tok.substr(0, tok.find('/')));
-      } catch (const std::exception&) {
-        return Error::runtime(path.string() + ": line " + std::to_string(line_no) + ": bad index '" + tok + "'");
-      }
-      const long long resolved = idx < 0 ? static_cast<long long>(v_count) + idx : idx - 1;
-      if (idx == 0 || resolved < 0 || resolved >= static_cast<long long>(vertex_count))
-        return Error::runtime(path.string() + ": line " + std::to_string(line_no) + ": edge vertex " + tok +
-                              " out of range (" + std::to_string(vertex_count) + " vertices)");
-      if (prev >= 0 && prev != resolved)
-        out.push_back({static_cast<uint32_t>(prev), static_cast<uint32_t>(resolved)});
-      prev = resolved;
-    }
+// True when a polygon lists a vertex twice (OpenMesh refuses such faces).
+bool repeatsVertex(std::span<const uint32_t> poly, std::vector<uint32_t>& scratch) {
+  if (poly.size() <= 8) {
+    for (size_t a = 0; a < poly.size(); ++a)
+      for (size_t b = a + 1; b < poly.size(); ++b)
+        if (poly[a] == poly[b]) return true;
+    return false;
   }
-  return {};
+  scratch.assign(poly.begin(), poly.end());
+  std::sort(scratch.begin(), scratch.end());
+  return std::adjacent_find(scratch.begin(), scratch.end()) != scratch.end();
+}
+
+std::string formatNumber(double v) {
+  std::ostringstream o;
+  o << std::setprecision(3) << v;
+  return o.str();
 }
 
 }  // namespace
@@ -138,6 +110,15 @@ Status validateMesh(const TriMesh& mesh, const std::string& what) {
       return Error::runtime(what + ": vertex " + std::to_string(i) +
                             " has a non-finite coordinate (NaN or inf)");
   }
+  // The extent must leave room for squared lengths and areas in single precision: beyond
+  // 1e18 they overflow, below 1e-18 they vanish (and a model of zero size cannot be framed).
+  const float diagonal = computeBounds(mesh.positions).diagonal();
+  if (!(diagonal <= kMaxMeshExtent))
+    return Error::runtime(what + ": the model is too large to draw (bounding-box diagonal " + formatNumber(diagonal) +
+                          ", at most 1e18 model units)");
+  if (!(diagonal >= kMinMeshExtent))
+    return Error::runtime(what + ": the model has no extent (bounding-box diagonal " + formatNumber(diagonal) +
+                          ", at least 1e-18 model units)");
   const size_t n = mesh.positions.size();
   for (size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& t = mesh.faces[f];
@@ -154,45 +135,43 @@ Status validateMesh(const TriMesh& mesh, const std::string& what) {
 
 Result<TriMesh> loadMesh(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return Error::runtime(name + ": no such file");
-  if (std::filesystem::is_directory(path, ec)) return Error::runtime(name + ": is a directory, not a mesh file");
+  if (Status s = checkInputFile(path, "mesh file"); !s) return s.error();
   const std::string ext = lowerExtension(path);
   if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
-    return Error::runtime(name + ": unsupported file type '" + ext +
-                          "' (expected .off, .obj, .ply or .stl)");
-  {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) return Error::runtime(name + ": cannot open for reading");
-  }
-  const uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec || size == 0) return Error::runtime(name + ": empty file");
-  if (ext == ".off")
-    if (Status s = checkOffHeader(path, size); !s) return s.error();
+    return Error::runtime(name + ": unsupported file type '" + ext + "' (expected .off, .obj, .ply or .stl)");
+  Result<std::string> bytes = readWholeFile(path);
+  if (!bytes) return bytes.error();
+  if (bytes->empty()) return Error::runtime(name + ": empty file");
+  Result<PolygonMesh> polygons = parsePolygonMesh(*bytes, ext, name);
+  if (!polygons) return polygons.error();
+  bytes->clear();
+  bytes->shrink_to_fit();
+  const PolygonMesh& pm = *polygons;
 
+  // OpenMesh for the topology: a face that would make an edge or vertex non-manifold gets
+  // its own copies of its vertices (as OpenMesh's importer does); a face that repeats a
+  // vertex is dropped. Complaints of add_face go to the capture, not to stderr.
   OmMesh om;
-  std::string messages;
-  bool ok = false;
+  size_t repeated = 0;
   {
     OmMessageCapture capture;
-    try {
-      OpenMesh::IO::Options opt;
-      ok = OpenMesh::IO::read_mesh(om, name, opt);
-    } catch (const std::exception& e) {
-      return Error::runtime(name + ": cannot read mesh (" + e.what() + ")");
+    om.reserve(pm.positions.size(), 3 * pm.positions.size(), pm.faceCount());
+    for (const glm::vec3& p : pm.positions) om.add_vertex(OmMesh::Point(p.x, p.y, p.z));
+    std::vector<OmMesh::VertexHandle> handles;
+    std::vector<uint32_t> scratch;
+    for (size_t f = 0; f < pm.faceCount(); ++f) {
+      const std::span<const uint32_t> poly(pm.corners.data() + pm.face_start[f], pm.face_start[f + 1] - pm.face_start[f]);
+      if (repeatsVertex(poly, scratch)) {
+        ++repeated;
+        continue;
+      }
+      handles.clear();
+      for (uint32_t v : poly) handles.emplace_back(static_cast<int>(v));
+      if (om.add_face(handles).is_valid()) continue;
+      for (auto& h : handles) h = om.add_vertex(OmMesh::Point(om.point(h)));
+      om.add_face(handles);
     }
-    messages = capture.text();
-  }
-  const size_t bad_index = countOccurrences(messages, "invalid vertex index");
-  if (bad_index > 0)
-    return Error::runtime(name + ": " + std::to_string(bad_index) +
-                          " face(s) reference vertex indices out of range (" +
-                          std::to_string(om.n_vertices()) + " vertices)");
-  if (!ok) {
-    std::string why = messages;
-    std::replace(why.begin(), why.end(), '\n', ' ');
-    while (!why.empty() && why.back() == ' ') why.pop_back();
-    return Error::runtime(name + ": cannot read mesh" + (why.empty() ? "" : " (" + why + ")"));
+    (void)capture.text();
   }
 
   TriMesh mesh;
@@ -208,11 +187,10 @@ Result<TriMesh> loadMesh(const std::filesystem::path& path) {
     for (const auto vh : om.fv_range(fh)) poly.push_back(static_cast<uint32_t>(vh.idx()));
     for (size_t k = 1; k + 1 < poly.size(); ++k) mesh.faces.push_back({poly[0], poly[k], poly[k + 1]});
   }
-  if (mesh.faces.empty() && countOccurrences(messages, "equal vertices") > 0)
+  if (mesh.faces.empty() && repeated > 0)
     return Error::runtime(name + ": no usable faces (every face repeats a vertex)");
   if (Status s = validateMesh(mesh, name); !s) return s.error();
-  if (ext == ".obj")
-    if (Status s = readObjMarkedEdges(path, mesh.positions.size(), mesh.marked_edges); !s) return s.error();
+  mesh.marked_edges = pm.marked_edges;
   return mesh;
 }
 

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "io/atomic_file.h"
+#include "io/input_check.h"
 
 namespace lodline {
 
@@ -48,8 +49,142 @@ void append(std::string& buf, const std::vector<T>& v) {
 template <class T>
 void take(const char*& p, std::vector<T>& v, size_t count) {
   v.resize(count);
+  if (count == 0) return;  // v.data() may be null: no memcpy from or to it
   std::memcpy(v.data(), p, count * sizeof(T));
   p += count * sizeof(T);
+}
+
+uint32_t next3(uint32_t i) { return i == 2 ? 0 : i + 1; }
+uint32_t prev3(uint32_t i) { return i == 0 ? 2 : i - 1; }
+
+// Replays the whole hierarchy the way AdaptiveMesh applies it (lod/adaptive_mesh.cpp,
+// doSplit): from the base mesh, every vertex split in order from the last collapse to the
+// first, checking each one's preconditions strictly, and at the end that the fully refined
+// mesh is the input mesh face for face. finalize() checks indices; this checks that the
+// records describe a valid sequence of half-edge collapses of a manifold neighbourhood, so a
+// damaged file that still passes the checksum (or a hostile one) is refused here instead of
+// corrupting the selective refinement. O(faces + splits · valence) time.
+Status verifyRefinement(const ProgressiveMesh& pm, const std::string& what) {
+  const uint32_t n = pm.vertexCount(), nf = pm.faceCount(), nn = pm.nodeCount();
+  auto fail = [&](const std::string& msg) { return Status(Error::runtime(what + ": " + msg)); };
+  // One 32-byte record per face (corners, neighbours, a visit mark, active): the replay
+  // visits faces in no particular order, so one cache line per face matters.
+  struct Face {
+    std::array<uint32_t, 3> v{kPmNone, kPmNone, kPmNone};
+    std::array<uint32_t, 3> nb{kPmNone, kPmNone, kPmNone};
+    uint32_t mark = kPmNone;
+    uint32_t active = 0;
+  };
+  static_assert(sizeof(Face) == 32);
+  std::vector<Face> face(nf);
+  std::vector<uint32_t> incident(nn, 0);  // active faces at each node
+  auto corner = [&](uint32_t f, uint32_t v) -> uint32_t {
+    const auto& c = face[f].v;
+    return c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : 3;
+  };
+  for (size_t k = 0; k < pm.base_faces.size(); ++k) {
+    Face& f = face[pm.base_faces[k]];
+    f.v = pm.base_corners[k];
+    f.nb = pm.base_neighbors[k];
+    f.active = 1;
+    if (f.v[0] == f.v[1] || f.v[1] == f.v[2] || f.v[0] == f.v[2])
+      return fail("base face " + std::to_string(k) + " repeats a vertex");
+    for (uint32_t v : f.v) ++incident[v];
+  }
+  // Base neighbours: across edge (a, b) of f, g holds edge (b, a) and names f across it.
+  for (uint32_t f : pm.base_faces)
+    for (uint32_t e = 0; e < 3; ++e) {
+      const uint32_t g = face[f].nb[e];
+      if (g == kPmNone) continue;
+      const uint32_t a = face[f].v[e], b = face[f].v[next3(e)];
+      const uint32_t j = corner(g, b);
+      if (j == 3 || face[g].v[next3(j)] != a || face[g].nb[j] != f)
+        return fail("base neighbours inconsistent at face " + std::to_string(f));
+    }
+  // Faces around `s` from `from` to `to`, crossing edge (previous corner, s) as
+  // AdaptiveMesh's collectFan does, each checked to share that edge and to be new (not
+  // marked `mark` or `avoid`); false on a break, a repeat or a wrong edge.
+  std::vector<uint32_t> fan_u, fan_t;
+  auto fan = [&](uint32_t s, uint32_t from, uint32_t to, uint32_t mark, uint32_t avoid, std::vector<uint32_t>& out) {
+    out.clear();
+    uint32_t f = from;
+    for (;;) {
+      Face& F = face[f];
+      const uint32_t i = corner(f, s);
+      if (i == 3 || F.mark == mark || F.mark == avoid) return false;
+      F.mark = mark;
+      out.push_back(f);
+      if (f == to) return true;
+      const uint32_t x = F.v[prev3(i)];
+      const uint32_t g = F.nb[prev3(i)];
+      if (g == kPmNone || !face[g].active) return false;
+      const uint32_t j = corner(g, s);
+      if (j == 3 || face[g].v[next3(j)] != x || face[g].nb[j] != f) return false;
+      f = g;
+    }
+  };
+  // Sets the neighbour of f across the edge at `e` from `from` to `to`, insisting that this
+  // is the first entry equal to `from` (AdaptiveMesh relinks the first one).
+  auto relink = [&](uint32_t f, uint32_t e, uint32_t from, uint32_t to) {
+    auto& nb = face[f].nb;
+    for (uint32_t k = 0; k < 3; ++k)
+      if (nb[k] == from) {
+        if (k != e) return false;
+        nb[k] = to;
+        return true;
+      }
+    return false;
+  };
+  for (uint32_t i = static_cast<uint32_t>(pm.splits.size()); i-- > 0;) {
+    const uint32_t s = n + i;
+    const VertexSplit& vs = pm.splits[i];
+    auto where = [i] { return "split " + std::to_string(i) + ": "; };  // built only for an error
+    if (incident[s] == 0) return fail(where() + "its vertex is not in the mesh when it is split");
+    if (face[vs.fl].active || face[vs.fr].active) return fail(where() + "creates a face that exists");
+    for (uint32_t f : vs.fn)
+      if (!face[f].active || corner(f, s) == 3) return fail(where() + "a neighbour face is missing or not around the vertex");
+    const uint32_t fn_tl = vs.fn[0], fn_ul = vs.fn[1], fn_ur = vs.fn[2], fn_rt = vs.fn[3];
+    // The two fans are disjoint: fan_t may not enter a face fan_u marked.
+    if (!fan(s, fn_ul, fn_ur, 2 * i, 2 * i, fan_u) || !fan(s, fn_rt, fn_tl, 2 * i + 1, 2 * i, fan_t) ||
+        face[fn_ur].nb[prev3(corner(fn_ur, s))] != fn_rt || face[fn_tl].nb[prev3(corner(fn_tl, s))] != fn_ul)
+      return fail(where() + "the faces around its vertex do not form the ring it describes");
+    if (incident[s] != fan_u.size() + fan_t.size())
+      return fail(where() + "its vertex has faces outside the ring (non-manifold)");
+    const uint32_t l = face[fn_ul].v[next3(corner(fn_ul, s))], r = face[fn_rt].v[next3(corner(fn_rt, s))];
+    if (face[fn_tl].v[prev3(corner(fn_tl, s))] != l || face[fn_ur].v[prev3(corner(fn_ur, s))] != r || l == r)
+      return fail(where() + "inconsistent wedge vertices");
+    if (incident[vs.vt] != 0 || incident[vs.vu] != 0) return fail(where() + "a child vertex is already in the mesh");
+    // Apply it as doSplit does.
+    for (uint32_t f : fan_u) face[f].v[corner(f, s)] = vs.vu;
+    for (uint32_t f : fan_t) face[f].v[corner(f, s)] = vs.vt;
+    if (!relink(fn_tl, prev3(corner(fn_tl, vs.vt)), fn_ul, vs.fl) || !relink(fn_ul, corner(fn_ul, vs.vu), fn_tl, vs.fl) ||
+        !relink(fn_ur, prev3(corner(fn_ur, vs.vu)), fn_rt, vs.fr) || !relink(fn_rt, corner(fn_rt, vs.vt), fn_ur, vs.fr))
+      return fail(where() + "ambiguous neighbour links");
+    Face& fl = face[vs.fl];
+    fl.v = {vs.vu, vs.vt, l};
+    fl.nb = {vs.fr, fn_tl, fn_ul};
+    fl.active = 1;
+    Face& fr = face[vs.fr];
+    fr.v = {vs.vt, vs.vu, r};
+    fr.nb = {vs.fl, fn_ur, fn_rt};
+    fr.active = 1;
+    incident[vs.vu] = static_cast<uint32_t>(fan_u.size()) + 2;
+    incident[vs.vt] = static_cast<uint32_t>(fan_t.size()) + 2;
+    incident[s] = 0;
+    ++incident[l];
+    ++incident[r];
+  }
+  // Same face, same orientation; the first corner may differ (a split numbers fl and fr
+  // from vu and vt).
+  auto sameFace = [](const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b) {
+    for (uint32_t k = 0; k < 3; ++k)
+      if (a[0] == b[k] && a[1] == b[next3(k)] && a[2] == b[prev3(k)]) return true;
+    return false;
+  };
+  for (uint32_t f = 0; f < nf; ++f)
+    if (!face[f].active || !sameFace(face[f].v, pm.faces[f]))
+      return fail("the fully refined mesh differs from the stored faces (face " + std::to_string(f) + ")");
+  return Status::success();
 }
 
 }  // namespace
@@ -87,11 +222,16 @@ Status savePm(const std::filesystem::path& path, const ProgressiveMesh& pm) {
 
 Result<ProgressiveMesh> loadPm(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::error_code ec;
-  const auto file_size = std::filesystem::file_size(path, ec);
-  if (ec) return Error::runtime(name + ": cannot read progressive mesh file: " + ec.message());
+  if (Status s = checkInputFile(path, "progressive mesh file"); !s) return s.error();
+  // The size of the file opened, not of the path: a writer may rename a new cache over the
+  // path at any moment (writeFileAtomically), and the open file stays the old one.
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error::runtime(name + ": cannot open progressive mesh file");
+  in.seekg(0, std::ios::end);
+  const std::streamoff end = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (end < 0 || !in) return Error::runtime(name + ": cannot read progressive mesh file");
+  const uint64_t file_size = static_cast<uint64_t>(end);
   if (file_size < sizeof(FileHeader))
     return Error::runtime(name + ": truncated progressive mesh file (" +
                           std::to_string(file_size) + " bytes, header needs 64)");
@@ -132,6 +272,7 @@ Result<ProgressiveMesh> loadPm(const std::filesystem::path& path) {
   pm.params_hash = h.params_hash;
   Status st = pm.finalize(name);
   if (!st.ok()) return st.error();
+  if (Status v = verifyRefinement(pm, name); !v.ok()) return v.error();
   return pm;
 }
 
@@ -147,14 +288,17 @@ Result<ProgressiveMesh> loadOrBuildPm(const TriMesh& mesh, uint64_t content_hash
                                       std::string* note) {
   const std::filesystem::path path = pmCachePath(cache_dir, content_hash);
   const uint64_t params_hash = buildParamsHash(params);
+  removeStaleTemporaries(path);  // left by a build that was killed while writing
   std::string why = "no cache";
   std::error_code ec;
   if (std::filesystem::exists(path, ec)) {
     Result<ProgressiveMesh> cached = loadPm(path);
     if (cached.ok()) {
       const ProgressiveMesh& pm = cached.value();
-      if (pm.content_hash == content_hash && pm.params_hash == params_hash &&
-          pm.vertexCount() == mesh.vertexCount() && pm.faceCount() == mesh.faceCount()) {
+      // The header's hashes name the model; the arrays must then be the model's (a file
+      // whose header was copied from another cache would otherwise pass).
+      if (pm.content_hash == content_hash && pm.params_hash == params_hash && pm.positions == mesh.positions &&
+          pm.faces == mesh.faces) {
         if (note) *note = "loaded progressive mesh cache " + path.string();
         return cached;
       }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "core/camera.h"
@@ -24,6 +25,26 @@ TEST(Camera, OrbitFramesTheSphere) {
   EXPECT_GT(half_angle, glm::radians(35.0f) * 0.5f * 0.85f);  // and fill most of it
   EXPECT_LT(cam.near_plane, d - b.radius);
   EXPECT_GT(cam.far_plane, d + b.radius);
+}
+
+// Found by fuzzing camera paths: with the eye 2.3e11 units from a unit model, d - 1.05 r and
+// d + 1.05 r are the same float, and the empty depth range made the projection divide by zero.
+TEST(Camera, ClipPlanesStayOrderedFarFromTheModel) {
+  Bounds b;
+  b.min = glm::vec3(-1.0f);
+  b.max = glm::vec3(1.0f);
+  b.radius = std::sqrt(3.0f);
+  for (float dist : {3.0f, 1e6f, 2.3e11f, 1e15f}) {
+    Camera cam;
+    cam.eye = {dist, 16.5f, 37.2f};
+    cam.target = {0.0f, 0.0f, 0.0f};
+    fitClipPlanes(cam, b);
+    EXPECT_GT(cam.near_plane, 0.0f) << dist;
+    EXPECT_LT(cam.near_plane, cam.far_plane) << dist;
+    const glm::mat4 p = cam.projection(1.5f);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) EXPECT_TRUE(std::isfinite(p[i][j])) << dist;
+  }
 }
 
 TEST(Camera, OrbitAzimuthElevation) {

@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+
+#include <sys/stat.h>
 
 #include <glm/geometric.hpp>
 
@@ -94,6 +97,76 @@ TEST(CameraPath, BadFilesGiveErrorsNamingTheFile) {
   }
   EXPECT_FALSE(loadCameraPath(dir / "missing.json").ok());
   EXPECT_FALSE(builtinPath("spiral", unitBounds(), 35.0f, 1.0f, 1.0).ok());
+}
+
+// Found by fuzzing (tests/fuzz/fuzz_camera_path.cpp): values a path may not hold, each refused
+// with one printable line naming the file and what is wrong.
+TEST(CameraPath, HostileValuesAreRefused) {
+  test::TempDir dir;
+  const std::pair<const char*, const char*> cases[] = {
+      // A value beyond float's range was narrowed (undefined behaviour).
+      {"coordinate", "{\"keys\": [{\"time\": 0, \"eye\": [1e300, 0, 5], \"target\": [0, 0, 0]}]}"},
+      {"fov", "{\"keys\": [{\"time\": 0, \"eye\": [0, 0, 5], \"target\": [0, 0, 0], \"fov\": 1e300}]}"},
+      // Finite keys whose spline overflows to infinity between them.
+      {"within", "{\"keys\": [{\"time\": 0, \"eye\": [3e38, 0, 5], \"target\": [0, 0, 0]}, "
+                 "{\"time\": 1, \"eye\": [-3e38, 0, 5], \"target\": [0, 0, 0]}]}"},
+      // A duration of infinity made the frame count undefined.
+      {"time", "{\"keys\": [{\"time\": -1e308, \"eye\": [0, 0, 5], \"target\": [0, 0, 0]}, "
+               "{\"time\": 1e308, \"eye\": [0, 1, 5], \"target\": [0, 0, 0]}]}"},
+      // lookAt with up along the view direction gives a NaN view matrix.
+      {"parallel", "{\"keys\": [{\"time\": 0, \"eye\": [0, 5, 0], \"target\": [0, 0, 0], \"up\": [0, 2, 0]}]}"},
+  };
+  const std::pair<const char*, const char*> expected[] = {
+      {"coordinate", "within +-1e15"}, {"fov", "fov must be 1-170"}, {"within", "within +-1e15"},
+      {"time", "within +-1e9 seconds"}, {"parallel", "parallel to the view direction"}};
+  for (size_t i = 0; i < std::size(cases); ++i) {
+    const std::string name = std::string(cases[i].first) + ".json";
+    std::ofstream(dir / name) << cases[i].second;
+    auto r = loadCameraPath(dir / name);
+    ASSERT_FALSE(r.ok()) << name;
+    EXPECT_NE(r.error().message.find(name), std::string::npos) << r.error().message;
+    EXPECT_NE(r.error().message.find(expected[i].second), std::string::npos) << r.error().message;
+  }
+  // The JSON parser's message quotes the file: its control characters are not passed on.
+  std::ofstream(dir / "ctl.json", std::ios::binary) << "{\"keys\": [{\"time\": 0, \"\x01\x1b[31m\": [";
+  auto r = loadCameraPath(dir / "ctl.json");
+  ASSERT_FALSE(r.ok());
+  for (unsigned char c : r.error().message) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << int(c) << ": " << r.error().message;
+  // Not regular files: a FIFO would block the reader.
+  ASSERT_EQ(mkfifo((dir / "fifo.json").c_str(), 0600), 0);
+  auto fifo = loadCameraPath(dir / "fifo.json");
+  ASSERT_FALSE(fifo.ok());
+  EXPECT_NE(fifo.error().message.find("not a regular file"), std::string::npos) << fifo.error().message;
+  std::filesystem::create_directory(dir / "d.json");
+  EXPECT_FALSE(loadCameraPath(dir / "d.json").ok());
+}
+
+// Valid keys whose splines bring the eye onto the target, or the view direction onto up,
+// between keys: every sample still has a finite view matrix.
+TEST(CameraPath, InterpolatedDegeneraciesStayDefined) {
+  std::vector<CameraKey> keys(2);
+  keys[0].time = 0.0;
+  keys[0].eye = {-1, 0, 0};
+  keys[0].target = {1, 0, 0};
+  keys[1].time = 1.0;
+  keys[1].eye = {1, 0, 0};
+  keys[1].target = {-1, 0, 0};  // eye and target cross at t = 0.5
+  CameraPath crossing(keys);
+  keys[0].eye = {0, 0, 5};
+  keys[0].target = {0, 0, 0};
+  keys[1].eye = {5, 0, 0};
+  keys[1].target = {0, 0, 0};
+  keys[0].up = {-1, 1, -1};
+  keys[1].up = {-1, -1, -1};  // at t = 0.5 the interpolated up is (-1, 0, -1), the view direction
+  CameraPath turning(keys);
+  for (const CameraPath* p : {&crossing, &turning}) {
+    ASSERT_EQ(p->validate(), "");
+    for (int k = 0; k <= 200; ++k) {
+      const glm::mat4 v = p->at(k / 200.0, unitBounds()).view();
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) ASSERT_TRUE(std::isfinite(v[i][j])) << "sample " << k;
+    }
+  }
 }
 
 }  // namespace
