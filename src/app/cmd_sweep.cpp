@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -22,6 +23,7 @@
 #include "core/timer.h"
 #include "export/text.h"
 #include "io/atomic_file.h"
+#include "io/scene_file.h"
 
 namespace lodline {
 namespace {
@@ -206,9 +208,17 @@ int runSweep(const SweepOptions& o) {
         std::none_of(plan.axes.begin(), plan.axes.end(), [&](const Axis& a) { return a.key == c; }))
       return reportError(Error::usage("--caption " + c + ": not a result column (run, a varied key, or one of " +
                                       stat_names + ")"));
+  // Every model is read once up front, as each run will read it: a broken file is one error
+  // before anything is written, not one failed run per grid cell in a half-made directory.
+  std::set<std::string> models;
+  for (const auto& run : plan.runs) models.insert(run.model);
+  for (const auto& model : models) {
+    auto scene = loadScene(model);
+    if (!scene) return reportError(scene.error());
+    for (const SceneObject& object : scene->objects)
+      if (auto mesh = loadObjectMesh(object); !mesh) return reportError(mesh.error());
+  }
   std::error_code ec;
-  for (const auto& run : plan.runs)
-    if (!std::filesystem::is_regular_file(run.model, ec)) return reportError(Error::runtime(run.model + ": no such file"));
   auto font = Font::load(o.font);
   if (!font) return reportError(Error::runtime(font.error().message + " (install Debian's fonts-dejavu-core, or pass --font FILE.ttf)"));
 

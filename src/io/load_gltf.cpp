@@ -18,6 +18,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "io/input_check.h"
 #include "io/load_mesh.h"
 
 namespace lodline {
@@ -32,7 +33,33 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
 std::string oneLine(std::string s) {
   std::replace(s.begin(), s.end(), '\n', ' ');
   while (!s.empty() && (s.back() == ' ' || s.back() == '.')) s.pop_back();
-  return s;
+  return printableText(s, 400);
+}
+
+// Largest file tinygltf may read (the .gltf/.glb itself or an external buffer): it reads
+// whole files into memory.
+constexpr uintmax_t kMaxGltfFileBytes = uintmax_t{2} << 30;
+
+// tinygltf's existence test opens the file, which blocks on a FIFO: stat it instead.
+bool fileExistsNoOpen(const std::string& path, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+
+// tinygltf's file reads go through here: a buffer URI naming a FIFO, a device or a directory
+// is refused instead of blocking or reading forever, and sizes are bounded.
+bool readWholeFileChecked(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  if (Status s = checkInputFile(path, "glTF file or buffer"); !s) {
+    if (err) *err += s.error().message + "\n";
+    return false;
+  }
+  std::error_code ec;
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxGltfFileBytes) {
+    if (err) *err += path + (ec ? ": cannot read its size" : ": larger than 2 GiB") + "\n";
+    return false;
+  }
+  return tinygltf::ReadWholeFile(out, err, path, user);
 }
 
 // A checked view of an accessor's elements: every read stays inside its buffer.
@@ -185,15 +212,15 @@ Status appendPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& p, c
 
 Result<std::vector<GltfMeshNode>> loadGltf(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return Error::runtime(name + ": no such file");
-  if (!std::filesystem::is_regular_file(path, ec)) return Error::runtime(name + ": not a regular file");
+  if (Status s = checkInputFile(path, "glTF file"); !s) return s.error();
   std::string ext = path.extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
 
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skipImage, nullptr);
+  loader.SetFsCallbacks({&fileExistsNoOpen, &tinygltf::ExpandFilePath, &readWholeFileChecked,
+                         &tinygltf::WriteWholeFile, nullptr});
   std::string err, warn;
   bool ok = false;
   try {

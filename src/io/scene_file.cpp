@@ -12,6 +12,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/matrix.hpp>
 
+#include "io/input_check.h"
 #include "io/load_gltf.h"
 #include "io/load_mesh.h"
 
@@ -41,6 +42,10 @@ struct Reader {
 };
 
 Error bad(const std::string& where, const std::string& what) { return Error::runtime(where + ": " + what); }
+
+// A key or path taken from the file, made fit for a one-line error message.
+std::string quoted(const std::string& text) { return "\"" + printableText(text, 80) + "\""; }
+std::string shownPath(const std::filesystem::path& p) { return "'" + printableText(p.string(), 300) + "'"; }
 
 Result<glm::vec3> readVec3(const nlohmann::json& j, const std::string& where) {
   if (!j.is_array() || j.size() != 3) return bad(where, "expected an array of 3 numbers");
@@ -127,9 +132,8 @@ Result<glm::mat4> readTransform(const nlohmann::json& o, const std::string& wher
 }
 
 Status readFile(const std::filesystem::path& path, std::string& text) {
+  if (Status s = checkInputFile(path, "scene file"); !s) return s;
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return Error::runtime(path.string() + ": no such file");
-  if (!std::filesystem::is_regular_file(path, ec)) return Error::runtime(path.string() + ": not a regular file");
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) return Error::runtime(path.string() + ": cannot read (" + ec.message() + ")");
   if (size > kMaxSceneBytes) return Error::runtime(path.string() + ": scene file larger than 16 MB");
@@ -153,8 +157,8 @@ Status includeScene(Reader& r, const std::filesystem::path& path, const std::str
   for (const auto& p : r.stack)
     if (p == canon) {
       std::string cycle;
-      for (const auto& q : r.stack) cycle += q.filename().string() + " -> ";
-      return bad(where, "include cycle: " + cycle + canon.filename().string());
+      for (const auto& q : r.stack) cycle += printableText(q.filename().string(), 60) + " -> ";
+      return bad(where, "include cycle: " + cycle + printableText(canon.filename().string(), 60));
     }
   if (static_cast<int>(r.stack.size()) >= kMaxIncludeDepth)
     return bad(where, "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " levels");
@@ -172,7 +176,7 @@ Status readObject(Reader& r, const nlohmann::json& o, const std::string& where, 
                                               "style", "lines",      "line_style",    "line_width", "chamfer",
                                               "chamfer_radius"};
   for (const auto& [k, v] : o.items())
-    if (!known.count(k)) return bad(where, "unknown key \"" + k + "\"");
+    if (!known.count(k)) return bad(where, "unknown key " + quoted(k));
   const bool has_mesh = o.contains("mesh"), has_scene = o.contains("scene");
   if (has_mesh == has_scene) return bad(where, "needs exactly one of \"mesh\" (a mesh file) or \"scene\" (a scene to include)");
   std::string name;
@@ -208,8 +212,8 @@ Status readObject(Reader& r, const nlohmann::json& o, const std::string& where, 
   if (!o[key].is_string() || o[key].get<std::string>().empty()) return bad(where + "." + key, "expected a file path");
   const std::filesystem::path file = dir / o[key].get<std::string>();
   std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return bad(where + "." + key, "no such file '" + file.string() + "'");
-  if (!std::filesystem::is_regular_file(file, ec)) return bad(where + "." + key, "'" + file.string() + "' is not a regular file");
+  if (!std::filesystem::exists(file, ec)) return bad(where + "." + key, "no such file " + shownPath(file));
+  if (!std::filesystem::is_regular_file(file, ec)) return bad(where + "." + key, shownPath(file) + " is not a regular file");
   if (has_scene) {
     if (o.contains("gltf_node")) return bad(where + ".gltf_node", "only for glTF meshes");
     return includeScene(r, file, where + ".scene", transform, factor, style);
@@ -269,7 +273,7 @@ Result<SceneCamera> readCamera(const nlohmann::json& c, const std::string& where
   if (!c.is_object()) return bad(where, "expected an object");
   static const std::set<std::string> known = {"view", "eye", "target", "up", "fov", "path", "duration"};
   for (const auto& [k, v] : c.items())
-    if (!known.count(k)) return bad(where, "unknown key \"" + k + "\"");
+    if (!known.count(k)) return bad(where, "unknown key " + quoted(k));
   SceneCamera cam;
   const int forms = int(c.contains("view")) + int(c.contains("eye") || c.contains("target")) + int(c.contains("path"));
   if (forms > 1) return bad(where, "give one of \"view\", \"eye\"/\"target\" or \"path\"");
@@ -336,12 +340,12 @@ Status readSceneText(Reader& r, const std::string& text, const std::filesystem::
   } catch (const nlohmann::json::parse_error& e) {
     std::string what = e.what();
     if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-    return Error::runtime(name + ": invalid JSON: " + what);
+    return Error::runtime(name + ": invalid JSON: " + printableText(what, 300));
   }
   if (!j.is_object()) return Error::runtime(name + ": expected a JSON object with an \"objects\" array");
   static const std::set<std::string> known = {"lodline", "description", "objects", "settings", "camera", "light"};
   for (const auto& [k, v] : j.items())
-    if (!known.count(k)) return Error::runtime(name + ": unknown key \"" + k + "\"");
+    if (!known.count(k)) return Error::runtime(name + ": unknown key " + quoted(k));
   if (j.contains("lodline") && !(j["lodline"].is_number_integer() && j["lodline"].get<long long>() == 1))
     return Error::runtime(name + ": lodline: unsupported scene format version (this lodline reads version 1)");
   if (j.contains("description") && !j["description"].is_string())
@@ -364,7 +368,7 @@ Status readSceneText(Reader& r, const std::string& text, const std::filesystem::
     for (const auto& [k, v] : j["settings"].items()) {
       const bool ok = v.is_string() || v.is_number() || v.is_boolean() ||
                       (v.is_array() && std::all_of(v.begin(), v.end(), [](const nlohmann::json& e) { return e.is_string(); }));
-      if (!ok) return Error::runtime(name + ": settings." + k + ": expected a string, number, boolean or array of strings");
+      if (!ok) return Error::runtime(name + ": settings." + printableText(k, 80) + ": expected a string, number, boolean or array of strings");
     }
     top->settings = j["settings"];
   }
@@ -377,7 +381,7 @@ Status readSceneText(Reader& r, const std::string& text, const std::filesystem::
     const auto& l = j["light"];
     if (!l.is_object()) return Error::runtime(name + ": light: expected an object");
     for (const auto& [k, v] : l.items())
-      if (k != "direction") return Error::runtime(name + ": light: unknown key \"" + k + "\"");
+      if (k != "direction") return Error::runtime(name + ": light: unknown key " + quoted(k));
     if (!l.contains("direction")) return Error::runtime(name + ": light: needs \"direction\"");
     auto d = readVec3(l["direction"], name + ": light.direction");
     if (!d) return d.error();
@@ -446,7 +450,11 @@ Result<TriMesh> loadObjectMesh(const SceneObject& object) {
     mesh = *object.preloaded;
   } else {
     auto m = loadMesh(object.mesh);
-    if (!m) return m.error();
+    if (!m) {
+      // A mesh named by a scene file: say which entry of which scene names it.
+      if (object.where == object.mesh.string()) return m.error();
+      return Error{m.error().kind, object.where + ".mesh: " + m.error().message};
+    }
     mesh = std::move(m.value());
   }
   transformMesh(mesh, object.transform);

@@ -1,7 +1,8 @@
 // lodline_fuzz_seeds OUT_DIR [MESH_DIR]: writes the seed corpus of each fuzz target into
 // OUT_DIR/<target>/ — small generated meshes in every format the readers take, the small
 // CGAL demo meshes of MESH_DIR (data/meshes, files up to 8 KiB) converted to every format,
-// progressive-mesh caches, camera paths and PNGs of every colour type. Inputs of the
+// progressive-mesh caches, camera paths, PNGs of every colour type, scene files and glTF
+// files (.gltf with embedded buffers and .glb) of one and several nodes. Inputs of the
 // prefixed targets (fuzz_mesh_ply_*, fuzz_mesh_stl_ascii) are written without the prefix
 // the target adds. Run by scripts/fuzz.sh.
 #include <cstdio>
@@ -22,6 +23,7 @@
 #include "io/load_mesh.h"
 #include "pm/pm_file.h"
 #include "pm/progressive_mesh.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 using namespace lodline;
@@ -229,6 +231,37 @@ int main(int argc, char** argv) {
   pngSeed("grey16", 8, 8, PNG_FORMAT_LINEAR_Y);
   pngSeed("rgba16", 4, 6, PNG_FORMAT_LINEAR_RGB_ALPHA);
   pngSeed("one", 1, 1, PNG_FORMAT_GRAY);
+  // Scene files (docs/scenes.md): the fuzz target puts a tetrahedron "m.off" beside each input.
+  put("scene_json", "one.json", R"({"objects": [{"mesh": "m.off"}]})");
+  put("scene_json", "placed.json",
+      R"({"lodline": 1, "description": "two placed objects", "objects": [)"
+      R"({"name": "a", "mesh": "m.off", "translate": [1, 0, -2], "rotate": [0, 45, 10], "scale": 2,)"
+      R"( "detail_factor": 0.5, "style": "toon", "lines": "contour,crease", "line_width": 2},)"
+      R"({"mesh": "m.off", "quaternion": [0, 0.7071, 0, 0.7071], "scale": [1, 2, 0.5], "chamfer": "on",)"
+      R"( "chamfer_radius": 0.01, "line_style": ["contour=#402010:1.5"]}],)"
+      R"( "settings": {"target-area": 8, "smoothing": "on", "size": "320x240"},)"
+      R"( "camera": {"eye": [0, 1, 6], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 30},)"
+      R"( "light": {"direction": [0.3, 0.6, 1]}})");
+  put("scene_json", "matrix.json",
+      R"({"objects": [{"mesh": "m.off", "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0.5,0,0,1]}],)"
+      R"( "camera": {"view": [20, 10, 3]}})");
+  put("scene_json", "include.json", R"({"objects": [{"scene": "one.json", "translate": [0, 1, 0]}]})");
+
+  // glTF: a cube, and two nodes in a hierarchy with translation, rotation and scale.
+  test::GltfTestNode child = test::gltfCube();
+  child.name = "child";
+  child.parent = 0;
+  child.translation = {2.0f, 0.0f, 0.0f};
+  child.rotation = {0.0f, 0.3826834f, 0.0f, 0.9238795f};
+  child.scale = {0.5f, 1.0f, 2.0f};
+  for (const std::string ext : {"gltf", "glb"}) {
+    const fs::path tmp = g_out / (".seed." + ext);
+    test::writeGltf(tmp, {test::gltfCube()});
+    put(ext, "cube." + ext, readAll(tmp));
+    test::writeGltf(tmp, {test::gltfCube(), child});
+    put(ext, "two-nodes." + ext, readAll(tmp));
+    fs::remove(tmp);
+  }
   std::cout << "lodline_fuzz_seeds: wrote " << g_written << " seed files into " << g_out.string() << "\n";
   return 0;
 }

@@ -4,6 +4,8 @@
 
 #include <fstream>
 
+#include <sys/stat.h>
+
 #include <nlohmann/json.hpp>
 
 #include "io/load_gltf.h"
@@ -123,6 +125,21 @@ TEST_F(Gltf, BrokenFilesGiveOneLineNamingTheFile) {
   auto missing = loadGltf(dir_ / "none.gltf");
   ASSERT_FALSE(missing);
   EXPECT_NE(missing.error().message.find("no such file"), std::string::npos);
+}
+
+// tinygltf reads external buffers itself: a URI naming a FIFO (which would block the read
+// forever), a directory or a missing file is refused with one line naming the glTF file.
+TEST_F(Gltf, ExternalBuffersMustBeRegularFiles) {
+  ASSERT_EQ(::mkfifo((dir_ / "fifo.bin").c_str(), 0600), 0);
+  std::filesystem::create_directories(dir_ / "dir.bin");
+  const std::string file = (dir_ / "broken.gltf").string();
+  for (const char* uri : {"fifo.bin", "dir.bin", "missing.bin"}) {
+    const std::string msg = errorAfter(dir_.path(), [&](nlohmann::json& j) { j["buffers"][0]["uri"] = uri; });
+    EXPECT_EQ(msg.rfind(file + ": cannot read glTF", 0), 0u) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+  const std::string fifo = errorAfter(dir_.path(), [](nlohmann::json& j) { j["buffers"][0]["uri"] = "fifo.bin"; });
+  EXPECT_NE(fifo.find("not a regular file"), std::string::npos) << fifo;
 }
 
 }  // namespace

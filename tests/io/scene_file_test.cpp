@@ -185,7 +185,7 @@ TEST_F(SceneFile, MissingOrUnreadableSceneFiles) {
   std::filesystem::create_directories(dir_ / "dir.json");
   auto d = loadScene(dir_ / "dir.json");
   ASSERT_FALSE(d);
-  EXPECT_NE(d.error().message.find("not a regular file"), std::string::npos);
+  EXPECT_NE(d.error().message.find("is a directory, not a scene file"), std::string::npos);
 }
 
 TEST_F(SceneFile, TransformMeshKeepsOutwardFacesUnderMirroring) {

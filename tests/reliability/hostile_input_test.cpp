@@ -4,6 +4,9 @@
 //    0-2 vertices, counts claiming 2^31 elements, truncated, random bytes, no faces, not a
 //    regular file, unreadable) is refused: exit 1, exactly one line on stderr,
 //    "lodline: FILE: problem", and nothing left in the output directory;
+//  - the same for scene files and glTF (bad JSON, missing or broken meshes they name, a
+//    cycle of includes, a glTF buffer that is a FIFO, accessors past their buffers) through
+//    the commands that take scenes;
 //  - a valid but degenerate mesh (a 1000-vertex face, non-manifold edges, duplicate and
 //    zero-area faces, thousands of components) is drawn: exit 0, nothing on stderr, the
 //    command's outputs and nothing else;
@@ -23,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -53,6 +57,8 @@ struct CommandSpec {
   std::vector<std::string> outputs;
   /// Whether it prints nothing on stderr when it succeeds (bench reports progress there).
   bool quiet = true;
+  /// Whether it takes scene files (.json, .gltf, .glb) where it takes a mesh.
+  bool scenes = true;
 };
 
 const std::vector<CommandSpec>& commands() {
@@ -76,13 +82,13 @@ const std::vector<CommandSpec>& commands() {
        {"*.lpm"}},
       {"build-o",
        [](const Paths& p) { return std::vector<std::string>{"build", p.model, "-o", (p.out / "o.lpm").string()}; },
-       {"o.lpm"}},
+       {"o.lpm"}, true, false},
       {"simplify",
        [](const Paths& p) {
          return std::vector<std::string>{"simplify", p.model, "--max-error", "1%", "-o", (p.out / "s.off").string()};
        },
-       {"s.off"}},
-      {"compare", [](const Paths& p) { return std::vector<std::string>{"compare", p.model, p.other}; }, {}},
+       {"s.off"}, true, false},
+      {"compare", [](const Paths& p) { return std::vector<std::string>{"compare", p.model, p.other}; }, {}, true, false},
       {"bench",
        [](const Paths& p) {
          return std::vector<std::string>{"bench", "walkthrough", p.model, "--frames", "2", "--modes", "none,cluster,pm",
@@ -90,7 +96,14 @@ const std::vector<CommandSpec>& commands() {
        },
        {},
        false},
-      {"compare-second", [](const Paths& p) { return std::vector<std::string>{"compare", p.other, p.model}; }, {}},
+      {"compare-second", [](const Paths& p) { return std::vector<std::string>{"compare", p.other, p.model}; }, {}, true,
+       false},
+      {"sweep",  // reads every model before it writes anything
+       [](const Paths& p) {
+         return std::vector<std::string>{"sweep", p.model, "--vary", "target-area=8,16", "-o", (p.out / "sweep").string(),
+                                         "--", "--size", "64x48", "--msaa", "1", "--cache-dir", p.cache.string()};
+       },
+       {"sweep"}},
   };
   return table;
 }
@@ -117,6 +130,11 @@ struct HostileFile {
   bool unreadable = false;
 };
 
+bool isScene(const HostileFile& h) {
+  const std::string ext = fs::path(h.file).extension().string();
+  return ext == ".json" || ext == ".gltf" || ext == ".glb";
+}
+
 void write(const fs::path& p, const std::string& bytes) {
   std::ofstream(p, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
@@ -139,6 +157,23 @@ std::string randomBytes(uint32_t seed, size_t n) {
   std::string s(n, '\0');
   for (char& c : s) c = static_cast<char>(rng());
   return s;
+}
+
+// Writes `sibling` (a mesh a scene names) next to the scene, then the scene.
+std::function<void(const fs::path&)> withSibling(std::string name, std::string sibling, std::string scene) {
+  return [=](const fs::path& p) {
+    write(p.parent_path() / name, sibling);
+    write(p, scene);
+  };
+}
+// A one-cube .gltf whose JSON `edit` changes (it may also make files next to it).
+std::function<void(const fs::path&)> gltfEdited(std::function<void(nlohmann::json&, const fs::path&)> edit) {
+  return [edit](const fs::path& p) {
+    test::writeGltf(p, {test::gltfCube()});
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(p));
+    edit(j, p.parent_path());
+    write(p, j.dump());
+  };
 }
 
 std::vector<HostileFile> hostileFiles() {
@@ -241,11 +276,46 @@ std::vector<HostileFile> hostileFiles() {
       {"FIFO", "fifo.off", [](const fs::path& p) { mkfifo(p.c_str(), 0666); }, Expect::kRefused,
        "not a regular file"},
       {"unreadable file", "locked.off", text(torus), Expect::kRefused, "Permission denied", true},
+      // Scene files (docs/scenes.md) and glTF: their own errors name the scene file, and a
+      // broken mesh a scene names is reported with the scene entry that names it.
+      {"empty scene", "e.json", text(""), Expect::kRefused, "invalid JSON"},
+      {"random bytes scene", "r.json", text(randomBytes(5, 3000)), Expect::kRefused, "invalid JSON"},
+      {"scene without objects", "none.json", text(R"({"objects": []})"), Expect::kRefused, "non-empty array"},
+      {"scene naming a missing mesh", "miss.json", text(R"({"objects": [{"mesh": "nowhere.off"}]})"),
+       Expect::kRefused, "no such file"},
+      {"scene with a negative scale", "neg.json", withSibling("m.off", torus, R"({"objects": [{"mesh": "m.off", "scale": -1}]})"),
+       Expect::kRefused, "objects[0].scale: must be > 0"},
+      {"scene with a control character in a key", "key.json", text("{\"objects\": [], \"a\\u0007\\n\": 1}"),
+       Expect::kRefused, "unknown key \"a??\""},
+      {"scene including itself", "self.json", text(R"({"objects": [{"scene": "self.json"}]})"), Expect::kRefused,
+       "include cycle"},
+      {"scene naming a NaN mesh", "nanmesh.json",
+       withSibling("nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n", R"({"objects": [{"mesh": "nan.off"}]})"),
+       Expect::kRefused, "objects[0].mesh: "},
+      {"scene scaled past 1e18", "huge.json",
+       withSibling("m.off", torus, R"({"objects": [{"mesh": "m.off", "scale": [1, 1e30, 1e30]}]})"), Expect::kRefused,
+       "too large"},
+      {"empty glTF", "e.gltf", text(""), Expect::kRefused, "cannot read glTF"},
+      {"random bytes glTF", "r.gltf", text(randomBytes(6, 3000)), Expect::kRefused, "cannot read glTF"},
+      {"random bytes GLB", "r.glb", text("glTF" + randomBytes(7, 3000)), Expect::kRefused, "cannot read glTF"},
+      {"glTF buffer that is a FIFO", "fifo.gltf", gltfEdited([](nlohmann::json& j, const fs::path& dir) {
+         mkfifo((dir / "buffer.bin").c_str(), 0666);
+         j["buffers"][0]["uri"] = "buffer.bin";
+       }), Expect::kRefused, "not a regular file"},
+      {"glTF accessor past its buffer", "count.gltf",
+       gltfEdited([](nlohmann::json& j, const fs::path&) { j["accessors"][1]["count"] = 1u << 30; }), Expect::kRefused,
+       "reads past the end"},
+      {"glTF node that is its own child", "cycle.gltf",
+       gltfEdited([](nlohmann::json& j, const fs::path&) { j["nodes"][0]["children"] = {0}; }), Expect::kRefused,
+       "not a tree"},
       {"face of 1000 vertices", "disc.off", text(disc), Expect::kDrawn},
       {"non-manifold edge", "nm.off", text(offText(nm)), Expect::kDrawn},
       {"duplicate faces", "dup.off", text(offText(dup)), Expect::kDrawn},
       {"zero-area faces", "flat.off", text(offText(flat)), Expect::kDrawn},
       {"thousands of components", "soup.off", text(soup), Expect::kDrawn},
+      {"scene of two coincident objects", "twice.json",
+       withSibling("m.off", torus, R"({"objects": [{"mesh": "m.off"}, {"mesh": "m.off", "name": "m"}]})"), Expect::kDrawn},
+      {"glTF of one cube", "cube.glb", [](const fs::path& p) { test::writeGltf(p, {test::gltfCube()}); }, Expect::kDrawn},
   };
   return files;
 }
@@ -275,6 +345,7 @@ TEST_P(HostileInput, EveryFileIsRefusedCleanlyOrDrawn) {
     // build (slower to start) runs refused files through render only; the other build runs
     // every file through every command, and every build runs the drawn ones everywhere.
     if (test::sanitizerBuild() && h.expect == Expect::kRefused && cmd->name != "render") continue;
+    if (isScene(h) && !cmd->scenes) continue;
     SCOPED_TRACE(cmd->name + " on " + h.name);
     test::TempDir dir;
     fs::permissions(dir.path(), fs::perms::all);  // reachable when the command runs as nobody

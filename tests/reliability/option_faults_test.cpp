@@ -138,7 +138,7 @@ TEST_F(OptionFaults, TargetAreaAndThresholds) {
   expectRefused({"render", {"--fov", "nan"}, 2, "--fov"});
   expectRefused({"render", {"--fov", "180"}, 2, "--fov"});
   expectRefused({"render", {"--view", "nan,0,3"}, 2, "--view"});
-  expectRefused({"render", {"--view", "0,0,0"}, 2, "--view"});
+  expectRefused({"render", {"--view", "0,0,-1"}, 2, "--view"});
   expectRefused({"render", {"--msaa", "0"}, 2, "--msaa"});
   expectRefused({"render", {"--line-width", "nan"}, 2, "--line-width"});
   expectRefused({"render", {"--chamfer-radius", "-1"}, 2, "--chamfer-radius"});
