@@ -44,8 +44,14 @@ struct Reader {
 Error bad(const std::string& where, const std::string& what) { return Error::runtime(where + ": " + what); }
 
 // A key or path taken from the file, made fit for a one-line error message.
-std::string quoted(const std::string& text) { return "\"" + printableText(text, 80) + "\""; }
-std::string shownPath(const std::filesystem::path& p) { return "'" + printableText(p.string(), 300) + "'"; }
+std::string enclosed(char mark, const std::string& text, size_t max_chars) {
+  std::string out(1, mark);
+  out += printableText(text, max_chars);
+  out += mark;
+  return out;
+}
+std::string quoted(const std::string& text) { return enclosed('"', text, 80); }
+std::string shownPath(const std::filesystem::path& p) { return enclosed('\'', p.string(), 300); }
 
 Result<glm::vec3> readVec3(const nlohmann::json& j, const std::string& where) {
   if (!j.is_array() || j.size() != 3) return bad(where, "expected an array of 3 numbers");
@@ -337,7 +343,7 @@ Status readSceneText(Reader& r, const std::string& text, const std::filesystem::
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for numbers past double
     std::string what = e.what();
     if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
     return Error::runtime(name + ": invalid JSON: " + printableText(what, 300));

@@ -157,6 +157,9 @@ TEST_F(SceneFile, BadFilesNameTheFileAndTheKey) {
       {R"({"objects": [{"mesh": "sphere.off", "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1]}]})",
        "matrix: must not be singular or mirror"},
       {R"({"objects": [{"mesh": "sub"}]})", "sub' is not a regular file"},
+      // A number past double's range: nlohmann throws out_of_range, not parse_error.
+      {R"({"objects": [{"mesh": "sphere.off", "scale": 1e999}]})", "invalid JSON: number overflow"},
+      {"{\"objects\": [{\"mesh\": \"sphere.off\", \"sc\\u0001ale\": 1}]}", "unknown key \"sc?ale\""},
   };
   for (const Case& c : cases) {
     const std::string msg = error(c.text);
