@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <random>
+#include <sstream>
 #include <system_error>
 
 #include <cstdio>
@@ -159,6 +160,42 @@ GltfTestNode gltfCube() {
       for (uint32_t t : {0u, 1u, 2u, 0u, 2u, 3u}) n.indices.push_back(base + t);
     }
   return n;
+}
+
+std::string pngHeaderOnly(uint32_t w, uint32_t h) {
+  auto be32 = [](std::string& s, uint32_t v) {
+    for (int k = 3; k >= 0; --k) s.push_back(static_cast<char>((v >> (8 * k)) & 0xff));
+  };
+  auto chunk = [&](std::string& out, const std::string& type, const std::string& data) {
+    be32(out, static_cast<uint32_t>(data.size()));
+    const std::string td = type + data;
+    out += td;
+    uint32_t crc = 0xffffffffu;  // CRC-32 of type and data (PNG spec, ISO 3309)
+    for (unsigned char c : td) {
+      crc ^= c;
+      for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    be32(out, crc ^ 0xffffffffu);
+  };
+  std::string ihdr;
+  be32(ihdr, w);
+  be32(ihdr, h);
+  ihdr += std::string("\x08\x00\x00\x00\x00", 5);  // 8-bit grey, no interlace
+  std::string png = "\x89PNG\r\n\x1a\n";
+  chunk(png, "IHDR", ihdr);
+  // The start of the pixel data (zlib header and an empty stored block): libpng reads the
+  // header up to here, the pixels would follow.
+  chunk(png, "IDAT", std::string("\x78\x01\x00\x00\x00\xff\xff", 7));
+  chunk(png, "IEND", "");
+  return png;
+}
+
+std::string offText(const TriMesh& m) {
+  std::ostringstream o;
+  o << "OFF\n" << m.positions.size() << ' ' << m.faces.size() << " 0\n";
+  for (const auto& p : m.positions) o << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  for (const auto& f : m.faces) o << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
+  return o.str();
 }
 
 }  // namespace lodline::test

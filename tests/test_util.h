@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <string>
 
+#include "core/mesh.h"
+
 namespace lodline::test {
 
 /// Path of a CGAL demo mesh (data/meshes/NAME, extracted by scripts/setup.sh), or an empty
@@ -57,5 +59,12 @@ void writeGltf(const std::filesystem::path& path, const std::vector<GltfTestNode
 
 /// A cube of half-size 1 with 24 vertices (4 per face, as glTF exporters write hard edges).
 GltfTestNode gltfCube();
+
+/// A PNG whose header claims w x h 8-bit grey pixels, followed by a stub of pixel data (the
+/// file is 76 bytes whatever it claims): for the readers' size limits.
+std::string pngHeaderOnly(uint32_t w, uint32_t h);
+
+/// `m` as the text of an ASCII OFF file.
+std::string offText(const TriMesh& m);
 
 }  // namespace lodline::test

@@ -45,14 +45,6 @@ void bin(std::string& s, T v) {
   s.append(reinterpret_cast<const char*>(&v), sizeof(T));
 }
 
-std::string off(const TriMesh& m) {
-  std::ostringstream o;
-  o << "OFF\n" << m.positions.size() << ' ' << m.faces.size() << " 0\n";
-  for (const auto& p : m.positions) o << p.x << ' ' << p.y << ' ' << p.z << '\n';
-  for (const auto& f : m.faces) o << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
-  return o.str();
-}
-
 // Binary OFF as OpenMesh writes it (and mesh_reader.h reads it): little-endian 32-bit counts,
 // floats and indices, no colour count after a face.
 std::string offBinary(const TriMesh& m) {
@@ -127,7 +119,7 @@ std::string stlBinary(const TriMesh& m) {
 }
 
 void meshSeeds(const std::string& name, const TriMesh& m) {
-  put("mesh_off", name + ".off", off(m));
+  put("mesh_off", name + ".off", test::offText(m));
   put("mesh_off", name + "-binary.off", offBinary(m));
   put("mesh_obj", name + ".obj", obj(m, false));
   put("mesh_obj", name + "-lines.obj", obj(m, true));

@@ -266,47 +266,20 @@ TEST(Png, RoundTrip) {
 // refused from the header, before any pixel memory (the limit was 32768 x 32768, and the
 // RGBA buffer was allocated and zeroed before the data turned out missing). Detail maps have
 // a tighter limit.
-std::string pngHeaderOnly(uint32_t w, uint32_t h) {
-  auto be32 = [](std::string& s, uint32_t v) {
-    for (int k = 3; k >= 0; --k) s.push_back(static_cast<char>((v >> (8 * k)) & 0xff));
-  };
-  auto chunk = [&](std::string& out, const std::string& type, const std::string& data) {
-    be32(out, static_cast<uint32_t>(data.size()));
-    const std::string td = type + data;
-    out += td;
-    uint32_t crc = 0xffffffffu;  // CRC-32 of type and data (PNG spec, ISO 3309)
-    for (unsigned char c : td) {
-      crc ^= c;
-      for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
-    }
-    be32(out, crc ^ 0xffffffffu);
-  };
-  std::string ihdr;
-  be32(ihdr, w);
-  be32(ihdr, h);
-  ihdr += std::string("\x08\x00\x00\x00\x00", 5);  // 8-bit grey, no interlace
-  std::string png = "\x89PNG\r\n\x1a\n";
-  chunk(png, "IHDR", ihdr);
-  // The start of the pixel data (zlib header and an empty stored block): libpng reads the
-  // header up to here, the pixels would follow.
-  chunk(png, "IDAT", std::string("\x78\x01\x00\x00\x00\xff\xff", 7));
-  chunk(png, "IEND", "");
-  return png;
-}
 
 TEST(Png, HugeDimensionsAreRefusedFromTheHeader) {
   TempDir dir;
-  writeText(dir / "huge.png", pngHeaderOnly(20000, 20000));
+  writeText(dir / "huge.png", test::pngHeaderOnly(20000, 20000));
   auto r = readPng(dir / "huge.png");
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("huge.png: PNG of 20000x20000 pixels is too large"), std::string::npos)
       << r.error().message;
-  writeText(dir / "map.png", pngHeaderOnly(5000, 4000));
+  writeText(dir / "map.png", test::pngHeaderOnly(5000, 4000));
   auto m = readPng(dir / "map.png", kMaxDetailMapPixels);
   ASSERT_FALSE(m.ok());
   EXPECT_NE(m.error().message.find("too large"), std::string::npos) << m.error().message;
   // Within the limit the header passes, and the missing pixel data is the error.
-  writeText(dir / "small.png", pngHeaderOnly(64, 64));
+  writeText(dir / "small.png", test::pngHeaderOnly(64, 64));
   auto s = readPng(dir / "small.png", kMaxDetailMapPixels);
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.error().message.find("small.png: cannot read PNG"), std::string::npos) << s.error().message;

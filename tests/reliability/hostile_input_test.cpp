@@ -145,13 +145,6 @@ template <class T>
 void put(std::string& s, T v) {
   s.append(reinterpret_cast<const char*>(&v), sizeof(T));
 }
-std::string offText(const TriMesh& m) {
-  std::ostringstream o;
-  o << "OFF\n" << m.positions.size() << ' ' << m.faces.size() << " 0\n";
-  for (const auto& p : m.positions) o << p.x << ' ' << p.y << ' ' << p.z << '\n';
-  for (const auto& f : m.faces) o << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
-  return o.str();
-}
 std::string randomBytes(uint32_t seed, size_t n) {
   std::mt19937 rng(seed);
   std::string s(n, '\0');
@@ -177,7 +170,7 @@ std::function<void(const fs::path&)> gltfEdited(std::function<void(nlohmann::jso
 }
 
 std::vector<HostileFile> hostileFiles() {
-  const std::string torus = offText(makeTorus(1.0f, 0.3f, 16, 8));
+  const std::string torus = test::offText(makeTorus(1.0f, 0.3f, 16, 8));
   const std::string tri = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
   std::string ply_bin_head =
       "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
@@ -309,9 +302,9 @@ std::vector<HostileFile> hostileFiles() {
        gltfEdited([](nlohmann::json& j, const fs::path&) { j["nodes"][0]["children"] = {0}; }), Expect::kRefused,
        "not a tree"},
       {"face of 1000 vertices", "disc.off", text(disc), Expect::kDrawn},
-      {"non-manifold edge", "nm.off", text(offText(nm)), Expect::kDrawn},
-      {"duplicate faces", "dup.off", text(offText(dup)), Expect::kDrawn},
-      {"zero-area faces", "flat.off", text(offText(flat)), Expect::kDrawn},
+      {"non-manifold edge", "nm.off", text(test::offText(nm)), Expect::kDrawn},
+      {"duplicate faces", "dup.off", text(test::offText(dup)), Expect::kDrawn},
+      {"zero-area faces", "flat.off", text(test::offText(flat)), Expect::kDrawn},
       {"thousands of components", "soup.off", text(soup), Expect::kDrawn},
       {"scene of two coincident objects", "twice.json",
        withSibling("m.off", torus, R"({"objects": [{"mesh": "m.off"}, {"mesh": "m.off", "name": "m"}]})"), Expect::kDrawn},

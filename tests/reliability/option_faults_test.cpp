@@ -31,32 +31,6 @@ struct Fault {
   std::string says;                  ///< part of the error line (the option or the file)
 };
 
-// A PNG whose header claims w x h 8-bit grey pixels followed by a stub of pixel data.
-std::string pngHeader(uint32_t w, uint32_t h) {
-  auto be32 = [](std::string& s, uint32_t v) {
-    for (int k = 3; k >= 0; --k) s.push_back(static_cast<char>((v >> (8 * k)) & 0xff));
-  };
-  auto chunk = [&](std::string& out, const std::string& type, const std::string& data) {
-    be32(out, static_cast<uint32_t>(data.size()));
-    const std::string td = type + data;
-    out += td;
-    uint32_t crc = 0xffffffffu;
-    for (unsigned char c : td) {
-      crc ^= c;
-      for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
-    }
-    be32(out, crc ^ 0xffffffffu);
-  };
-  std::string ihdr;
-  be32(ihdr, w);
-  be32(ihdr, h);
-  ihdr += std::string("\x08\x00\x00\x00\x00", 5);
-  std::string png = "\x89PNG\r\n\x1a\n";
-  chunk(png, "IHDR", ihdr);
-  chunk(png, "IDAT", std::string("\x78\x01\x00\x00\x00\xff\xff", 7));
-  chunk(png, "IEND", "");
-  return png;
-}
 
 class OptionFaults : public ::testing::Test {
  protected:
@@ -64,8 +38,8 @@ class OptionFaults : public ::testing::Test {
     model_ = (dir_ / "knot.off").string();
     ASSERT_TRUE(saveOff(model_, makeTorusKnot(2, 3, 1.0f, 0.16f, 120, 12, 0.1f)).ok());
     std::ofstream(dir_ / "text.png") << "not a png at all";
-    std::ofstream(dir_ / "huge.png", std::ios::binary) << pngHeader(20000, 20000);
-    std::ofstream(dir_ / "wide.png", std::ios::binary) << pngHeader(8192, 4096);
+    std::ofstream(dir_ / "huge.png", std::ios::binary) << test::pngHeaderOnly(20000, 20000);
+    std::ofstream(dir_ / "wide.png", std::ios::binary) << test::pngHeaderOnly(8192, 4096);
     ASSERT_EQ(mkfifo((dir_ / "fifo.png").c_str(), 0600), 0);
     fs::create_directory(dir_ / "dir.png");
     fs::create_directory(dir_ / "out");
