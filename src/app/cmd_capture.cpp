@@ -242,11 +242,10 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
         raw = compareMasks(prev_mask, mask);
         change = compareMasksCompensated(prev_mask, prev_surface, prev_camera, mask, surface, cam);
       } else {
-        for (uint8_t v : mask.on) raw.line_pixels += v;  // frame 0: nothing to compare with
+        raw.line_pixels = mask.count();  // frame 0: nothing to compare with
         change.line_pixels = raw.line_pixels;
       }
-      const auto specks = std::count_if(visible.length_px.begin(), visible.length_px.end(),
-                                        [](float len) { return len < 3.0f; });
+      const size_t specks = countSpecks(visible.length_px);
       size_t active_faces = 0, splits = 0, collapses = 0;
       for (const auto& obj : scene.objects()) {
         active_faces += obj.drawing->drawing().mesh().faceCount();

@@ -48,10 +48,6 @@ struct RenderOptions {
   std::string backend = "gl";  ///< gl (OpenGL context) or soft (raster/, no OpenGL at all)
 };
 
-size_t countSpecks(const VisibleStrokes& v) {
-  return static_cast<size_t>(std::count_if(v.length_px.begin(), v.length_px.end(), [](float len) { return len < 3.0f; }));
-}
-
 SvgStyle svgStyleOf(const RenderParams& rp) {
   SvgStyle style;
   style.background = rp.background.a > 0.0f;
@@ -204,7 +200,8 @@ int runRender(CLI::App& cmd, RenderOptions& o) {
     }
     // Per object, then the totals at the top level (the keys a single model always had).
     nlohmann::json objects = nlohmann::json::array();
-    size_t total_faces_drawn = 0, total_segments = 0, total_strokes = 0, total_specks = 0, total_line_pixels = 0;
+    size_t total_faces_drawn = 0, total_segments = 0, total_strokes = 0, total_specks = 0;
+    uint64_t total_line_pixels = 0;
     std::array<uint64_t, kLineKindCount> lines_total{}, extracted_total{};
     uint64_t active_vertices = 0, active_faces = 0, visible_faces = 0, splits = 0, collapses = 0, morphing = 0;
     double band_weighted = 0.0;
@@ -213,8 +210,7 @@ int runRender(CLI::App& cmd, RenderOptions& o) {
       const SceneDrawing::Object& obj = scene[i];
       const LineDrawing& d = obj.drawing->drawing();
       rasterizeStrokes(visible[i], rp.width, rp.height, object_mask);
-      size_t line_pixels = 0;
-      for (uint8_t v : object_mask.on) line_pixels += v;
+      const uint64_t line_pixels = object_mask.count();
       nlohmann::json lines, extracted;
       for (int k = 0; k < kLineKindCount; ++k) {
         const char* name = lineKindName(static_cast<LineKind>(k));
@@ -224,7 +220,7 @@ int runRender(CLI::App& cmd, RenderOptions& o) {
         lines_total[k] += vis;
         extracted_total[k] += d.lines().count[k] / 2;
       }
-      const size_t specks = countSpecks(visible[i]);
+      const size_t specks = countSpecks(visible[i].length_px);
       nlohmann::json oj = {{"name", obj.name},
                            {"vertices", obj.input_vertices},
                            {"faces", obj.input_faces},
@@ -270,15 +266,13 @@ int runRender(CLI::App& cmd, RenderOptions& o) {
       total_segments += segments_drawn[i];
       total_strokes += visible[i].strokeCount();
       total_specks += specks;
-      total_line_pixels += line_pixels;
     }
     // Line pixels of the whole image count a pixel two objects share once.
     {
       VisibleStrokes all;
       for (const VisibleStrokes& v : visible) appendStrokes(v, all);
       rasterizeStrokes(all, rp.width, rp.height, line_mask);
-      total_line_pixels = 0;
-      for (uint8_t v : line_mask.on) total_line_pixels += v;
+      total_line_pixels = line_mask.count();
     }
     j["faces_drawn"] = total_faces_drawn;
     j["line_segments"] = total_segments;

@@ -201,10 +201,6 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   return r;
 }
 
-}  // namespace lodline
-
-namespace lodline {
-
 Result<RenderParams> resolveObjectStyle(const ViewOptions& base, const nlohmann::json& style,
                                         const std::string& where) {
   ViewOptions o = base;
@@ -214,11 +210,12 @@ Result<RenderParams> resolveObjectStyle(const ViewOptions& base, const nlohmann:
     return v.dump();
   };
   auto number = [&](const nlohmann::json& v, const std::string& key, float& out) -> Status {
-    if (v.is_number()) {
-      out = v.get<float>();
+    // As double first: a value beyond float's range must not be narrowed (undefined).
+    if (v.is_number() && std::abs(v.get<double>()) <= 1e30) {
+      out = static_cast<float>(v.get<double>());
       return {};
     }
-    return Error::runtime(where + "." + key + ": expected a number");
+    return Error::runtime(where + "." + key + ": expected a number (|x| <= 1e30)");
   };
   for (const auto& [key, v] : style.items()) {
     if (key == "style") o.style = text(v);

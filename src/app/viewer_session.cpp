@@ -183,8 +183,7 @@ Status ViewerSession::frame(int width, int height, float dt) {
     st.strokes += ld.strokes().strokeCount();
     measureStrokeLengths(ld.strokes(), [&](glm::vec3 p) { return projectToPixels(cam, p, width, height); },
                          stroke_lengths_);
-    st.specks += static_cast<size_t>(std::count_if(stroke_lengths_.begin(), stroke_lengths_.end(),
-                                                   [](float len) { return len < 3.0f; }));
+    st.specks += countSpecks(stroke_lengths_);
   }
   const CpuTimings t = scene.timings();
   st.adapt_ms = scene.adaptMs();

@@ -127,12 +127,18 @@ uint64_t unmatchedMoved(const std::vector<glm::ivec2>& moved, const LineMask& ta
 
 }  // namespace
 
+uint64_t LineMask::count() const {
+  uint64_t n = 0;
+  for (uint8_t v : on) n += v;
+  return n;
+}
+
 CompensatedChange compareMasksCompensated(const LineMask& previous, const SurfaceImage& previous_surface,
                                           const Camera& previous_camera, const LineMask& current,
                                           const SurfaceImage& current_surface, const Camera& current_camera,
                                           const CompensationParams& params) {
   CompensatedChange c;
-  for (uint8_t v : current.on) c.line_pixels += v;
+  c.line_pixels = current.count();
   const int w = current.width, h = current.height;
   auto same = [&](int ow, int oh) { return ow == w && oh == h; };
   if (!same(previous.width, previous.height) || !same(previous_surface.width, previous_surface.height) ||
@@ -173,7 +179,7 @@ void rasterizeStrokes(const VisibleStrokes& strokes, int width, int height, Line
 
 MaskChange compareMasks(const LineMask& previous, const LineMask& current, int tolerance) {
   MaskChange c;
-  for (uint8_t v : current.on) c.line_pixels += v;
+  c.line_pixels = current.count();
   if (previous.width != current.width || previous.height != current.height) {
     c.appeared = c.line_pixels;  // no comparable previous frame: everything is new
     return c;

@@ -27,6 +27,8 @@ struct LineMask {
   int height = 0;
   std::vector<uint8_t> on;
   bool at(int x, int y) const { return on[static_cast<size_t>(y) * width + x] != 0; }
+  /// Pixels on.
+  uint64_t count() const;
 };
 
 /// Marks the pixels under the visible strokes' samples (≤ 1 px apart, so strokes are

@@ -31,12 +31,13 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
     auto lower = [&](uint32_t e, float d) {
       for (uint32_t v : adj.edges[e]) full_min_dot_[v] = std::min(full_min_dot_[v], d);
     };
+    std::vector<uint32_t> marked_edge_ids;  // marked and non-manifold edges
     for (const EdgeKey& k : mesh_.marked_edges)
-      if (const uint32_t e = adj.findEdge(k[0], k[1]); e != kNoIndex) marked_edge_ids_.push_back(e);
+      if (const uint32_t e = adj.findEdge(k[0], k[1]); e != kNoIndex) marked_edge_ids.push_back(e);
     for (uint32_t e = 0; e < adj.edges.size(); ++e) {
       const uint32_t count = adj.edge_face_count[e];
       if (count > 2) {
-        marked_edge_ids_.push_back(e);
+        marked_edge_ids.push_back(e);
       } else if (count == 2) {
         const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
         const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
@@ -45,7 +46,7 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
       }
     }
     full_min_dot_marked_ = full_min_dot_;
-    for (uint32_t e : marked_edge_ids_) {
+    for (uint32_t e : marked_edge_ids) {
       for (uint32_t v : adj.edges[e]) full_min_dot_marked_[v] = -2.0f;
     }
     updateFullCreaseVertices();

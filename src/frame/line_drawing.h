@@ -97,7 +97,6 @@ class LineDrawing {
   // Smallest n1·n2 over each full-detail vertex's edges, without / with marked and
   // non-manifold edges counted as creases (−2): see updateFullCreaseVertices().
   std::vector<float> full_min_dot_, full_min_dot_marked_;
-  std::vector<uint32_t> marked_edge_ids_;
   float crease_angle_ = -1.0f;
   bool marked_ = false;
   uint64_t crease_version_ = 0;

@@ -156,7 +156,11 @@ size_t Renderer::chamferEdgesDrawn() const {
 }
 
 void Renderer::draw(const Camera& camera, const RenderParams& params, int width, int height) {
-  std::vector<RenderParams> styles(objects_.size(), params);
+  if (objects_.size() == 1) {
+    draw(camera, params, std::span<const RenderParams>(&params, 1), width, height);
+    return;
+  }
+  const std::vector<RenderParams> styles(objects_.size(), params);
   draw(camera, params, styles, width, height);
 }
 
@@ -328,13 +332,14 @@ void SurfaceTarget::readback(SurfaceImage& out) const {
   out.width = width_;
   out.height = height_;
   out.texels.resize(static_cast<size_t>(width_) * height_);
-  std::vector<glm::vec4> rows(out.texels.size());
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, rows.data());
-  for (int y = 0; y < height_; ++y)
-    std::memcpy(&out.texels[static_cast<size_t>(y) * width_], &rows[static_cast<size_t>(height_ - 1 - y) * width_],
-                sizeof(glm::vec4) * width_);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, out.texels.data());
+  // OpenGL's rows run bottom-up: flip in place (no per-frame copy of the image).
+  for (int y = 0; y < height_ / 2; ++y) {
+    auto top = out.texels.begin() + static_cast<ptrdiff_t>(y) * width_;
+    std::swap_ranges(top, top + width_, out.texels.begin() + static_cast<ptrdiff_t>(height_ - 1 - y) * width_);
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

@@ -3,7 +3,9 @@
 // curves rather than per-face pieces.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -42,6 +44,14 @@ struct ChainScratch {
 /// crease corners, end strokes). Every segment appears in exactly one stroke.
 /// O(S log S) for S segments; allocation-free after warm-up.
 void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch);
+
+/// Strokes shorter than this on screen are "specks" (stats, capture metrics, viewer panel).
+inline constexpr float kSpeckLengthPx = 3.0f;
+
+/// How many of the stroke lengths `length_px` (pixels) are below kSpeckLengthPx.
+inline size_t countSpecks(std::span<const float> length_px) {
+  return static_cast<size_t>(std::count_if(length_px.begin(), length_px.end(), [](float len) { return len < kSpeckLengthPx; }));
+}
 
 /// Length of every stroke after projecting its points with `project` (glm::vec3 →
 /// glm::vec2, e.g. to pixels): `out` gets strokeCount() floats in the projected units.
