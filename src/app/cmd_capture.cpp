@@ -123,11 +123,6 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
   const ResolvedDetail* detail = &loaded.detail;
   const RenderParams& rp = loaded.view.render;
   SceneDrawing& scene = loaded.drawing;
-  size_t model_vertices = 0, model_faces = 0;
-  for (const auto& obj : scene.objects()) {
-    model_vertices += obj.input_vertices;
-    model_faces += obj.input_faces;
-  }
   const float aspect = static_cast<float>(rp.width) / static_cast<float>(rp.height);
 
   Result<CameraPath> cam_path = scenePath(loaded, o.path, givenOnCommandLine(cmd, "path"), o.duration, aspect);
@@ -304,8 +299,8 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
               << "  churn_raw mean " << mean_raw << "  specks mean " << mean_specks << '\n';
   if (!o.stats.empty()) {
     nlohmann::json j;
-    j["model"] = {{"path", loaded.view.model.string()}, {"vertices", model_vertices},
-                  {"faces", model_faces}};
+    j["model"] = {{"path", loaded.view.model.string()}, {"vertices", scene.inputVertexCount()},
+                  {"faces", scene.inputFaceCount()}};
     j["image"] = {{"width", rp.width}, {"height", rp.height}};
     j["capture"] = {{"path", o.path}, {"fps", o.fps}, {"first_frame", range->first},
                     {"frames", done}, {"interrupted", interrupted}};

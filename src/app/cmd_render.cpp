@@ -94,11 +94,6 @@ int runRender(CLI::App& cmd, RenderOptions& o) {
                                     " (use --backend gl)"));
   const RenderParams& rp = loaded.view.render;
   const ResolvedDetail& detail = loaded.detail;
-  size_t model_vertices = 0, model_faces = 0;
-  for (const auto& obj : scene.objects()) {
-    model_vertices += obj.input_vertices;
-    model_faces += obj.input_faces;
-  }
   Stopwatch stage;
 
   const float aspect = static_cast<float>(rp.width) / static_cast<float>(rp.height);
@@ -170,7 +165,7 @@ int runRender(CLI::App& cmd, RenderOptions& o) {
   if (!o.stats.empty()) {
     const CpuTimings t = scene.timings();
     nlohmann::json j;
-    j["model"] = {{"path", loaded.view.model.string()}, {"vertices", model_vertices}, {"faces", model_faces}};
+    j["model"] = {{"path", loaded.view.model.string()}, {"vertices", scene.inputVertexCount()}, {"faces", scene.inputFaceCount()}};
     j["image"] = {{"width", rp.width}, {"height", rp.height}};
     // Pixels the model covers (differ from the background): the image area detail control
     // divides by T.

@@ -21,6 +21,18 @@ void SceneDrawing::add(Object object) {
   objects_.push_back(std::move(object));
 }
 
+size_t SceneDrawing::inputVertexCount() const {
+  size_t n = 0;
+  for (const Object& o : objects_) n += o.input_vertices;
+  return n;
+}
+
+size_t SceneDrawing::inputFaceCount() const {
+  size_t n = 0;
+  for (const Object& o : objects_) n += o.input_faces;
+  return n;
+}
+
 bool SceneDrawing::detailControlled() const {
   return std::any_of(objects_.begin(), objects_.end(), [](const Object& o) { return o.drawing->detailControlled(); });
 }

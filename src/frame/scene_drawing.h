@@ -42,6 +42,9 @@ class SceneDrawing {
 
   /// Bounds of all objects together (world space).
   const Bounds& bounds() const { return bounds_; }
+  /// Vertices and faces of the objects' full-detail meshes, summed.
+  size_t inputVertexCount() const;
+  size_t inputFaceCount() const;
   /// True when any object's level of detail changes with the view.
   bool detailControlled() const;
 
