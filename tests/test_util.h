@@ -5,8 +5,15 @@
 #include <string>
 
 #include "core/mesh.h"
+#include "core/render_params.h"
 
 namespace lodline::test {
+
+/// A frame and the style of its one object: what a single-model render needs.
+struct Look {
+  FrameParams frame;
+  ObjectStyle style;
+};
 
 /// Path of a CGAL demo mesh (data/meshes/NAME, extracted by scripts/setup.sh), or an empty
 /// path when it is not there (tests then GTEST_SKIP with a message).

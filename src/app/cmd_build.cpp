@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "cgal/simplify.h"
 #include "app/model.h"
 #include "core/timer.h"
 #include "io/load_mesh.h"

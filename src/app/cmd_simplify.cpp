@@ -1,10 +1,5 @@
-// `lodline simplify MODEL --max-error E% -o OUT.off`: error-bounded static simplification,
-// the static half of Pan, Zhou, Shi, "Real-time rendering algorithm based on hybrid static and
-// dynamic simplification methods" (DESIGN.md §4). Quadric-error half-edge collapses (the
-// progressive-mesh builder, src/pm) run until the measured error
-//   E_s = (Σ_{v∈X_o} d(v,M_s) + Σ_{v∈X_s} d(v,M_o)) / (|X_o|+|X_s|)
-// (exact distances through CGAL's AABB tree, src/cgal) would exceed E% of the bounding-box
-// diagonal; the returned level is always a measured one, so the bound is never exceeded.
+// `lodline simplify MODEL --max-error E% -o OUT.off`: error-bounded static simplification
+// (cgal/simplify.h: Pan, Zhou, Shi's static half, docs/design.md §2.4).
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
@@ -13,10 +8,7 @@
 #include "app/commands.h"
 #include "core/timer.h"
 #include "io/load_mesh.h"
-#include "pm/progressive_mesh.h"
-#ifdef LODLINE_HAVE_CGAL
-#include "cgal/mesh_distance.h"
-#endif
+#include "cgal/simplify.h"
 
 namespace lodline {
 
@@ -29,35 +21,6 @@ Result<double> parsePercent(const std::string& text, const std::string& option) 
     return Error::usage(option + ": expected a percentage of the bounding-box diagonal in [0, 100], e.g. 0.02%, got '" +
                         text + "'");
   return v / 100.0;
-}
-
-Result<SimplifyOutcome> simplifyMesh(const TriMesh& mesh, double bound, const std::string& what) {
-#ifdef LODLINE_HAVE_CGAL
-  auto pm = buildProgressiveMesh(mesh);
-  if (!pm) return Error::runtime(what + ": " + pm.error().message);
-  auto tree = SurfaceDistance::create(mesh, what);
-  if (!tree) return tree.error();
-  const double diagonal = computeBounds(mesh.positions).diagonal();
-  if (!(diagonal > 0.0)) return Error::runtime(what + ": bounding box has zero diagonal");
-  auto error = [&](const TriMesh& candidate) -> double {
-    auto d = measureMeshDistance(mesh, *tree, candidate);
-    return d ? d->e_s / diagonal : -1.0;
-  };
-  BoundedSimplification b = simplifyWithinBound(*pm, bound, error);
-  auto d = measureMeshDistance(mesh, *tree, b.mesh);
-  if (!d) return Error::runtime(what + ": " + d.error().message);
-  SimplifyOutcome out;
-  out.mesh = std::move(b.mesh);
-  out.e_s = d->e_s;
-  out.e_s_rel = d->relativeEs();
-  out.hausdorff = d->hausdorff;
-  out.evaluations = b.evaluations + 1;
-  return out;
-#else
-  (void)mesh;
-  (void)bound;
-  return Error::runtime(what + ": lodline was built without CGAL (libcgal-dev): cannot measure E_s");
-#endif
 }
 
 Command addSimplifyCommand(CLI::App& parent) {

@@ -87,14 +87,14 @@ void onKey(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_MINUS:
     case GLFW_KEY_KP_SUBTRACT:
     case GLFW_KEY_PAGE_DOWN: v.zoom(1.15f); break;
-    case GLFW_KEY_T: v.setStyleAll(v.frameParams().style == Style::kToon ? Style::kLines : Style::kToon); break;
+    case GLFW_KEY_T: v.setStyleAll(v.defaultStyle().style == Style::kToon ? Style::kLines : Style::kToon); break;
     case GLFW_KEY_1:
     case GLFW_KEY_2:
     case GLFW_KEY_3:
     case GLFW_KEY_4: {
       const int k = key - GLFW_KEY_1;
-      const bool on = !v.frameParams().lines.kinds[k].enabled;
-      v.frameParams().lines.kinds[k].enabled = on;
+      const bool on = !v.defaultStyle().lines.kinds[k].enabled;
+      v.defaultStyle().lines.kinds[k].enabled = on;
       for (auto& o : v.scene().objects()) o.style.lines.kinds[k].enabled = on;
       for (auto& o : v.description().objects) o.style.erase("lines");
       v.touch();
@@ -197,9 +197,10 @@ int runView(CLI::App& cmd, ViewCommandOptions& o) {
     if (!path) return reportError(path.error());
     play = std::move(path.value());
   }
-  const RenderParams rp = (*loaded)->view.render;
+  const FrameParams frame = (*loaded)->view.frame;
   const std::string title = "lodline - " + (*loaded)->view.model.filename().string();
-  auto window = GlfwWindow::create(rp.width, rp.height, title, rp.msaa);
+  // Single-sampled: frames are drawn (multisampled) offscreen by the presenter and copied in.
+  auto window = GlfwWindow::create(frame.width, frame.height, title, 1);
   if (!window) return reportError(window.error());
   GLFWwindow* w = window->handle();
   WindowState s;
@@ -225,7 +226,6 @@ int runView(CLI::App& cmd, ViewCommandOptions& o) {
       s.session = &v;
       if (play) v.play(std::move(play));
       initPanel(v, s.panel);
-      if (rp.msaa > 1) glEnable(GL_MULTISAMPLE);
       Stopwatch fps_clock, frame_clock;
       int frames = 0, total_frames = 0;
       while (!glfwWindowShouldClose(w)) {
@@ -251,7 +251,7 @@ int runView(CLI::App& cmd, ViewCommandOptions& o) {
           break;
         }
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        v.draw(fb_w, fb_h);
+        v.draw();
         if (s.screenshot) {  // the drawing, without the panel
           if (Status st = writePng("lodline-view.png", readFramebuffer(fb_w, fb_h)); !st) reportError(st.error());
           else std::cerr << "lodline: saved lodline-view.png\n";
@@ -280,9 +280,10 @@ int runView(CLI::App& cmd, ViewCommandOptions& o) {
           s.panel.fps = static_cast<float>(frames * 1000.0 / fps_clock.lap());
           frames = 0;
           char buf[256];
-          std::snprintf(buf, sizeof(buf), "%s - %.1f fps - %zu faces (T %.3g px^2) - %zu line segments", title.c_str(),
-                        static_cast<double>(s.panel.fps), v.renderer().faceCount(), v.detail().target_area,
-                        v.renderer().segmentsDrawn());
+          const ObjectReport& r = v.report().total;
+          std::snprintf(buf, sizeof(buf), "%s - %.1f fps - %llu faces (T %.3g px^2) - %llu line segments", title.c_str(),
+                        static_cast<double>(s.panel.fps), static_cast<unsigned long long>(r.faces_drawn),
+                        v.detail().target_area, static_cast<unsigned long long>(r.line_segments));
           glfwSetWindowTitle(w, buf);
         }
         if (last) break;

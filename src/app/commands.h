@@ -30,20 +30,6 @@ Command addSweepCommand(CLI::App& parent);
 /// "0.02") into a fraction (0.0002); usage error naming `option` otherwise.
 Result<double> parsePercent(const std::string& text, const std::string& option);
 
-/// Outcome of simplifyMesh().
-struct SimplifyOutcome {
-  TriMesh mesh;            ///< the simplified mesh
-  double e_s_rel = 0.0;    ///< measured E_s / diagonal
-  double e_s = 0.0;        ///< measured E_s, model units
-  double hausdorff = 0.0;  ///< symmetric Hausdorff distance over the vertices, model units
-  int evaluations = 0;     ///< E_s measurements made by the search
-};
-
-/// Static pre-simplification of Pan, Zhou, Shi (DESIGN.md §4): the quadric-error collapses of
-/// the progressive-mesh builder, stopped where the measured E_s (CGAL AABB tree) would exceed
-/// `bound` × the bounding-box diagonal. `what` names the model in errors. Needs lodline_cgal.
-Result<SimplifyOutcome> simplifyMesh(const TriMesh& mesh, double bound, const std::string& what);
-
 /// Prints "lodline: <message>" to stderr and returns the error's exit code.
 int reportError(const Error& e);
 

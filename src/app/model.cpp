@@ -8,10 +8,7 @@
 #include <unistd.h>
 
 #include "core/timer.h"
-#include "core/worker_pool.h"
 #include "io/image.h"
-#include "io/load_mesh.h"
-#include "pm/pm_file.h"
 
 namespace lodline {
 
@@ -83,17 +80,19 @@ Result<std::shared_ptr<const DetailMap>> readDetailMap(const std::filesystem::pa
 
 Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
   ResolvedDetail r;
-  if (o.lod == "pm") r.mode = LodMode::kPm;
-  else if (o.lod == "cluster") r.mode = LodMode::kCluster;
-  else if (o.lod == "none") r.mode = LodMode::kNone;
-  else return Error::usage("--lod: expected pm, cluster or none, got '" + o.lod + "'");
-  if (o.full_detail) {
-    if (r.mode == LodMode::kCluster) return Error::usage("--full-detail and --lod cluster exclude each other");
-    r.mode = LodMode::kNone;
-  }
-  r.full_detail = r.mode == LodMode::kNone;
+  if (o.lod != "pm" && o.lod != "cluster" && o.lod != "none")
+    return Error::usage("--lod: expected pm, cluster or none, got '" + o.lod + "'");
+  if (o.full_detail && o.lod == "cluster") return Error::usage("--full-detail and --lod cluster exclude each other");
   if (!(o.pixel_error > 0.0f && o.pixel_error <= 1e4f)) return Error::usage("--pixel-error: must be in (0, 10000] px^2");
-  r.cluster.pixel_error = o.pixel_error;
+  if (o.full_detail || o.lod == "none") {
+    r.lod = FullDetail{};
+  } else if (o.lod == "cluster") {
+    ClusteredDetail c;
+    c.params.pixel_error = o.pixel_error;
+    r.lod = c;
+  } else {
+    r.lod = ProgressiveDetail{o.cache_dir.empty() ? defaultCacheDir() : std::filesystem::path(o.cache_dir)};
+  }
   r.max_adapt_frames = o.max_adapt_frames;
   DetailParams& p = r.params;
   if (!(o.target_area > 0.0f && o.target_area < 1e7f)) return Error::usage("--target-area: must be > 0 px^2");
@@ -132,7 +131,6 @@ Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
   if (!(o.smoothing_alpha > 0.0f && o.smoothing_alpha < 1.0f)) return Error::usage("--smoothing-alpha: must be in (0, 1)");
   if (!(o.smoothing_time > 0.0f && o.smoothing_time <= 60.0f)) return Error::usage("--smoothing-time: must be in (0, 60] s");
   r.smoothing = {o.smoothing == "on", o.smoothing_alpha, o.smoothing_time};
-  r.cache_dir = o.cache_dir.empty() ? defaultCacheDir() : std::filesystem::path(o.cache_dir);
   return r;
 }
 
@@ -220,113 +218,62 @@ Status applySceneSettings(const Scene& scene, CLI::App& cmd) {
   return {};
 }
 
-Result<std::unique_ptr<LoadedScene>> loadSceneObjects(Scene scene, const ViewOptions& view_options,
-                                                      const ResolvedView& view, const ResolvedDetail& detail) {
-  auto loaded = std::make_unique<LoadedScene>();
-  loaded->view = view;
-  loaded->detail = detail;
-  auto pool = std::make_shared<WorkerPool>(ShapeParams{}.threads);
-  Stopwatch sw;
+Result<std::vector<ObjectStyle>> resolveObjectStyles(const Scene& scene, const ViewOptions& view) {
+  std::vector<ObjectStyle> styles;
   for (const SceneObject& obj : scene.objects) {
-    auto style = resolveObjectStyle(view_options, obj.style, obj.where);
+    auto style = resolveObjectStyle(view, obj.style, obj.where);
     if (!style) return style.error();
-    if (scene.light_dir_eye) {
-      style->toon.light_dir_eye = *scene.light_dir_eye;
-      style->chamfer.light_dir_eye = *scene.light_dir_eye;
-    }
-    sw.lap();
-    auto mesh = loadObjectMesh(obj);
-    if (!mesh) return mesh.error();
-    loaded->load_ms += sw.lap();
-    SceneDrawing::Object o;
-    o.name = obj.name;
-    o.style = *style;
-    o.detail_factor = obj.detail_factor;
-    o.input_vertices = mesh->vertexCount();
-    o.input_faces = mesh->faceCount();
-    if (detail.mode == LodMode::kNone) {
-      o.drawing = std::make_unique<LodDrawing>(std::move(mesh.value()), view.line_params, pool);
-    } else if (detail.mode == LodMode::kCluster) {
-      o.drawing = std::make_unique<LodDrawing>(std::move(mesh.value()), detail.cluster, view.line_params, pool);
-      loaded->cache_note = "vertex clustering";
-    } else {
-      std::string note;
-      const uint64_t hash = meshContentHash(*mesh);
-      auto pm = loadOrBuildPm(*mesh, hash, detail.cache_dir, {},
-                              buildProgressBar("lodline: building progressive mesh of " + obj.name), &note);
-      if (!pm) return Error::runtime(obj.mesh.string() + ": " + pm.error().message);
-      if (!loaded->cache_note.empty()) loaded->cache_note += "; ";
-      loaded->cache_note += note;
-      auto shared = std::make_shared<const ProgressiveMesh>(std::move(pm.value()));
-      o.drawing = std::make_unique<LodDrawing>(std::move(mesh.value()), std::move(shared), view.line_params, pool);
-    }
-    loaded->pm_ms += sw.lap();
-    loaded->drawing.add(std::move(o));
+    styles.push_back(*style);
   }
-  loaded->camera = scene.camera;
-  loaded->scene = std::move(scene);
-  return loaded;
+  return styles;
 }
 
-Result<std::unique_ptr<LoadedScene>> loadInput(CLI::App& cmd, ViewOptions& view, DetailOptions& detail) {
+Result<SceneInput> readInput(CLI::App& cmd, ViewOptions& view, DetailOptions& detail, double* read_ms) {
   if (view.models.size() != 1)
     return Error::usage("give exactly one MODEL (a mesh, scene or glTF file; got " + std::to_string(view.models.size()) +
                         ")");
   Stopwatch sw;
+  SceneInput in;
   auto scene = loadScene(std::filesystem::path(view.models[0]));
   if (!scene) return scene.error();
-  const double scene_ms = sw.lap();
-  if (Status s = applySceneSettings(*scene, cmd); !s) return s.error();
+  in.scene = std::move(scene.value());
+  if (read_ms) *read_ms = sw.lap();
+  if (Status s = applySceneSettings(in.scene, cmd); !s) return s.error();
   auto resolved = resolveViewOptions(view);
   if (!resolved) return resolved.error();
+  in.view = std::move(resolved.value());
   auto resolved_detail = resolveDetailOptions(detail);
   if (!resolved_detail) return resolved_detail.error();
+  in.detail = std::move(resolved_detail.value());
   // The command line's --view and --fov win over the scene's camera.
-  if (scene->camera && givenOnCommandLine(cmd, "view")) scene->camera.reset();
-  if (scene->camera && scene->camera->fov_deg && !givenOnCommandLine(cmd, "fov")) resolved->fov_deg = *scene->camera->fov_deg;
-  if (scene->camera && scene->camera->view) {
-    auto orbit = parseOrbitView(*scene->camera->view);
-    if (!orbit) return Error::runtime(scene->file.string() + ": camera.view: " + orbit.error().message);
-    resolved->orbit = *orbit;
-    resolved->orbit_given = true;
+  auto& camera = in.scene.camera;
+  if (camera && givenOnCommandLine(cmd, "view")) camera.reset();
+  if (camera && camera->fov_deg && !givenOnCommandLine(cmd, "fov")) in.view.fov_deg = *camera->fov_deg;
+  if (camera && camera->view) {
+    auto orbit = parseOrbitView(*camera->view);
+    if (!orbit) return Error::runtime(in.scene.file.string() + ": camera.view: " + orbit.error().message);
+    in.view.orbit = *orbit;
+    in.view.orbit_given = true;
   }
-  auto loaded = loadSceneObjects(std::move(scene.value()), view, *resolved, *resolved_detail);
+  // The scene's light is the frame's (toon, shaded and chamfer highlights alike).
+  if (in.scene.light_dir_eye) in.view.frame.light_dir_eye = *in.scene.light_dir_eye;
+  auto styles = resolveObjectStyles(in.scene, view);
+  if (!styles) return styles.error();
+  in.styles = std::move(styles.value());
+  return in;
+}
+
+Result<std::unique_ptr<LoadedScene>> loadInput(CLI::App& cmd, ViewOptions& view, DetailOptions& detail) {
+  double read_ms = 0.0;
+  auto input = readInput(cmd, view, detail, &read_ms);
+  if (!input) return input.error();
+  auto progress = [](const SceneObject& obj) {
+    return buildProgressBar("lodline: building progressive mesh of " + obj.name);
+  };
+  auto loaded = loadSceneDrawing(std::move(input.value()), progress);
   if (!loaded) return loaded.error();
-  (*loaded)->load_ms += scene_ms;
+  (*loaded)->build.load_ms += read_ms;
   return loaded;
-}
-
-Result<Camera> initialCamera(const LoadedScene& loaded, float aspect) {
-  const Bounds& bounds = loaded.drawing.bounds();
-  if (loaded.camera && loaded.camera->explicit_pose) {
-    Camera cam;
-    cam.eye = loaded.camera->eye;
-    cam.target = loaded.camera->target;
-    cam.up = loaded.camera->up;
-    cam.fov_deg = loaded.view.fov_deg;
-    fitClipPlanes(cam, bounds);
-    return cam;
-  }
-  if (loaded.camera && loaded.camera->path) {
-    auto path = scenePath(loaded, "", false, loaded.camera->duration.value_or(8.0), aspect);
-    if (!path) return path.error();
-    return path->at(path->keys().front().time, bounds);
-  }
-  return orbitCamera(bounds, loaded.view.orbit, loaded.view.fov_deg, aspect);
-}
-
-Result<CameraPath> scenePath(const LoadedScene& loaded, const std::string& name_or_file, bool given, double duration,
-                             float aspect) {
-  std::string name = name_or_file;
-  if (!given && loaded.camera && loaded.camera->path) {
-    name = *loaded.camera->path;
-    if (loaded.camera->duration) duration = *loaded.camera->duration;
-  }
-  const auto& names = builtinPathNames();
-  if (std::find(names.begin(), names.end(), name) != names.end() ||
-      std::filesystem::path(name).extension() != ".json")  // unknown names get the usage error
-    return builtinPath(name, loaded.drawing.bounds(), loaded.view.fov_deg, aspect, duration);
-  return loadCameraPath(name);
 }
 
 }  // namespace lodline

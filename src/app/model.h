@@ -1,8 +1,7 @@
-// Loading what a command draws: a mesh file, a scene file (.json) or a glTF file, as a
-// SceneDrawing of one or more objects, each with its level of detail (progressive mesh from
-// the cache, built and cached on first use; vertex clustering; or full detail) and its style.
-// Scene "settings" are applied as the command's own options (the command line wins), so
-// the CLI, scene files and the viewer fill the same parameter structs.
+// The detail-control options and loading what a command draws: a mesh file, a scene file
+// (.json) or a glTF file. Scene "settings" are applied as the command's own options (the
+// command line wins), so the CLI, scene files and the viewer fill the same parameter structs;
+// the scene itself is built by frame/scene_builder.h.
 #pragma once
 
 #include <filesystem>
@@ -14,9 +13,7 @@
 
 #include "app/options.h"
 #include "core/result.h"
-#include "frame/camera_path.h"
-#include "frame/scene_drawing.h"
-#include "frame/temporal_smoothing.h"
+#include "frame/scene_builder.h"
 #include "io/scene_file.h"
 #include "lod/adaptive_mesh.h"
 
@@ -45,21 +42,6 @@ struct DetailOptions {
   float smoothing_time = SmoothingParams{}.seconds;
 };
 
-/// Level of detail: progressive mesh with detail control, per-frame vertex clustering, none.
-enum class LodMode { kPm, kCluster, kNone };
-
-struct ResolvedDetail {
-  SmoothingParams smoothing;
-  bool full_detail = false;  ///< mode == LodMode::kNone
-  LodMode mode = LodMode::kPm;
-  ClusterParams cluster;     ///< pixel error for LodMode::kCluster (foveation comes from params)
-  DetailParams params;
-  std::string detail_map_file;  ///< the --detail-map file (empty: none), for writing scenes back
-  float detail_map_scale = 8.0f;
-  std::filesystem::path cache_dir;
-  int max_adapt_frames = 300;
-};
-
 void addDetailOptions(CLI::App& cmd, DetailOptions& o);
 /// Reads a detail map: a PNG whose grey level v at a pixel multiplies T by (v/255)·scale.
 Result<std::shared_ptr<const DetailMap>> readDetailMap(const std::filesystem::path& path, float scale);
@@ -77,39 +59,19 @@ Status applySceneSettings(const Scene& scene, CLI::App& cmd);
 /// True when the option `--name` of `cmd` was given on the command line.
 bool givenOnCommandLine(const CLI::App& cmd, const std::string& name);
 
-/// What a command needs to draw its input.
-struct LoadedScene {
-  Scene scene;
-  ResolvedView view;       ///< frame parameters (size, background, msaa, default style)
-  ResolvedDetail detail;
-  SceneDrawing drawing;    ///< one object per scene object, styles resolved
-  double load_ms = 0.0;    ///< reading and checking mesh files
-  double pm_ms = 0.0;      ///< progressive meshes from the cache or built
-  std::string cache_note;  ///< what happened to the progressive-mesh caches
-  /// The input's camera unless the command line gave --view: the scene file's view, pose or
-  /// path; none: frame the scene with ResolvedView::orbit.
-  std::optional<SceneCamera> camera;
-};
-
 /// Reads the input named by `view.models` (mesh, scene or glTF), applies its settings to
-/// `cmd`'s options not given on the command line (so `view` and `detail` are read after),
-/// resolves the frame's and each object's parameters and loads every object: its mesh in
-/// world space and its level of detail. Objects share one worker pool.
+/// `cmd`'s options not given on the command line (so `view` and `detail` are read after)
+/// and resolves the frame's parameters (the scene's camera and light included) and each
+/// object's style. `read_ms` (optional) receives the time spent.
+Result<SceneInput> readInput(CLI::App& cmd, ViewOptions& view, DetailOptions& detail, double* read_ms = nullptr);
+
+/// readInput(), then loads every object (frame/scene_builder.h): its mesh in world space and
+/// its level of detail, with a progress bar for progressive-mesh builds on a terminal.
 Result<std::unique_ptr<LoadedScene>> loadInput(CLI::App& cmd, ViewOptions& view, DetailOptions& detail);
 
-/// Loads the objects of `scene` with the given parameters (used by loadInput and by the
-/// viewer). `view_options` are the frame's options before object overrides.
-Result<std::unique_ptr<LoadedScene>> loadSceneObjects(Scene scene, const ViewOptions& view_options,
-                                                      const ResolvedView& view, const ResolvedDetail& detail);
-
-/// The frame's camera for an image of aspect `aspect`: the scene's camera (a path at its
-/// start time), else the orbit of ResolvedView around the scene's bounds; clip planes fitted.
-Result<Camera> initialCamera(const LoadedScene& loaded, float aspect);
-
-/// The camera path of a capture: `name_or_file` (built-in name or .json), else the scene
-/// file's path, around the scene's bounds.
-Result<CameraPath> scenePath(const LoadedScene& loaded, const std::string& name_or_file, bool given,
-                             double duration, float aspect);
+/// The resolved style of every object of `scene`: the frame's options `view` with each
+/// object's style keys applied.
+Result<std::vector<ObjectStyle>> resolveObjectStyles(const Scene& scene, const ViewOptions& view);
 
 /// Stderr progress bar for progressive-mesh builds: silent unless stderr is a terminal and
 /// the build has run for more than a second.

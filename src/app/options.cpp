@@ -1,8 +1,12 @@
 #include "app/options.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
+
+#include "io/scene_file.h"
 
 namespace lodline {
 
@@ -94,8 +98,8 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   r.model = o.models[0];
   auto size = parseSize(o.size);
   if (!size) return size.error();
-  r.render.width = (*size)[0];
-  r.render.height = (*size)[1];
+  r.frame.width = (*size)[0];
+  r.frame.height = (*size)[1];
   if (!o.view.empty()) {
     auto v = parseOrbitView(o.view);
     if (!v) return v.error();
@@ -107,18 +111,18 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   r.fov_deg = o.fov_deg;
   auto style = parseStyle(o.style);
   if (!style) return style.error();
-  r.render.style = *style;
+  r.style.style = *style;
   if (o.line_width != 0.0f) {
     if (!(o.line_width > 0.0f && o.line_width <= 64.0f))
       return Error::usage("--line-width: must be in (0, 64] pixels");
-    r.render.lines.scaleWidths(o.line_width / r.render.lines[LineKind::kContour].width_px);
+    r.style.lines.scaleWidths(o.line_width / r.style.lines[LineKind::kContour].width_px);
   }
   auto bg = parseColor(o.background);
   if (!bg) return Error::usage("--background: " + bg.error().message);
-  r.render.background = *bg;
+  r.frame.background = *bg;
   if (o.msaa < 1 || o.msaa > 16) return Error::usage("--msaa: must be 1..16");
-  r.render.msaa = o.msaa;
-  ChamferParams& ch = r.render.chamfer;
+  r.frame.msaa = o.msaa;
+  ChamferParams& ch = r.style.chamfer;
   if (o.chamfer == "auto") {
     ch.enabled = true;
     ch.over_toon = false;
@@ -161,18 +165,17 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
       width = colour.substr(colon + 1);
       colour = colour.substr(0, colon);
     }
-    int index = -1;
-    for (int k = 0; k < kLineKindCount; ++k)
-      if (kind == lineKindName(static_cast<LineKind>(k))) index = k;
-    if (index < 0) return bad;
+    const auto parsed_kind = parseLineKind(kind);
+    if (!parsed_kind) return bad;
+    const int index = static_cast<int>(*parsed_kind);
     auto c = parseColor(colour);
     if (!c) return Error::usage("--line-style: " + c.error().message);
-    r.render.lines.kinds[index].color = *c;
+    r.style.lines.kinds[index].color = *c;
     if (!width.empty()) {
       float w = 0.0f;
       auto [p, ec] = std::from_chars(width.data(), width.data() + width.size(), w);
       if (ec != std::errc() || p != width.data() + width.size() || !(w > 0.0f && w <= 64.0f)) return bad;
-      r.render.lines.kinds[index].width_px = w;
+      r.style.lines.kinds[index].width_px = w;
     }
   }
   if (!(o.suggestive_threshold >= 0.0f && o.suggestive_threshold <= 100.0f))
@@ -183,26 +186,22 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   r.line_params.suggestive_threshold = o.suggestive_threshold;
   r.line_params.suggestive_fade = o.suggestive_fade;
   r.line_params.crease_angle_deg = o.crease_angle;
-  for (auto& k : r.render.lines.kinds) k.enabled = false;
+  for (auto& k : r.style.lines.kinds) k.enabled = false;
   std::stringstream ss(o.lines);
   std::string item;
   while (std::getline(ss, item, ',')) {
     if (item == "none" || item.empty()) continue;
-    bool found = false;
-    for (int k = 0; k < kLineKindCount; ++k)
-      if (item == lineKindName(static_cast<LineKind>(k))) {
-        r.render.lines.kinds[k].enabled = true;
-        found = true;
-      }
-    if (!found)
+    const auto kind = parseLineKind(item);
+    if (!kind)
       return Error::usage("--lines: unknown line kind '" + item +
                           "' (expected contour, suggestive, crease, boundary or none)");
+    r.style.lines[*kind].enabled = true;
   }
   return r;
 }
 
-Result<RenderParams> resolveObjectStyle(const ViewOptions& base, const nlohmann::json& style,
-                                        const std::string& where) {
+Result<ObjectStyle> resolveObjectStyle(const ViewOptions& base, const nlohmann::json& style,
+                                       const std::string& where) {
   ViewOptions o = base;
   o.models = {"(object)"};  // styles do not depend on the input
   auto text = [](const nlohmann::json& v) {
@@ -237,7 +236,77 @@ Result<RenderParams> resolveObjectStyle(const ViewOptions& base, const nlohmann:
   }
   auto r = resolveViewOptions(o);
   if (!r) return Error::runtime(where + ": " + r.error().message);
-  return r->render;
+  return r->style;
+}
+
+namespace {
+
+std::string hexColour(const glm::vec4& c) {
+  auto byte = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+  char buf[16];
+  std::snprintf(buf, sizeof(buf), "#%02x%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b), byte(c.a));
+  return buf;
+}
+
+// Shortest text that reads back as the same float (so a saved view renders the same bits).
+std::string exact(float v) {
+  char buf[32];
+  for (int digits = 6; digits <= 9; ++digits) {
+    std::snprintf(buf, sizeof(buf), "%.*g", digits, static_cast<double>(v));
+    if (std::strtof(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+}  // namespace
+
+nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, const ResolvedDetail& detail,
+                          const LineParams& lines, const std::filesystem::path& base_dir) {
+  nlohmann::json s;
+  s["size"] = std::to_string(frame.width) + "x" + std::to_string(frame.height);
+  s["style"] = styleName(style.style);
+  s["background"] = hexColour(frame.background);
+  s["msaa"] = frame.msaa;
+  std::string kinds;
+  nlohmann::json line_styles = nlohmann::json::array();
+  for (int k = 0; k < kLineKindCount; ++k) {
+    const LineStyle& ls = style.lines.kinds[k];
+    const char* name = lineKindName(static_cast<LineKind>(k));
+    if (ls.enabled) kinds += (kinds.empty() ? "" : ",") + std::string(name);
+    line_styles.push_back(std::string(name) + "=" + hexColour(ls.color) + ":" + exact(ls.width_px));
+  }
+  s["lines"] = kinds.empty() ? "none" : kinds;
+  s["line-style"] = line_styles;
+  const ChamferParams& ch = style.chamfer;
+  s["chamfer"] = !ch.enabled ? "off" : ch.over_toon ? "on" : "auto";
+  s["chamfer-radius"] = exact(ch.radius);
+  s["chamfer-k"] = exact(ch.k);
+  s["chamfer-angle"] = exact(ch.threshold_deg);
+  s["chamfer-shininess"] = exact(ch.shininess);
+  s["chamfer-compose"] = ch.compose == ChamferCompose::kAlpha ? "alpha" : "replace";
+  s["suggestive-threshold"] = exact(lines.suggestive_threshold);
+  s["suggestive-fade"] = exact(lines.suggestive_fade);
+  s["crease-angle"] = exact(lines.crease_angle_deg);
+
+  const DetailParams& d = detail.params;
+  s["lod"] = lodChoiceName(detail.lod);
+  if (const auto* cluster = std::get_if<ClusteredDetail>(&detail.lod)) s["pixel-error"] = exact(cluster->params.pixel_error);
+  s["target-area"] = exact(d.target_area);
+  s["t-collapse"] = exact(d.t_c);
+  s["t-split"] = exact(d.t_s);
+  if (!detail.detail_map_file.empty()) s["detail-map"] = pathRelativeTo(detail.detail_map_file, base_dir);
+  s["detail-map-scale"] = exact(detail.detail_map_scale);
+  s["depth-falloff"] = exact(d.depth_falloff);
+  s["foveation"] = exact(d.foveation);
+  if (d.focus_px.x >= 0.0f && d.focus_px.y >= 0.0f) s["focus"] = exact(d.focus_px.x) + "," + exact(d.focus_px.y);
+  s["object-factor"] = exact(d.object_factor);
+  s["geomorphs"] = d.geomorphs ? "on" : "off";
+  s["morph-time"] = exact(d.morph_time);
+  s["smoothing"] = detail.smoothing.enabled ? "on" : "off";
+  s["smoothing-alpha"] = exact(detail.smoothing.alpha);
+  s["smoothing-time"] = exact(detail.smoothing.seconds);
+  s["max-adapt-frames"] = detail.max_adapt_frames;
+  return s;
 }
 
 }  // namespace lodline

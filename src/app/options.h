@@ -13,6 +13,7 @@
 #include "core/camera.h"
 #include "core/render_params.h"
 #include "core/result.h"
+#include "frame/scene_builder.h"
 #include "lines/lines.h"
 
 namespace lodline {
@@ -42,20 +43,11 @@ struct ViewOptions {
   float crease_angle = LineParams{}.crease_angle_deg;
 };
 
-/// Everything a frame needs that does not depend on the model.
-struct ResolvedView {
-  std::filesystem::path model;  ///< the input: a mesh, scene (.json) or glTF file
-  RenderParams render;
-  LineParams line_params;       ///< thresholds of the line kinds (which kinds: render.lines)
-  OrbitView orbit;
-  bool orbit_given = false;     ///< --view was given (else: the default framing)
-  float fov_deg = 35.0f;
-};
-
 /// Adds the shared options to a subcommand.
 void addViewOptions(CLI::App& cmd, ViewOptions& o);
 
-/// Parses and checks the option strings; errors are usage errors (exit code 2).
+/// Parses and checks the option strings into the frame's parameters and the default style
+/// (frame/scene_builder.h); errors are usage errors (exit code 2).
 Result<ResolvedView> resolveViewOptions(const ViewOptions& o);
 
 /// Parses "AZ,EL,DIST" (degrees, degrees, bounding-sphere radii > 0).
@@ -64,7 +56,13 @@ Result<OrbitView> parseOrbitView(const std::string& s);
 /// The style of one scene object: `base` with the object's style keys (render option names:
 /// style, lines, line-style, line-width, chamfer, chamfer-radius) applied, resolved as the
 /// command-line options are. Errors name `where` and the key.
-Result<RenderParams> resolveObjectStyle(const ViewOptions& base, const nlohmann::json& style,
-                                        const std::string& where);
+Result<ObjectStyle> resolveObjectStyle(const ViewOptions& base, const nlohmann::json& style,
+                                       const std::string& where);
+
+/// The render options (long names) that reproduce `frame`, `style`, `detail` and `lines` —
+/// the "settings" of a saved view, the inverse of the options above. Paths (the detail map)
+/// are written relative to `base_dir`.
+nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, const ResolvedDetail& detail,
+                          const LineParams& lines, const std::filesystem::path& base_dir);
 
 }  // namespace lodline

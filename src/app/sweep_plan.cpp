@@ -8,10 +8,11 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
-#include "app/headless.h"
 #include "app/model.h"
 #include "app/options.h"
 #include "app/sweep.h"
+#include "core/hash.h"
+#include "gl/context.h"
 
 namespace lodline::sweep {
 namespace {
@@ -49,12 +50,6 @@ std::vector<std::string> splitList(const std::string& s) {
   return out;
 }
 
-uint32_t fnv1a(const std::string& s) {
-  uint32_t h = 2166136261u;
-  for (unsigned char c : s) h = (h ^ c) * 16777619u;
-  return h;
-}
-
 std::string runName(const std::vector<Axis>& axes, const std::vector<size_t>& index) {
   std::string name;
   for (size_t a = 0; a < axes.size(); ++a) {
@@ -63,7 +58,7 @@ std::string runName(const std::vector<Axis>& axes, const std::vector<size_t>& in
   }
   if (name.size() > 200) {  // file names are limited to 255 bytes
     char hash[16];
-    std::snprintf(hash, sizeof(hash), "%08x", fnv1a(name));
+    std::snprintf(hash, sizeof(hash), "%08x", static_cast<uint32_t>(hashText(name)));
     name = name.substr(0, 190) + "-" + hash;
   }
   return name;
@@ -129,7 +124,8 @@ Result<CheckedArgs> checkRenderValues(const std::string& model, const std::vecto
   if (auto b = parseContextBackend(context); !b) return b.error();
   if (backend != "gl" && backend != "soft")  // as render checks it
     return Error::usage("--backend: expected gl or soft, got '" + backend + "'");
-  return CheckedArgs{*resolved, d->cache_dir};
+  const auto* pm = std::get_if<ProgressiveDetail>(&d->lod);
+  return CheckedArgs{*resolved, pm ? pm->cache_dir : std::filesystem::path()};
 }
 
 // ---- The plan ----------------------------------------------------------------------------
@@ -294,9 +290,7 @@ Result<Plan> makePlan(const PlanOptions& o) {
         if (!checked) return checked.error();
         Bounds unit;
         unit.radius = 1.0f;
-        const RenderParams& rp = checked->view.render;
-        const Camera cam = orbitCamera(unit, v, checked->view.fov_deg,
-                                       static_cast<float>(rp.width) / static_cast<float>(rp.height));
+        const Camera cam = orbitCamera(unit, v, checked->view.fov_deg, checked->view.frame.aspect());
         v.distance = glm::length(cam.eye - cam.target);
       }
       run.args.push_back("--view=" + formatFloat(v.azimuth_deg) + "," + formatFloat(v.elevation_deg) + "," +
@@ -343,7 +337,7 @@ std::string namePart(const std::string& key, const std::string& value) {
     if (!safe(c)) c = '-';
   if (shown.size() > 40) shown.resize(40);
   char hash[16];
-  std::snprintf(hash, sizeof(hash), "%08x", fnv1a(value));
+  std::snprintf(hash, sizeof(hash), "%08x", static_cast<uint32_t>(hashText(value)));
   return key + "-" + shown + (shown.empty() ? "" : "-") + hash;
 }
 

@@ -24,7 +24,7 @@ void quantize(glm::vec4& c) {
 // hold once the panel sets them.
 template <class Edit>
 void editAllStyles(ViewerSession& s, std::initializer_list<const char*> keys, Edit&& edit) {
-  edit(s.frameParams());
+  edit(s.defaultStyle());
   for (auto& o : s.scene().objects()) edit(o.style);
   auto& objects = s.description().objects;
   for (auto& o : objects)
@@ -37,7 +37,9 @@ const char* kStyles[] = {"lines", "toon", "shaded"};
 void detailSection(ViewerSession& s, PanelState& st) {
   if (!ImGui::CollapsingHeader("Detail control", ImGuiTreeNodeFlags_DefaultOpen)) return;
   DetailParams& d = s.detail();
-  const char* mode = s.lodMode() == LodMode::kPm ? "progressive mesh" : s.lodMode() == LodMode::kCluster ? "vertex clustering" : "none (full detail)";
+  const char* mode = std::holds_alternative<ProgressiveDetail>(s.lod())  ? "progressive mesh"
+                     : std::holds_alternative<ClusteredDetail>(s.lod()) ? "vertex clustering"
+                                                                         : "none (full detail)";
   ImGui::Text("Level of detail: %s", mode);
   ImGui::SliderFloat("T (px^2)", &d.target_area, 0.25f, 4096.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
   {
@@ -101,7 +103,7 @@ void linesSection(ViewerSession& s) {
   if (!ImGui::CollapsingHeader("Lines")) return;
   for (int k = 0; k < kLineKindCount; ++k) {
     ImGui::PushID(k);
-    LineStyle ls = s.frameParams().lines.kinds[k];
+    LineStyle ls = s.defaultStyle().lines.kinds[k];
     bool changed = ImGui::Checkbox(lineKindName(static_cast<LineKind>(k)), &ls.enabled);
     ImGui::SameLine(140.0f);
     if (ImGui::ColorEdit4("colour", &ls.color.r, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel)) {
@@ -112,7 +114,7 @@ void linesSection(ViewerSession& s) {
     ImGui::SetNextItemWidth(110.0f);
     changed |= ImGui::SliderFloat("width", &ls.width_px, 0.5f, 8.0f, "%.2f px");
     if (changed)
-      editAllStyles(s, {"lines", "line-style", "line-width"}, [&](RenderParams& p) { p.lines.kinds[k] = ls; });
+      editAllStyles(s, {"lines", "line-style", "line-width"}, [&](ObjectStyle& p) { p.lines.kinds[k] = ls; });
     ImGui::PopID();
   }
   LineParams lp = s.lineParams();
@@ -124,9 +126,9 @@ void linesSection(ViewerSession& s) {
 
 void styleSection(ViewerSession& s) {
   if (!ImGui::CollapsingHeader("Style")) return;
-  int style = static_cast<int>(s.frameParams().style);
+  int style = static_cast<int>(s.defaultStyle().style);
   if (ImGui::Combo("Style (all objects)", &style, kStyles, 3)) s.setStyleAll(static_cast<Style>(style));
-  ChamferParams ch = s.frameParams().chamfer;
+  ChamferParams ch = s.defaultStyle().chamfer;
   int mode = !ch.enabled ? 2 : ch.over_toon ? 1 : 0;
   const char* modes[] = {"auto (shaded style)", "on (also over toon)", "off"};
   bool changed = ImGui::Combo("Chamfer", &mode, modes, 3);
@@ -145,13 +147,14 @@ void styleSection(ViewerSession& s) {
   if (changed) {
     ch.radius = std::isfinite(ch.radius) ? std::max(ch.radius, 0.0f) : 0.0f;
     ch.k = std::isfinite(ch.k) ? std::max(ch.k, 0.0f) : 0.0f;
-    editAllStyles(s, {"chamfer", "chamfer-radius"}, [&](RenderParams& p) { p.chamfer = ch; });
+    editAllStyles(s, {"chamfer", "chamfer-radius"}, [&](ObjectStyle& p) { p.chamfer = ch; });
   }
 }
 
 void statsSection(const ViewerSession& s, const PanelState& st) {
   if (!ImGui::CollapsingHeader("Frame statistics", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  const ViewerStats& v = s.stats();
+  const FrameReport& r = s.report();
+  const ObjectReport& t = r.total;
   ImGui::Text("%.1f fps", static_cast<double>(st.fps));
   if (ImGui::BeginTable("ms", 4)) {
     auto cell = [](const char* name, double ms) {
@@ -160,18 +163,21 @@ void statsSection(const ViewerSession& s, const PanelState& st) {
       ImGui::TableNextColumn();
       ImGui::Text("%.2f ms", ms);
     };
-    cell("adapt", v.adapt_ms);
-    cell("shape", v.shape_ms);
-    cell("view", v.view_ms);
-    cell("extract", v.extract_ms);
-    cell("chain", v.chain_ms);
-    cell("upload", v.upload_ms);
-    cell("draw", v.draw_ms);
+    cell("adapt", r.ms.adapt);
+    cell("shape", r.ms.shape);
+    cell("view", r.ms.view);
+    cell("extract", r.ms.extract);
+    cell("chain", r.ms.chain);
+    cell("upload", r.ms.upload);
+    cell("draw", r.ms.render);
+    cell("visibility", r.ms.visibility);
     ImGui::EndTable();
   }
-  ImGui::Text("active faces %zu, visible %zu", v.active_faces, v.visible_faces);
-  ImGui::Text("splits %zu, collapses %zu, morphing %zu", v.splits, v.collapses, v.morphing);
-  ImGui::Text("strokes %zu, specks %zu (before hiding)", v.strokes, v.specks);
+  const auto u = [](uint64_t v) { return static_cast<unsigned long long>(v); };
+  ImGui::Text("active faces %llu, visible %llu", u(t.active_faces), u(t.lod ? t.lod->visible_faces : 0));
+  if (t.lod) ImGui::Text("splits %llu, collapses %llu, morphing %llu", u(t.lod->splits), u(t.lod->collapses), u(t.lod->morphing));
+  ImGui::Text("strokes %llu visible (%llu extracted), specks %llu", u(t.strokes), u(t.strokes_extracted), u(t.specks));
+  ImGui::Text("line pixels %llu", u(t.line_pixels));
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // The state and frame loop of `lodline view`, without a window: the loaded scene, the
-// camera (orbit, pan, zoom), the parameters the panel edits, and drawing into whatever
-// framebuffer is bound. The GLFW front end (cmd_view.cpp) feeds it input; tests drive it
-// headlessly (EGL), which is how "the viewer shows what `render` shows" is checked.
+// camera (orbit, pan, zoom), the parameters the panel edits, and presenting frames through
+// the GL presenter (present/gl_presenter.h) — the same drawing and counting `render` uses.
+// The GLFW front end (cmd_view.cpp) feeds it input; tests drive it headlessly (EGL), which is
+// how "the viewer shows what `render` shows" is checked.
 //
 // The first frame converges the detail for the initial camera (as `render` does), so the
 // viewer opens on the picture `render` would write; later frames adapt with geomorphs and
@@ -15,36 +16,27 @@
 #include <vector>
 
 #include "app/model.h"
-#include "gl/renderer.h"
+#include "present/frame_report.h"
+#include "present/gl_presenter.h"
 
 namespace lodline {
-
-/// Live statistics of the last frame, summed over the objects (the panel shows them).
-struct ViewerStats {
-  double adapt_ms = 0.0, shape_ms = 0.0, view_ms = 0.0, extract_ms = 0.0, chain_ms = 0.0;
-  double upload_ms = 0.0, draw_ms = 0.0;  ///< CPU time submitting the draw (GL runs async)
-  size_t active_faces = 0;                ///< faces of the meshes drawn
-  size_t visible_faces = 0;               ///< in the frustum and front-facing (detail control only)
-  size_t strokes = 0;                     ///< extracted strokes, before hidden-line removal
-  size_t specks = 0;                      ///< of those, shorter than 3 px on screen
-  size_t splits = 0, collapses = 0, morphing = 0;
-};
 
 class ViewerSession {
  public:
   /// Takes the loaded input; needs a current GL context (compiles the renderer). `options`
-  /// are the frame's raw view options (for writing the scene back).
+  /// are the frame's raw view options.
   static Result<std::unique_ptr<ViewerSession>> create(std::unique_ptr<LoadedScene> loaded, const ViewOptions& options);
 
   /// The camera for a `width`×`height` framebuffer.
   Camera camera(int width, int height) const;
 
   /// One frame for a `width`×`height` framebuffer after `dt` seconds: the first converges,
-  /// later ones adapt (every frame under detail control, else only when something changed),
-  /// then uploads what changed. Errors come from invalid detail parameters only.
+  /// later ones adapt (every frame under detail control, else only when something changed);
+  /// then the frame is presented (drawn offscreen) and counted (report()). Errors come from
+  /// invalid detail parameters only.
   Status frame(int width, int height, float dt);
-  /// Draws the scene into the bound framebuffer (cleared first).
-  void draw(int width, int height);
+  /// Copies the last presented frame into the bound framebuffer (the window).
+  void draw() const { presenter_->blitToBound(); }
 
   // ---- input (the window's mouse and keys, the panel) ----
   void orbit(float d_azimuth_deg, float d_elevation_deg);
@@ -60,10 +52,12 @@ class ViewerSession {
   void advancePlayback(double seconds) { play_time_ += seconds; dirty_ = true; }
 
   // ---- parameters the panel edits (call touch() or setLineParams() after a change) ----
-  RenderParams& frameParams() { return loaded_->view.render; }
+  FrameParams& frameParams() { return loaded_->view.frame; }
+  /// The style the panel's global controls edit (objects without style keys of their own).
+  ObjectStyle& defaultStyle() { return loaded_->view.style; }
   DetailParams& detail() { return loaded_->detail.params; }
   SmoothingParams& smoothing() { return loaded_->detail.smoothing; }
-  LodMode lodMode() const { return loaded_->detail.mode; }
+  const LodChoice& lod() const { return loaded_->detail.lod; }
   const LineParams& lineParams() const { return loaded_->view.line_params; }
   void setLineParams(const LineParams& p);
   /// Reads a detail-map PNG (empty path: none) with `scale` at white; errors name the file.
@@ -79,20 +73,21 @@ class ViewerSession {
   Scene& description() { return loaded_->scene; }
   float fov() const { return fov_deg_; }
 
-  const ViewerStats& stats() const { return stats_; }
-  const Renderer& renderer() const { return *renderer_; }
+  /// What the last frame drew (the panel's statistics; the same counts as --stats).
+  const FrameReport& report() const { return report_; }
+  const ScenePresenter& presenter() const { return *presenter_; }
 
   /// Writes the current camera, parameters and objects (with their detail factors and
-  /// styles) as a scene file that `lodline render` reproduces; paths are written relative to
-  /// the new file's folder. Atomic; errors name the file. `width`×`height`: the image size.
+  /// styles) as a scene file that `lodline render` reproduces (io/scene_file.h's writer);
+  /// paths are written relative to the new file's folder. Atomic; errors name the file.
+  /// `width`×`height`: the image size.
   Status saveView(const std::filesystem::path& path, int width, int height) const;
 
  private:
   ViewerSession() = default;
   std::unique_ptr<LoadedScene> loaded_;
   ViewOptions options_;
-  std::unique_ptr<Renderer> renderer_;
-  std::vector<RenderParams> styles_;
+  std::unique_ptr<GlPresenter> presenter_;
   OrbitView orbit_, initial_orbit_;
   glm::vec3 pan_{0.0f}, initial_pan_{0.0f};
   float fov_deg_ = 35.0f;
@@ -100,13 +95,7 @@ class ViewerSession {
   double play_time_ = 0.0;
   bool dirty_ = true, first_ = true;
   float mean_dt_ = 1.0f / 20.0f;
-  ViewerStats stats_;
-  std::vector<float> stroke_lengths_;
+  FrameReport report_;
 };
-
-/// The render options (long names) that reproduce `params`, `detail` and `lines` — the
-/// "settings" of a saved view. Paths (the detail map) are written relative to `base_dir`.
-nlohmann::json settingsOf(const RenderParams& params, const ResolvedDetail& detail, const LineParams& lines,
-                          const std::filesystem::path& base_dir);
 
 }  // namespace lodline

@@ -6,18 +6,23 @@
 
 namespace lodline {
 
-const char* lineKindName(LineKind k) {
-  switch (k) {
-    case LineKind::kContour: return "contour";
-    case LineKind::kSuggestive: return "suggestive";
-    case LineKind::kCrease: return "crease";
-    case LineKind::kBoundary: return "boundary";
-  }
-  return "?";
-}
-
 void LineStyles::scaleWidths(float s) {
   for (auto& k : kinds) k.width_px *= s;
+}
+
+std::array<bool, kLineKindCount> ObjectStyle::enabledKinds() const {
+  std::array<bool, kLineKindCount> enabled{};
+  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = lines.kinds[k].enabled;
+  return enabled;
+}
+
+std::array<float, 256> toonRamp(const ToonParams& t) {
+  std::array<float, 256> ramp;
+  for (int i = 0; i < 256; ++i) {
+    const float x = (static_cast<float>(i) + 0.5f) / 256.0f;
+    ramp[i] = x < t.thresholds[0] ? t.tones[0] : x < t.thresholds[1] ? t.tones[1] : t.tones[2];
+  }
+  return ramp;
 }
 
 Result<Style> parseStyle(const std::string& s) {

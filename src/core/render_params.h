@@ -1,5 +1,7 @@
 // Parameters of the final image, shared by the CLI, scene files and the viewer so that a
-// headless render reproduces what the viewer shows (STYLE.md §6). Every default is
+// headless render reproduces what the viewer shows (docs/design.md §4, "Parameters"): the
+// frame's (FrameParams: size, background, multisampling, the light) and each object's
+// (ObjectStyle: style, toon ramp, chamfer highlights, line styles). Every default is
 // documented next to its field.
 #pragma once
 
@@ -9,6 +11,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "core/line_kind.h"
 #include "core/result.h"
 
 namespace lodline {
@@ -18,11 +21,6 @@ enum class Style {
   kToon,   ///< toon-shaded faces + lines (default)
   kShaded, ///< Blinn–Phong faces + chamfer edge highlights + lines
 };
-
-/// Line kinds, in drawing order; indexes LineStyles::kinds.
-enum class LineKind : int { kContour = 0, kSuggestive = 1, kCrease = 2, kBoundary = 3 };
-inline constexpr int kLineKindCount = 4;
-const char* lineKindName(LineKind k);
 
 struct LineStyle {
   bool enabled = true;
@@ -45,11 +43,10 @@ struct LineStyles {
   void scaleWidths(float s);
 };
 
-/// Toon shading (Lake et al. 2000): max(n·l, 0) indexes a ramp of flat tones.
+/// Toon shading (Lake et al. 2000): max(n·l, 0) indexes a ramp of flat tones; l is the
+/// frame's light (FrameParams::light_dir_eye).
 struct ToonParams {
   glm::vec3 base_color{0.93f, 0.87f, 0.76f};  ///< warm paper-like tone
-  /// Towards the light in eye space (normalised before use): upper left, in front.
-  glm::vec3 light_dir_eye{-0.45f, 0.6f, 0.65f};
   /// Ramp tones (multipliers of base_color) and the n·l thresholds between them:
   /// n·l < thresholds[0] → tones[0], < thresholds[1] → tones[1], else tones[2].
   std::array<float, 3> tones{0.62f, 0.84f, 1.0f};
@@ -57,9 +54,10 @@ struct ToonParams {
 };
 
 /// Chamfer edge highlights (Wei, Shi, Yong, "Rendering chamfering structures of sharp edges",
-/// Visual Computer 2014; DESIGN.md §2): sharp edges drawn as rounded strips of radius r_e,
-/// blended with W = K·r_e/(d·r_max). Also holds the Blinn–Phong material and light of the
-/// shaded style, since a highlight integrates that same model over its strip.
+/// Visual Computer 2014; docs/design.md §2.2): sharp edges drawn as rounded strips of radius
+/// r_e, blended with W = K·r_e/(d·r_max). Also holds the Blinn–Phong material of the shaded
+/// style, since a highlight integrates that same model over its strip (under the frame's
+/// light, FrameParams::light_dir_eye).
 /// How the chamfer layer is composed with the faces (docs/chamfer.md compares both with the
 /// rounded-geometry ground truth).
 enum class ChamferCompose {
@@ -92,8 +90,6 @@ struct ChamferParams {
   glm::vec3 ambient{0.20f, 0.19f, 0.17f};    ///< ambient colour
   glm::vec3 diffuse{0.70f, 0.65f, 0.57f};    ///< diffuse colour (warm paper-like tone)
   glm::vec3 specular{0.55f, 0.55f, 0.55f};   ///< specular colour
-  /// Towards the light in eye space (normalised before use); the toon light by default.
-  glm::vec3 light_dir_eye{-0.45f, 0.6f, 0.65f};
   /// Crease lines mark the same edges the highlights render: skip them while highlights are
   /// drawn. Default on.
   bool replace_creases = true;
@@ -102,16 +98,32 @@ struct ChamferParams {
   ChamferCompose compose = ChamferCompose::kReplace;
 };
 
-struct RenderParams {
+/// What the whole frame shares: the image and the light.
+struct FrameParams {
   int width = 1280;   ///< image width, px
   int height = 720;   ///< image height, px
-  Style style = Style::kToon;
   glm::vec4 background{1.0f, 1.0f, 1.0f, 1.0f};  ///< RGBA; alpha 0 = transparent PNG
   int msaa = 4;  ///< multisample count (1 = off); Mesa's llvmpipe supports up to 4
+  /// Towards the key light in eye space (normalised before use): upper left, in front. The
+  /// one light of toon shading, the shaded style and chamfer highlights; a scene file's
+  /// "light" sets it.
+  glm::vec3 light_dir_eye{-0.45f, 0.6f, 0.65f};
+  float aspect() const { return static_cast<float>(width) / static_cast<float>(height); }
+};
+
+/// How one object is drawn. A single model is a scene of one object in the frame's style.
+struct ObjectStyle {
+  Style style = Style::kToon;
   ToonParams toon;
   ChamferParams chamfer;
   LineStyles lines;
+  /// The line kinds to extract and draw (LineStyle::enabled), indexed by LineKind.
+  std::array<bool, kLineKindCount> enabledKinds() const;
 };
+
+/// The toon ramp both renderers shade with: 256 tones over n·l ∈ [0, 1] (texel i covers
+/// n·l ∈ [i/256, (i+1)/256)), each a multiplier of ToonParams::base_color.
+std::array<float, 256> toonRamp(const ToonParams& toon);
 
 /// Parses "lines", "toon" or "shaded".
 Result<Style> parseStyle(const std::string& s);

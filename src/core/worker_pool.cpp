@@ -32,11 +32,11 @@ WorkerPool::Awake::~Awake() {
   if (pool_ && !pool_->workers_.empty()) pool_->awake_.fetch_sub(1, std::memory_order_relaxed);
 }
 
-void WorkerPool::drain() {
+void WorkerPool::drain(unsigned slot) {
   const size_t chunks = (n_ + chunk_ - 1) / chunk_;
   for (size_t c = next_.fetch_add(1, std::memory_order_relaxed); c < chunks;
        c = next_.fetch_add(1, std::memory_order_relaxed))
-    call_(ctx_, c * chunk_, std::min(n_, (c + 1) * chunk_));
+    call_(ctx_, c * chunk_, std::min(n_, (c + 1) * chunk_), slot);
 }
 
 void WorkerPool::run(size_t n, size_t chunk, Call call, void* ctx) {
@@ -56,7 +56,7 @@ void WorkerPool::run(size_t n, size_t chunk, Call call, void* ctx) {
     generation_.store((next_loop << 8) | helpers, std::memory_order_release);
   }
   start_cv_.notify_all();
-  drain();  // the caller works too
+  drain(0);  // the caller works too
   if (waitBriefly([this] { return unfinished_.load(std::memory_order_acquire) == 0; })) return;
   std::unique_lock lock(mutex_);
   done_cv_.wait(lock, [this] { return unfinished_.load(std::memory_order_acquire) == 0; });
@@ -76,7 +76,7 @@ void WorkerPool::workerLoop(unsigned index) {
     }
     seen = generation_.load(std::memory_order_acquire);
     if (index > (seen & 0xff)) continue;  // this loop needs fewer threads
-    drain();
+    drain(index);
     if (unfinished_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
       std::lock_guard lock(mutex_);  // pairs with the caller's predicate check
       done_cv_.notify_one();

@@ -1,5 +1,6 @@
-// A few worker threads for data-parallel loops over flat arrays (the shape stage's per-face
-// and per-vertex kernels). Owned by the stage that uses it — there is no global pool.
+// A few worker threads for data-parallel loops over flat arrays: lodline's one parallel-for
+// (the shape stage's kernels, level of detail, the lines stage, the software rasteriser's
+// binning, tiles and shading). Owned by the stage that uses it — there is no global pool.
 //
 // Waking a sleeping thread costs 0.05–0.5 ms on these VMs, as much as a whole loop of a
 // frame. So a frame's CPU stages run inside a WorkerPool::Awake scope, during which idle
@@ -68,15 +69,31 @@ class WorkerPool {
     }
     // About 4 chunks per thread: enough to even out, few enough to keep the hand-out cheap.
     const size_t chunk = std::max(min_chunk, (n + 4 * threadCount() - 1) / (4 * threadCount()));
-    run(n, chunk, [](void* ctx, size_t b, size_t e) { (*static_cast<std::remove_reference_t<Fn>*>(ctx))(b, e); },
+    run(n, chunk, [](void* ctx, size_t b, size_t e, unsigned) { (*static_cast<std::remove_reference_t<Fn>*>(ctx))(b, e); },
+        const_cast<void*>(static_cast<const void*>(&fn)));
+  }
+
+  /// As forRange(), and fn(begin, end, slot) also gets the index of the thread that runs the
+  /// chunk, in [0, threadCount()) (0: the caller), for per-thread scratch memory. Slots
+  /// differ between threads running at once; which chunk a slot gets is not fixed.
+  template <class Fn>
+  void forRangeWithSlot(size_t n, size_t min_chunk, Fn&& fn) {
+    min_chunk = std::max<size_t>(min_chunk, 1);
+    if (threadCount() <= 1 || n < 2 * min_chunk) {
+      if (n > 0) fn(size_t{0}, n, 0u);
+      return;
+    }
+    const size_t chunk = std::max(min_chunk, (n + 4 * threadCount() - 1) / (4 * threadCount()));
+    run(n, chunk,
+        [](void* ctx, size_t b, size_t e, unsigned slot) { (*static_cast<std::remove_reference_t<Fn>*>(ctx))(b, e, slot); },
         const_cast<void*>(static_cast<const void*>(&fn)));
   }
 
  private:
-  using Call = void (*)(void*, size_t, size_t);
+  using Call = void (*)(void*, size_t, size_t, unsigned);
   void run(size_t n, size_t chunk, Call call, void* ctx);
   void workerLoop(unsigned index);
-  void drain();  // takes chunks until none are left
+  void drain(unsigned slot);  // takes chunks until none are left
   // Polls `ready` while an Awake scope exists, else for up to kSpinMicros; true as soon as
   // it holds.
   template <class Ready>

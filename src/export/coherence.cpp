@@ -189,4 +189,23 @@ MaskChange compareMasks(const LineMask& previous, const LineMask& current, int t
   return c;
 }
 
+FrameCoherence CoherenceMeter::measure(LineMask& mask, SurfaceImage& surface, const Camera& camera,
+                                       const CompensationParams& params) {
+  FrameCoherence f;
+  if (have_previous_) {
+    f.raw = compareMasks(previous_mask_, mask, params.tolerance);
+    f.compensated = compareMasksCompensated(previous_mask_, previous_surface_, previous_camera_, mask, surface, camera,
+                                            params);
+    f.compared = true;
+  } else {
+    f.raw.line_pixels = mask.count();
+    f.compensated.line_pixels = f.raw.line_pixels;
+  }
+  std::swap(previous_mask_, mask);
+  std::swap(previous_surface_, surface);
+  previous_camera_ = camera;
+  have_previous_ = true;
+  return f;
+}
+
 }  // namespace lodline

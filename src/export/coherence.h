@@ -17,6 +17,7 @@
 #include <glm/vec4.hpp>
 
 #include "core/camera.h"
+#include "core/image.h"
 #include "export/visibility.h"
 
 namespace lodline {
@@ -47,16 +48,6 @@ struct MaskChange {
 
 /// Compares two masks of the same size with a Chebyshev tolerance of `tolerance` pixels.
 MaskChange compareMasks(const LineMask& previous, const LineMask& current, int tolerance = 1);
-
-/// The visible surface of a frame, one texel per pixel, row 0 = top: xyz the world position
-/// of the nearest surface, w the object id + 1 (0: background). Drawn by the renderer's
-/// surface pass (gl/renderer.h, SurfaceTarget).
-struct SurfaceImage {
-  int width = 0;
-  int height = 0;
-  std::vector<glm::vec4> texels;
-  const glm::vec4& at(int x, int y) const { return texels[static_cast<size_t>(y) * width + x]; }
-};
 
 struct CompensationParams {
   /// Chebyshev tolerance of the comparison after moving, pixels (as compareMasks). Default 1.
@@ -97,5 +88,34 @@ CompensatedChange compareMasksCompensated(const LineMask& previous, const Surfac
                                           const Camera& previous_camera, const LineMask& current,
                                           const SurfaceImage& current_surface, const Camera& current_camera,
                                           const CompensationParams& params = {});
+
+/// One frame's coherence against the previous one, raw and motion-compensated.
+struct FrameCoherence {
+  MaskChange raw;
+  CompensatedChange compensated;
+  bool compared = false;  ///< false for the first frame: nothing to compare with
+};
+
+/// The coherence measure of a sequence of frames: keeps the previous frame's line mask,
+/// surface image and camera, and compares each new frame with it (both measures above).
+class CoherenceMeter {
+ public:
+  /// Compares the frame (its visible line mask, surface image and camera, all of one size)
+  /// with the previous one, then keeps it as the previous frame. `mask` and `surface` are
+  /// swapped with the kept buffers (the caller gets the old ones back to refill: no copy).
+  /// The first frame, or one after reset(), compares with nothing: its line pixels are
+  /// counted, appeared and vanished are 0 and `compared` is false.
+  FrameCoherence measure(LineMask& mask, SurfaceImage& surface, const Camera& camera,
+                         const CompensationParams& params = {});
+  /// Forgets the previous frame.
+  void reset() { have_previous_ = false; }
+  bool hasPrevious() const { return have_previous_; }
+
+ private:
+  LineMask previous_mask_;
+  SurfaceImage previous_surface_;
+  Camera previous_camera_;
+  bool have_previous_ = false;
+};
 
 }  // namespace lodline

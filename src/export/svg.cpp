@@ -29,16 +29,16 @@ void writeNumber(std::ostream& os, float v, int decimals) {
 
 // Polylines of one layer's strokes, grouped by type.
 void writeStrokes(std::ostream& os, const SvgStrokes& strokes, const SvgStyle& style, int decimals) {
-  const size_t ns = strokes.types.size();
-  for (int type = 0; type < kLineTypeCount; ++type) {
+  const size_t ns = strokes.kinds.size();
+  for (int type = 0; type < kLineKindCount; ++type) {
     const SvgLineStyle& ls = style.lines[type];
     bool open = false;
     for (size_t s = 0; s < ns; ++s) {
-      if (static_cast<int>(strokes.types[s]) != type) continue;
+      if (static_cast<int>(strokes.kinds[s]) != type) continue;
       const uint32_t begin = strokes.offsets[s], end = strokes.offsets[s + 1];
       if (end - begin < 2) continue;
       if (!open) {
-        os << "<g class=\"" << lineTypeName(static_cast<LineType>(type))
+        os << "<g class=\"" << lineKindName(static_cast<LineKind>(type))
            << "\" fill=\"none\" stroke=\"" << sanitizeColour(ls.colour) << "\" stroke-width=\"";
         writeNumber(os, ls.width, 3);
         os << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
@@ -92,7 +92,7 @@ Status writeSvgLayers(const std::filesystem::path& path, int width, int height, 
                           std::to_string(height));
   for (const SvgLayer& layer : layers) {
     const SvgStrokes& strokes = layer.strokes;
-    const size_t ns = strokes.types.size();
+    const size_t ns = strokes.kinds.size();
     if (ns > 0 && strokes.offsets.size() != ns + 1)
       return Error::runtime(name + ": stroke offsets (" + std::to_string(strokes.offsets.size()) +
                             ") do not match stroke count (" + std::to_string(ns) + ")");

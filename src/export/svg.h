@@ -26,9 +26,9 @@ struct SvgLineStyle {
 
 /// Per-type styles and the page.
 struct SvgStyle {
-  /// Indexed by LineType: contour black 2 px, suggestive dark grey 1.5 px, crease dark blue
+  /// Indexed by LineKind: contour black 2 px, suggestive dark grey 1.5 px, crease dark blue
   /// 1 px, boundary black 1.5 px.
-  std::array<SvgLineStyle, kLineTypeCount> lines = {
+  std::array<SvgLineStyle, kLineKindCount> lines = {
       SvgLineStyle{"#000000", 2.0f, 1.0f}, SvgLineStyle{"#333333", 1.5f, 1.0f},
       SvgLineStyle{"#1f3a70", 1.0f, 1.0f}, SvgLineStyle{"#000000", 1.5f, 1.0f}};
   bool background = true;             ///< fill the page first. Default true
@@ -41,7 +41,7 @@ struct SvgStrokes {
   std::span<const glm::vec2> points;
   /// Stroke s is points[offsets[s] .. offsets[s+1]) (strokeCount + 1 entries, or empty).
   std::span<const uint32_t> offsets;
-  std::span<const LineType> types;   ///< 1 per stroke
+  std::span<const LineKind> kinds;   ///< 1 per stroke
   std::span<const float> opacity;    ///< optional, 1 per stroke, in [0, 1]
 };
 

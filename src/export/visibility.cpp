@@ -65,7 +65,7 @@ bool visibleAt(const Projector& proj, const DepthImage& depth, glm::vec2 px, flo
 void VisibleStrokes::clear() {
   points.clear();
   offsets.clear();
-  types.clear();
+  kinds.clear();
   opacity.clear();
   length_px.clear();
 }
@@ -76,7 +76,7 @@ void appendStrokes(const VisibleStrokes& from, VisibleStrokes& to) {
   if (to.offsets.empty()) to.offsets.push_back(0);
   to.points.insert(to.points.end(), from.points.begin(), from.points.end());
   for (size_t s = 0; s < from.strokeCount(); ++s) to.offsets.push_back(base + from.offsets[s + 1]);
-  to.types.insert(to.types.end(), from.types.begin(), from.types.end());
+  to.kinds.insert(to.kinds.end(), from.kinds.begin(), from.kinds.end());
   to.opacity.insert(to.opacity.end(), from.opacity.begin(), from.opacity.end());
   to.length_px.insert(to.length_px.end(), from.length_px.begin(), from.length_px.end());
 }
@@ -107,7 +107,7 @@ void visibleStrokes(const StrokeSet& strokes, const Camera& camera, const DepthI
       const uint32_t first = out.offsets.back();
       if (out.points.size() - first >= 2) {
         out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
-        out.types.push_back(strokes.types[s]);
+        out.kinds.push_back(strokes.kinds[s]);
         out.opacity.push_back(alpha_n ? alpha_sum / static_cast<float>(alpha_n) : 1.0f);
         out.length_px.push_back(length);
       } else {
@@ -148,17 +148,17 @@ void visibleStrokes(const StrokeSet& strokes, const Camera& camera, const DepthI
   }
 }
 
-std::array<uint32_t, kLineTypeCount> countVisibleSegments(const LineSet& lines, const Camera& camera,
+std::array<uint32_t, kLineKindCount> countVisibleSegments(const LineSet& lines, const Camera& camera,
                                                           const DepthImage& depth,
                                                           const VisibilityParams& params) {
-  std::array<uint32_t, kLineTypeCount> counts{};
+  std::array<uint32_t, kLineKindCount> counts{};
   const Projector proj(camera, depth.width, depth.height);
   for (size_t s = 0; s < lines.segmentCount(); ++s) {
     const glm::vec3 mid = 0.5f * (lines.points[2 * s] + lines.points[2 * s + 1]);
     glm::vec2 px;
     float z = 0.0f;
     if (proj.project(mid, px, z) && visibleAt(proj, depth, px, z, params))
-      ++counts[static_cast<int>(lines.types[s])];
+      ++counts[static_cast<int>(lines.kinds[s])];
   }
   return counts;
 }

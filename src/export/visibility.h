@@ -11,18 +11,11 @@
 #include <glm/vec2.hpp>
 
 #include "core/camera.h"
+#include "core/image.h"
 #include "lines/lines.h"
 #include "lines/strokes.h"
 
 namespace lodline {
-
-/// Window-space depths in [0, 1] (1 = far plane / background), row 0 = top of the image.
-struct DepthImage {
-  int width = 0;
-  int height = 0;
-  std::vector<float> depth;  ///< width·height values
-  float at(int x, int y) const { return depth[static_cast<size_t>(y) * width + x]; }
-};
 
 struct VisibilityParams {
   /// A sample is visible when its eye-space depth exceeds the surface's by at most this
@@ -40,11 +33,11 @@ struct VisibilityParams {
 struct VisibleStrokes {
   std::vector<glm::vec2> points;
   std::vector<uint32_t> offsets;  ///< stroke s is points[offsets[s], offsets[s+1]); count+1 entries
-  std::vector<LineType> types;    ///< 1 per stroke
+  std::vector<LineKind> kinds;    ///< 1 per stroke
   std::vector<float> opacity;     ///< 1 per stroke: mean alpha of its points
   std::vector<float> length_px;   ///< 1 per stroke
 
-  size_t strokeCount() const { return types.size(); }
+  size_t strokeCount() const { return kinds.size(); }
   void clear();
 };
 
@@ -60,8 +53,8 @@ bool isPointVisible(const Camera& camera, const DepthImage& depth, glm::vec3 p,
 void visibleStrokes(const StrokeSet& strokes, const Camera& camera, const DepthImage& depth,
                     const VisibilityParams& params, VisibleStrokes& out);
 
-/// Segments of `lines` whose midpoint is visible, per LineType.
-std::array<uint32_t, kLineTypeCount> countVisibleSegments(const LineSet& lines,
+/// Segments of `lines` whose midpoint is visible, per LineKind.
+std::array<uint32_t, kLineKindCount> countVisibleSegments(const LineSet& lines,
                                                           const Camera& camera,
                                                           const DepthImage& depth,
                                                           const VisibilityParams& params = {});

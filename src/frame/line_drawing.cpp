@@ -154,7 +154,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   chainStrokes(segments_, strokes_, chain_scratch_);
   timings_.chain = sw.lap();
 
-  // Group segments by kind for the renderer (LineType and LineKind share their order).
+  // Group segments by kind for the renderer (LineKind and LineKind share their order).
   buffer_.clear();
   buffer_.vertices.resize(segments_.points.size());
   std::array<uint32_t, kLineKindCount> next{};
@@ -166,7 +166,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     start += buffer_.count[k];
   }
   for (size_t s = 0; s < segments_.segmentCount(); ++s) {
-    const int k = static_cast<int>(segments_.types[s]);
+    const int k = static_cast<int>(segments_.kinds[s]);
     for (int e = 0; e < 2; ++e) {
       const size_t i = 2 * s + e;
       buffer_.vertices[next[k]++] = {segments_.points[i], segments_.alpha[i]};

@@ -26,67 +26,76 @@ ShapeParams adaptiveShapeParams() {
 
 LodDrawing::LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params,
                        std::shared_ptr<WorkerPool> pool)
-    : drawing_(std::move(full), params, adaptiveShapeParams(), std::move(pool)), pm_(std::move(pm)), lod_(std::make_unique<AdaptiveMesh>(*pm_)) {
-  lod_->setWorkerPool(&drawing_.workers());
+    : drawing_(std::move(full), params, adaptiveShapeParams(), std::move(pool)) {
+  PmLevel level{std::move(pm), nullptr};
+  level.mesh = std::make_unique<AdaptiveMesh>(*level.pm);
+  level.mesh->setWorkerPool(&drawing_.workers());
+  level_ = std::move(level);
 }
 
 LodDrawing::LodDrawing(TriMesh full, const ClusterParams& cluster, const LineParams& params,
                        std::shared_ptr<WorkerPool> pool)
-    : drawing_(full, params, adaptiveShapeParams(), std::move(pool)),
-      cluster_(std::make_unique<VertexClustering>(std::move(full))),
-      cluster_params_(cluster) {
+    : drawing_(full, params, adaptiveShapeParams(), std::move(pool)) {
+  ClusterLevel level{std::make_unique<VertexClustering>(std::move(full)), cluster, false};
   // Clustering folds the surface locally (non-manifold edges, small holes where collapsed
   // faces were): draw boundaries only for models that have some, and no non-manifold edges
   // as creases (the input's marked edges do not survive updateMesh anyway).
-  const auto boundary = cluster_->boundaryVertices();
-  cluster_has_boundary_ = std::find(boundary.begin(), boundary.end(), uint8_t{1}) != boundary.end();
+  const auto boundary = level.clustering->boundaryVertices();
+  level.has_boundary = std::find(boundary.begin(), boundary.end(), uint8_t{1}) != boundary.end();
+  level_ = std::move(level);
   setLineParams(params);
 }
 
+const AdaptiveMesh* LodDrawing::lod() const {
+  const auto* level = std::get_if<PmLevel>(&level_);
+  return level ? level->mesh.get() : nullptr;
+}
+
+const VertexClustering* LodDrawing::clustering() const {
+  const auto* level = std::get_if<ClusterLevel>(&level_);
+  return level ? level->clustering.get() : nullptr;
+}
+
 void LodDrawing::setLineParams(LineParams params) {
-  if (cluster_) {
-    params.boundaries = params.boundaries && cluster_has_boundary_;
+  if (const auto* level = std::get_if<ClusterLevel>(&level_)) {
+    params.boundaries = params.boundaries && level->has_boundary;
     params.marked_edges = false;
   }
   drawing_.setParams(params);
 }
 
-Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const DetailParams& detail,
-                             float dt) {
-  mesh_changed_ = first_;
-  if (cluster_) {
-    Stopwatch sw;
-    ClusterParams cp = cluster_params_;
-    cp.foveation = detail.foveation;
-    cp.focus_px = detail.focus_px;
-    cp.cull = detail.cull;
-    cluster_->cluster(camera, width, height, cp);
-    adapt_ms_ = sw.lap();
-    // Slots are the input vertices, so the full-detail crease vertices apply directly.
-    const auto full = drawing_.fullDetailCreaseVertices();
-    drawing_.creaseMask().assign(full.begin(), full.end());
-    // Positions never move (a representative keeps its own); the shape cache finds the face
-    // slots that changed itself, so the changed-vertex list stays empty.
-    changed_.clear();
-    drawing_.updateMesh(cluster_->mesh().positions, cluster_->faces(), changed_);
-    mesh_changed_ = true;
-    first_ = false;
-    return {};
-  }
-  if (!lod_) {
-    first_ = false;
-    return {};
-  }
+void LodDrawing::adaptCluster(ClusterLevel& level, const Camera& camera, int width, int height,
+                              const DetailParams& detail) {
   Stopwatch sw;
-  if (Status s = lod_->setView(camera, width, height, detail); !s) return s;
-  lod_->adapt(dt);
-  drawing_.smoother().followHierarchy(*lod_);
+  ClusterParams cp = level.params;
+  cp.foveation = detail.foveation;
+  cp.focus_px = detail.focus_px;
+  cp.cull = detail.cull;
+  level.clustering->cluster(camera, width, height, cp);
   adapt_ms_ = sw.lap();
-  const LodChanges& ch = lod_->changes();
+  // Slots are the input vertices, so the full-detail crease vertices apply directly.
+  const auto full = drawing_.fullDetailCreaseVertices();
+  drawing_.creaseMask().assign(full.begin(), full.end());
+  // Positions never move (a representative keeps its own); the shape cache finds the face
+  // slots that changed itself, so the changed-vertex list stays empty.
+  changed_.clear();
+  drawing_.updateMesh(level.clustering->mesh().positions, level.clustering->faces(), changed_);
+  mesh_changed_ = true;
+}
+
+Status LodDrawing::adaptPm(PmLevel& level, const Camera& camera, int width, int height, const DetailParams& detail,
+                           float dt) {
+  AdaptiveMesh& lod = *level.mesh;
+  Stopwatch sw;
+  if (Status s = lod.setView(camera, width, height, detail); !s) return s;
+  lod.adapt(dt);
+  drawing_.smoother().followHierarchy(lod);
+  adapt_ms_ = sw.lap();
+  const LodChanges& ch = lod.changes();
   if (!first_ && !ch.everything && ch.dirty.empty() && crease_version_ == drawing_.creaseVersion()) return {};
-  lod_->exportFaces(faces_);
+  lod.exportFaces(faces_);
   if (first_ || ch.everything) {
-    changed_.resize(lod_->slotCount());
+    changed_.resize(lod.slotCount());
     std::iota(changed_.begin(), changed_.end(), 0u);
   } else {
     changed_.assign(ch.dirty.begin(), ch.dirty.end());
@@ -95,20 +104,30 @@ Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const 
   // changes its node only by a split or collapse, which marks it dirty, so only the changed
   // slots need a new entry.
   {
-    const auto nodes = lod_->slotVertices();
+    const auto nodes = lod.slotVertices();
     const auto full = drawing_.fullDetailCreaseVertices();
+    const auto& origin = level.pm->origin;
     auto& mask = drawing_.creaseMask();
     mask.resize(nodes.size(), 0);
     if (crease_version_ != drawing_.creaseVersion()) {  // a new crease angle: every slot
       crease_version_ = drawing_.creaseVersion();
-      for (size_t s = 0; s < nodes.size(); ++s) mask[s] = nodes[s] != kPmNone && full[pm_->origin[nodes[s]]];
+      for (size_t s = 0; s < nodes.size(); ++s) mask[s] = nodes[s] != kPmNone && full[origin[nodes[s]]];
     }
-    for (uint32_t s : changed_) mask[s] = nodes[s] != kPmNone && full[pm_->origin[nodes[s]]];
+    for (uint32_t s : changed_) mask[s] = nodes[s] != kPmNone && full[origin[nodes[s]]];
   }
-  drawing_.updateMesh(lod_->positions(), faces_, changed_);
+  drawing_.updateMesh(lod.positions(), faces_, changed_);
   mesh_changed_ = true;
-  first_ = false;
   return {};
+}
+
+Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const DetailParams& detail,
+                             float dt) {
+  mesh_changed_ = first_;
+  Status status;
+  if (auto* pm = std::get_if<PmLevel>(&level_)) status = adaptPm(*pm, camera, width, height, detail, dt);
+  else if (auto* cluster = std::get_if<ClusterLevel>(&level_)) adaptCluster(*cluster, camera, width, height, detail);
+  if (status) first_ = false;
+  return status;
 }
 
 Status LodDrawing::frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
@@ -124,16 +143,16 @@ Result<int> LodDrawing::converge(const Camera& camera, int width, int height, co
   const WorkerPool::Awake awake(&drawing_.workers());
   int steps = 0;
   bool changed_any = first_;
-  if (cluster_) {  // clustering has no state between frames: one step is converged
+  if (std::holds_alternative<ClusterLevel>(level_)) {  // no state between frames: one step is converged
     if (Status s = adaptStep(camera, width, height, detail, dt); !s) return s.error();
     drawing_.update(camera, enabled);
     return 1;
   }
-  while (lod_ && steps < max_steps) {
+  while (std::holds_alternative<PmLevel>(level_) && steps < max_steps) {
     if (Status s = adaptStep(camera, width, height, detail, dt); !s) return s.error();
     ++steps;
     changed_any = changed_any || mesh_changed_;
-    const LodStats& st = lod_->stats();
+    const LodStats& st = lod()->stats();
     if (st.splits == 0 && st.collapses == 0 && st.morphing == 0 && st.pending_collapses == 0) break;
   }
   mesh_changed_ = changed_any;

@@ -1,11 +1,12 @@
-// One model through the whole CPU pipeline of a frame (DESIGN.md: io → pm → lod → shape →
-// lines): either at full detail, or as a progressive mesh selectively refined every frame so
-// visible triangles keep a target image area (Jeong et al. 2005 §3.1–3.2), feeding the same
-// LineDrawing. `render`, `view` and `capture` all drive this object, so they agree.
+// One model through the whole CPU pipeline of a frame (docs/design.md §1: io → pm → lod →
+// shape → lines): at full detail, as a progressive mesh selectively refined every frame so
+// visible triangles keep a target image area (Jeong et al. 2005 §3.1–3.2), or clustered per
+// view (Pan, Zhou, Shi), feeding the same LineDrawing. `render`, `view`, `capture` and
+// `bench` all drive this object, so they agree.
 #pragma once
 
 #include <memory>
-#include <optional>
+#include <variant>
 
 #include "frame/line_drawing.h"
 #include "lod/adaptive_mesh.h"
@@ -31,7 +32,7 @@ class LodDrawing {
              std::shared_ptr<WorkerPool> pool = nullptr);
 
   /// True for any level of detail that changes with the view (progressive mesh or clustering).
-  bool detailControlled() const { return lod_ != nullptr || cluster_ != nullptr; }
+  bool detailControlled() const { return !std::holds_alternative<FullLevel>(level_); }
 
   /// One frame: adapts the mesh to the view (advancing geomorphs by `dt` seconds), updates
   /// the shape quantities of what changed and extracts the lines. Errors come only from
@@ -52,23 +53,32 @@ class LodDrawing {
 
   const LineDrawing& drawing() const { return drawing_; }
   const Bounds& bounds() const { return drawing_.bounds(); }
-  /// Null at full detail and with clustering.
-  const AdaptiveMesh* lod() const { return lod_.get(); }
-  /// Null unless clustering.
-  const VertexClustering* clustering() const { return cluster_.get(); }
+  /// The adapted progressive mesh; null at full detail and with clustering.
+  const AdaptiveMesh* lod() const;
+  /// The clustering; null unless clustering.
+  const VertexClustering* clustering() const;
   /// Milliseconds of the last adapt step (0 at full detail).
   double adaptMs() const { return adapt_ms_; }
   /// True when the mesh (positions or faces) changed in the last frame(): re-upload it.
   bool meshChanged() const { return mesh_changed_; }
 
  private:
+  // The level of detail: one of three, chosen at construction.
+  struct FullLevel {};
+  struct PmLevel {
+    std::shared_ptr<const ProgressiveMesh> pm;
+    std::unique_ptr<AdaptiveMesh> mesh;
+  };
+  struct ClusterLevel {
+    std::unique_ptr<VertexClustering> clustering;
+    ClusterParams params;
+    bool has_boundary = false;  // the input has boundary edges (else none are drawn)
+  };
+  Status adaptPm(PmLevel& level, const Camera& camera, int width, int height, const DetailParams& detail, float dt);
+  void adaptCluster(ClusterLevel& level, const Camera& camera, int width, int height, const DetailParams& detail);
   Status adaptStep(const Camera& camera, int width, int height, const DetailParams& detail, float dt);
   LineDrawing drawing_;
-  std::shared_ptr<const ProgressiveMesh> pm_;
-  std::unique_ptr<AdaptiveMesh> lod_;
-  std::unique_ptr<VertexClustering> cluster_;
-  ClusterParams cluster_params_;
-  bool cluster_has_boundary_ = false;
+  std::variant<FullLevel, PmLevel, ClusterLevel> level_;
   std::vector<std::array<uint32_t, 3>> faces_;
   std::vector<uint32_t> changed_;
   uint64_t crease_version_ = 0;  // LineDrawing::creaseVersion() the crease mask was built for

@@ -37,12 +37,6 @@ bool SceneDrawing::detailControlled() const {
   return std::any_of(objects_.begin(), objects_.end(), [](const Object& o) { return o.drawing->detailControlled(); });
 }
 
-std::array<bool, kLineKindCount> SceneDrawing::enabledKinds(const RenderParams& style) {
-  std::array<bool, kLineKindCount> enabled{};
-  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = style.lines.kinds[k].enabled;
-  return enabled;
-}
-
 DetailParams SceneDrawing::objectDetail(const DetailParams& detail, const Object& o) const {
   DetailParams d = detail;
   d.object_factor *= o.detail_factor;
@@ -53,7 +47,7 @@ Status SceneDrawing::frame(const Camera& camera, int width, int height, const De
                            float smoothing) {
   const WorkerPool::Awake awake(pool());  // one wake-up for all objects' stages
   for (Object& o : objects_)
-    if (Status s = o.drawing->frame(camera, width, height, objectDetail(detail, o), dt, enabledKinds(o.style), smoothing);
+    if (Status s = o.drawing->frame(camera, width, height, objectDetail(detail, o), dt, o.style.enabledKinds(), smoothing);
         !s)
       return s;
   return {};
@@ -64,7 +58,7 @@ Result<int> SceneDrawing::converge(const Camera& camera, int width, int height, 
   const WorkerPool::Awake awake(pool());
   int steps = 0;
   for (Object& o : objects_) {
-    auto s = o.drawing->converge(camera, width, height, objectDetail(detail, o), dt, max_steps, enabledKinds(o.style));
+    auto s = o.drawing->converge(camera, width, height, objectDetail(detail, o), dt, max_steps, o.style.enabledKinds());
     if (!s) return s.error();
     steps = std::max(steps, *s);
   }

@@ -22,9 +22,9 @@ class SceneDrawing {
   struct Object {
     std::string name;
     std::unique_ptr<LodDrawing> drawing;
-    /// This object's style, toon, chamfer and line styles (size, background and msaa are the
-    /// frame's and unused here). Its enabled line kinds are the ones extracted.
-    RenderParams style;
+    /// This object's style, toon, chamfer and line styles. Its enabled line kinds are the
+    /// ones extracted.
+    ObjectStyle style;
     /// Multiplies DetailParams::object_factor for this object (> 0; > 1: coarser).
     float detail_factor = 1.0f;
     size_t input_vertices = 0;  ///< of the full-detail mesh, in world space
@@ -60,7 +60,6 @@ class SceneDrawing {
   CpuTimings timings() const;
 
  private:
-  static std::array<bool, kLineKindCount> enabledKinds(const RenderParams& style);
   DetailParams objectDetail(const DetailParams& detail, const Object& o) const;
   WorkerPool* pool() const;  // the first object's (scenes built by the app share one)
   std::vector<Object> objects_;

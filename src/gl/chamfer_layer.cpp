@@ -21,13 +21,13 @@ constexpr float kMinCandidateAngleDeg = 1.0f;
 /// Auto radius, relative to the bounding radius.
 constexpr float kAutoRadiusFraction = 0.004f;
 
-void setMaterial(GLuint program, const ChamferParams& p, const Camera& camera,
+void setMaterial(GLuint program, const ChamferParams& p, glm::vec3 light_dir_eye, const Camera& camera,
                  float aspect) {
   glUniformMatrix4fv(glGetUniformLocation(program, "u_view"), 1, GL_FALSE,
                      glm::value_ptr(camera.view()));
   glUniformMatrix4fv(glGetUniformLocation(program, "u_projection"), 1, GL_FALSE,
                      glm::value_ptr(camera.projection(aspect)));
-  const glm::vec3 l = glm::normalize(p.light_dir_eye);
+  const glm::vec3 l = glm::normalize(light_dir_eye);
   glUniform3fv(glGetUniformLocation(program, "u_light_eye"), 1, glm::value_ptr(l));
   glUniform3fv(glGetUniformLocation(program, "u_ambient"), 1, glm::value_ptr(p.ambient));
   glUniform3fv(glGetUniformLocation(program, "u_diffuse"), 1, glm::value_ptr(p.diffuse));
@@ -168,20 +168,20 @@ void ChamferLayer::prepareFaces(float smooth_angle_deg) {
   faces_dirty_ = false;
 }
 
-void ChamferLayer::drawShadedFaces(const Camera& camera, const ChamferParams& params, int width,
-                                   int height) {
+void ChamferLayer::drawShadedFaces(const Camera& camera, const ChamferParams& params, glm::vec3 light_dir_eye,
+                                   int width, int height) {
   if (!faces_program_) return;
   prepareFaces(params.threshold_deg);
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   glUseProgram(faces_program_.id());
-  setMaterial(faces_program_.id(), params, camera, aspect);
+  setMaterial(faces_program_.id(), params, light_dir_eye, camera, aspect);
   glBindVertexArray(face_vao_.id());
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(face_vertex_count_));
   glBindVertexArray(0);
 }
 
-void ChamferLayer::draw(const Camera& camera, const ChamferParams& params, int width, int height,
-                        bool shaded_faces, glm::vec3 background) {
+void ChamferLayer::draw(const Camera& camera, const ChamferParams& params, glm::vec3 light_dir_eye, int width,
+                        int height, bool shaded_faces, glm::vec3 background) {
   edges_drawn_ = 0;
   if (!program_) return;
   prepareEdges();
@@ -194,7 +194,7 @@ void ChamferLayer::draw(const Camera& camera, const ChamferParams& params, int w
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glLineWidth(1.0f);
   glUseProgram(program_.id());
-  setMaterial(program_.id(), params, camera, aspect);
+  setMaterial(program_.id(), params, light_dir_eye, camera, aspect);
   glUniform1f(glGetUniformLocation(program_.id(), "u_radius"), effectiveRadius(params));
   glUniform1f(glGetUniformLocation(program_.id(), "u_k"), effectiveK(camera, params, height));
   glActiveTexture(GL_TEXTURE0);

@@ -51,8 +51,10 @@ class ChamferLayer {
                std::span<const EdgeKey> marked = {}, std::span<const float> vertex_radius = {});
 
   /// Draws the faces with Blinn–Phong (the shaded style) into the bound framebuffer, with the
-  /// current depth/polygon-offset state.
-  void drawShadedFaces(const Camera& camera, const ChamferParams& params, int width, int height);
+  /// current depth/polygon-offset state, lit from `light_dir_eye` (towards the light, eye
+  /// space; normalised here).
+  void drawShadedFaces(const Camera& camera, const ChamferParams& params, glm::vec3 light_dir_eye, int width,
+                       int height);
 
   /// Draws the highlights of the edges with a dihedral angle ≥ params.threshold_deg (plus the
   /// marked ones) over the bound framebuffer, which must hold the faces' depth. `shaded_faces`
@@ -60,7 +62,7 @@ class ChamferLayer {
   /// colours; over other faces the alpha blend is used). Leaves depth test LEQUAL, depth
   /// writes off, blending on with the usual alpha blend function.
   /// `background` (RGB) is what a silhouette edge's rounding uncovers (replacement only).
-  void draw(const Camera& camera, const ChamferParams& params, int width, int height,
+  void draw(const Camera& camera, const ChamferParams& params, glm::vec3 light_dir_eye, int width, int height,
             bool shaded_faces = true, glm::vec3 background = glm::vec3(1.0f));
 
   /// Edges drawn by the last draw().

@@ -20,7 +20,9 @@ const char* backendName(ContextBackend b) {
   return "?";
 }
 
-std::string GlContext::description() const {
+std::string GlContext::description() const { return currentContextDescription(); }
+
+std::string currentContextDescription() {
   auto str = [](GLenum e) {
     const GLubyte* s = glGetString(e);
     return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");

@@ -1,4 +1,4 @@
-// OpenGL context backends behind one small interface (STYLE.md §9): EGL on Mesa's
+// OpenGL context backends behind one small interface (docs/design.md §6): EGL on Mesa's
 // surfaceless platform (headless default), OSMesa (headless fallback) and GLFW (window,
 // see glfw_window.h). A context is current on the creating thread after creation.
 #pragma once
@@ -22,9 +22,13 @@ class GlContext {
  public:
   virtual ~GlContext() = default;
   virtual ContextBackend backend() const = 0;
-  /// GL_VERSION and GL_RENDERER strings, e.g. "4.5 (Core Profile) Mesa 22.3.6 / llvmpipe".
+  /// currentContextDescription() of this context.
   std::string description() const;
 };
+
+/// GL_VERSION and GL_RENDERER of the current context, e.g. "4.5 (Core Profile) Mesa 22.3.6
+/// / llvmpipe".
+std::string currentContextDescription();
 
 /// Creates a headless context. kAuto tries EGL surfaceless, then OSMesa; the error names
 /// every backend tried and why each failed.

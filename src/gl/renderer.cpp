@@ -155,32 +155,18 @@ size_t Renderer::chamferEdgesDrawn() const {
   return n;
 }
 
-void Renderer::draw(const Camera& camera, const RenderParams& params, int width, int height) {
-  if (objects_.size() == 1) {
-    draw(camera, params, std::span<const RenderParams>(&params, 1), width, height);
-    return;
-  }
-  const std::vector<RenderParams> styles(objects_.size(), params);
-  draw(camera, params, styles, width, height);
-}
-
-void Renderer::drawFaces(Object& o, const Camera& camera, const RenderParams& style, float aspect, int width,
-                         int height) {
+void Renderer::drawFaces(Object& o, const Camera& camera, const ObjectStyle& style, const FrameParams& frame) {
+  const float aspect = frame.aspect();
   if (style.style == Style::kShaded) {
     // Blinn–Phong with crease-aware corner normals (the chamfer layer's material).
-    o.chamfer.drawShadedFaces(camera, style.chamfer, width, height);
+    o.chamfer.drawShadedFaces(camera, style.chamfer, frame.light_dir_eye, frame.width, frame.height);
     return;
   }
   if (style.style == Style::kToon) {
     const ToonParams& t = style.toon;
     const std::array<float, 5> key{t.tones[0], t.tones[1], t.tones[2], t.thresholds[0], t.thresholds[1]};
     if (key != ramp_key_) {
-      // Build the ramp: 256 texels over n·l ∈ [0, 1].
-      std::vector<float> ramp(256);
-      for (int i = 0; i < 256; ++i) {
-        const float x = (static_cast<float>(i) + 0.5f) / 256.0f;
-        ramp[i] = x < t.thresholds[0] ? t.tones[0] : x < t.thresholds[1] ? t.tones[1] : t.tones[2];
-      }
+      const std::array<float, 256> ramp = toonRamp(t);
       glBindTexture(GL_TEXTURE_2D, ramp_.id());
       glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, 256, 1, 0, GL_RED, GL_FLOAT, ramp.data());
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -195,39 +181,37 @@ void Renderer::drawFaces(Object& o, const Camera& camera, const RenderParams& st
     glBindTexture(GL_TEXTURE_2D, ramp_.id());
     glUniform1i(glGetUniformLocation(toon_.id(), "u_ramp"), 0);
     glUniform3fv(glGetUniformLocation(toon_.id(), "u_base_color"), 1, glm::value_ptr(t.base_color));
-    const glm::vec3 l = glm::normalize(t.light_dir_eye);
+    const glm::vec3 l = glm::normalize(frame.light_dir_eye);
     glUniform3fv(glGetUniformLocation(toon_.id(), "u_light_eye"), 1, glm::value_ptr(l));
   } else {
     // Lines only: the faces take the background colour and only hide hidden lines.
     glUseProgram(depth_only_.id());
     setMatrices(depth_only_.id(), camera, aspect);
-    glUniform4fv(glGetUniformLocation(depth_only_.id(), "u_color"), 1, glm::value_ptr(style.background));
+    glUniform4fv(glGetUniformLocation(depth_only_.id(), "u_color"), 1, glm::value_ptr(frame.background));
   }
   glBindVertexArray(o.mesh_vao.id());
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(o.face_count * 3), GL_UNSIGNED_INT, nullptr);
 }
 
-void Renderer::drawChamfer(Object& o, const Camera& camera, const RenderParams& style, const RenderParams& frame,
-                           int width, int height) {
+void Renderer::drawChamfer(Object& o, const Camera& camera, const ObjectStyle& style, const FrameParams& frame) {
   o.chamfer_drawn = 0;
   const ChamferParams& ch = style.chamfer;
   if (!ch.enabled || !(style.style == Style::kShaded || (style.style == Style::kToon && ch.over_toon))) return;
   if (style.style == Style::kShaded) {
-    o.chamfer.draw(camera, ch, width, height, true, glm::vec3(frame.background));
+    o.chamfer.draw(camera, ch, frame.light_dir_eye, frame.width, frame.height, true, glm::vec3(frame.background));
   } else {
     // Over toon: a Blinn–Phong whose range matches the ramp (darkest tone in the shade,
-    // brightest fully lit) under the toon light, so highlights sit on the toon tones.
+    // brightest fully lit), so highlights sit on the toon tones.
     ChamferParams over = ch;
     const ToonParams& t = style.toon;
     over.ambient = t.base_color * t.tones[0];
     over.diffuse = t.base_color * (t.tones[2] - t.tones[0]);
-    over.light_dir_eye = t.light_dir_eye;
-    o.chamfer.draw(camera, over, width, height, false);
+    o.chamfer.draw(camera, over, frame.light_dir_eye, frame.width, frame.height, false);
   }
   o.chamfer_drawn = o.chamfer.edgesDrawn();
 }
 
-void Renderer::drawLines(Object& o, const Camera& camera, const RenderParams& style, float aspect) {
+void Renderer::drawLines(Object& o, const Camera& camera, const ObjectStyle& style, float aspect) {
   glUseProgram(line_.id());
   setMatrices(line_.id(), camera, aspect);
   glBindVertexArray(o.line_vao.id());
@@ -247,11 +231,10 @@ void Renderer::drawLines(Object& o, const Camera& camera, const RenderParams& st
   }
 }
 
-void Renderer::draw(const Camera& camera, const RenderParams& frame, std::span<const RenderParams> styles, int width,
-                    int height) {
+void Renderer::draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
   LODLINE_ASSERT(styles.size() == objects_.size());
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  glViewport(0, 0, width, height);
+  const float aspect = frame.aspect();
+  glViewport(0, 0, frame.width, frame.height);
   glClearColor(frame.background.r, frame.background.g, frame.background.b, frame.background.a);
   glClearDepth(1.0);
   glDepthMask(GL_TRUE);
@@ -266,15 +249,11 @@ void Renderer::draw(const Camera& camera, const RenderParams& frame, std::span<c
   //    test. A lines-style object's faces take the frame's background colour.
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.0f, 2.0f);
-  for (size_t i = 0; i < objects_.size(); ++i) {
-    RenderParams style = styles[i];
-    style.background = frame.background;
-    drawFaces(objects_[i], camera, style, aspect, width, height);
-  }
+  for (size_t i = 0; i < objects_.size(); ++i) drawFaces(objects_[i], camera, styles[i], frame);
   glDisable(GL_POLYGON_OFFSET_FILL);
 
   // 2. Chamfer highlights on sharp edges, blended over the faces (depth-tested against them).
-  for (size_t i = 0; i < objects_.size(); ++i) drawChamfer(objects_[i], camera, styles[i], frame, width, height);
+  for (size_t i = 0; i < objects_.size(); ++i) drawChamfer(objects_[i], camera, styles[i], frame);
 
   // 3. Lines: depth-tested against every object's faces, no depth writes, blended for faded lines.
   glDepthFunc(GL_LEQUAL);
@@ -389,23 +368,34 @@ Image OffscreenTarget::readback() const {
   return image;
 }
 
-DepthImage OffscreenTarget::readDepth() const {
+void OffscreenTarget::readDepth(DepthImage& d) const {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.id());
   glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_.id());
-  DepthImage d;
   d.width = width_;
   d.height = height_;
   d.depth.resize(static_cast<size_t>(width_) * height_);
-  std::vector<float> rows(d.depth.size());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT, rows.data());
-  for (int y = 0; y < height_; ++y)
-    std::memcpy(&d.depth[static_cast<size_t>(y) * width_],
-                &rows[static_cast<size_t>(height_ - 1 - y) * width_], sizeof(float) * width_);
+  glReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT, d.depth.data());
+  // OpenGL's rows run bottom-up: flip in place.
+  for (int y = 0; y < height_ / 2; ++y) {
+    auto top = d.depth.begin() + static_cast<ptrdiff_t>(y) * width_;
+    std::swap_ranges(top, top + width_, d.depth.begin() + static_cast<ptrdiff_t>(height_ - 1 - y) * width_);
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  return d;
+}
+
+void OffscreenTarget::blitToBound() const {
+  GLint draw_fbo = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fbo);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.id());
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_.id());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw_fbo));
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
 }
 
 }  // namespace lodline

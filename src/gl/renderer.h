@@ -15,12 +15,10 @@
 #include "core/camera.h"
 #include "core/line_buffer.h"
 #include "core/render_params.h"
+#include "core/image.h"
 #include "core/result.h"
-#include "export/coherence.h"
-#include "export/visibility.h"
 #include "gl/chamfer_layer.h"
 #include "gl/gl_objects.h"
-#include "io/image.h"
 
 namespace lodline {
 
@@ -44,21 +42,13 @@ class Renderer {
                std::span<const std::array<uint32_t, 3>> faces, std::span<const EdgeKey> marked_edges = {});
   /// Uploads the lines of `object`, grouped by kind.
   void setLines(size_t object, const LineBuffer& lines);
-  /// Object 0 (the only one of a single-model renderer).
-  void setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
-               std::span<const std::array<uint32_t, 3>> faces, std::span<const EdgeKey> marked_edges = {}) {
-    setMesh(0, positions, normals, faces, marked_edges);
-  }
-  void setLines(const LineBuffer& lines) { setLines(0, lines); }
 
-  /// Draws every object into the currently bound framebuffer of `width`×`height` px (cleared
-  /// first to `frame.background`): all faces, each object in its own `styles[i]` (style,
-  /// toon, chamfer; the array holds objectCount() entries), then the chamfer highlights,
-  /// then all lines, so an object hides the lines of those behind it.
-  void draw(const Camera& camera, const RenderParams& frame, std::span<const RenderParams> styles, int width,
-            int height);
-  /// Every object in the frame's own style.
-  void draw(const Camera& camera, const RenderParams& params, int width, int height);
+  /// Draws every object into the currently bound framebuffer of frame.width × frame.height
+  /// px (cleared first to `frame.background`), lit by frame.light_dir_eye: all faces, each
+  /// object in its own `styles[i]` (style, toon, chamfer; the array holds objectCount()
+  /// entries), then the chamfer highlights, then all lines, so an object hides the lines of
+  /// those behind it.
+  void draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles);
 
   /// Faces uploaded, over all objects / of one object.
   size_t faceCount() const;
@@ -86,10 +76,9 @@ class Renderer {
   };
   Renderer() = default;
   Result<Object> makeObject() const;
-  void drawFaces(Object& o, const Camera& camera, const RenderParams& style, float aspect, int width, int height);
-  void drawChamfer(Object& o, const Camera& camera, const RenderParams& style, const RenderParams& frame, int width,
-                   int height);
-  void drawLines(Object& o, const Camera& camera, const RenderParams& style, float aspect);
+  void drawFaces(Object& o, const Camera& camera, const ObjectStyle& style, const FrameParams& frame);
+  void drawChamfer(Object& o, const Camera& camera, const ObjectStyle& style, const FrameParams& frame);
+  void drawLines(Object& o, const Camera& camera, const ObjectStyle& style, float aspect);
   GlProgram toon_, depth_only_, line_, surface_;
   GlTexture ramp_;
   std::vector<Object> objects_;
@@ -97,7 +86,7 @@ class Renderer {
 };
 
 /// A single-sample RGBA32F framebuffer with depth for Renderer::drawSurface(), read back as a
-/// SurfaceImage (export/coherence.h).
+/// SurfaceImage (core/image.h).
 class SurfaceTarget {
  public:
   static Result<SurfaceTarget> create(int width, int height);
@@ -122,8 +111,12 @@ class OffscreenTarget {
   void bind() const;
   /// Resolves the multisampled image and reads it back, top row first.
   Image readback() const;
-  /// Reads the depth buffer (one sample per pixel), top row first, values in [0, 1].
-  DepthImage readDepth() const;
+  /// Reads the depth buffer (one sample per pixel), top row first, values in [0, 1], into
+  /// `out` (resized).
+  void readDepth(DepthImage& out) const;
+  /// Resolves the multisampled image and copies it into the currently bound draw
+  /// framebuffer's lower left `width()`×`height()` pixels (a window's back buffer).
+  void blitToBound() const;
   int width() const { return width_; }
   int height() const { return height_; }
   int samples() const { return samples_; }

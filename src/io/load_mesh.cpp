@@ -204,20 +204,4 @@ Status saveOff(const std::filesystem::path& path, const TriMesh& mesh) {
   });
 }
 
-Result<uint64_t> hashFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error::runtime(path.string() + ": cannot open for reading");
-  uint64_t h = 1469598103934665603ull;
-  std::vector<char> buf(1 << 16);
-  while (in) {
-    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-    const std::streamsize n = in.gcount();
-    for (std::streamsize i = 0; i < n; ++i) {
-      h ^= static_cast<unsigned char>(buf[static_cast<size_t>(i)]);
-      h *= 1099511628211ull;
-    }
-  }
-  return h;
-}
-
 }  // namespace lodline

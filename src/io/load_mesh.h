@@ -30,7 +30,4 @@ Status validateMesh(const TriMesh& mesh, const std::string& what);
 /// Writes an ASCII OFF file atomically (temporary file, then rename).
 Status saveOff(const std::filesystem::path& path, const TriMesh& mesh);
 
-/// FNV-1a 64-bit hash of the file's bytes (cache keys); error if unreadable.
-Result<uint64_t> hashFile(const std::filesystem::path& path);
-
 }  // namespace lodline

@@ -12,6 +12,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/matrix.hpp>
 
+#include "io/atomic_file.h"
 #include "io/input_check.h"
 #include "io/load_gltf.h"
 #include "io/load_mesh.h"
@@ -512,6 +513,66 @@ Result<Scene> loadScene(const std::filesystem::path& path) {
   obj.where = path.string();
   scene.objects.push_back(std::move(obj));
   return scene;
+}
+
+std::string pathRelativeTo(const std::filesystem::path& file, const std::filesystem::path& folder) {
+  std::error_code ec;
+  const auto abs_file = std::filesystem::absolute(file, ec);
+  const auto abs_base = std::filesystem::absolute(folder.empty() ? "." : folder, ec);
+  auto rel = abs_file.lexically_relative(abs_base);
+  return rel.empty() ? abs_file.string() : rel.string();
+}
+
+namespace {
+
+nlohmann::json vec3Json(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+Status writeSceneFile(const std::filesystem::path& path, const Scene& scene, const std::string& description) {
+  const std::filesystem::path dir = path.parent_path();
+  nlohmann::json j;
+  j["lodline"] = 1;
+  if (!description.empty()) j["description"] = description;
+  if (!scene.settings.empty()) j["settings"] = scene.settings;
+  if (const auto& c = scene.camera) {
+    nlohmann::json cam = nlohmann::json::object();
+    if (c->explicit_pose) {
+      cam["eye"] = vec3Json(c->eye);
+      cam["target"] = vec3Json(c->target);
+      cam["up"] = vec3Json(c->up);
+    } else if (c->view) {
+      cam["view"] = *c->view;
+    } else if (c->path) {
+      const bool file = std::filesystem::path(*c->path).extension() == ".json";
+      cam["path"] = file ? pathRelativeTo(*c->path, dir) : *c->path;
+      if (c->duration) cam["duration"] = *c->duration;
+    }
+    if (c->fov_deg) cam["fov"] = *c->fov_deg;
+    j["camera"] = cam;
+  }
+  if (scene.light_dir_eye) j["light"] = {{"direction", vec3Json(*scene.light_dir_eye)}};
+  nlohmann::json objects = nlohmann::json::array();
+  for (const SceneObject& so : scene.objects) {
+    nlohmann::json o;
+    o["name"] = so.name;
+    o["mesh"] = pathRelativeTo(so.mesh, dir);
+    if (so.gltf_node >= 0) o["gltf_node"] = so.gltf_node;
+    if (so.placement != glm::mat4(1.0f)) o["matrix"] = matrixJson(so.placement);
+    o["detail_factor"] = so.detail_factor;
+    for (const auto& [key, value] : so.style.items()) {
+      std::string k = key;
+      std::replace(k.begin(), k.end(), '-', '_');
+      o[k] = value;
+    }
+    objects.push_back(o);
+  }
+  j["objects"] = objects;
+  const std::string text = j.dump(2) + "\n";
+  return writeFileAtomically(path, [&](std::ostream& out) -> Status {
+    out << text;
+    return {};
+  });
 }
 
 }  // namespace lodline

@@ -6,7 +6,8 @@
 // This file reads and checks the description only (keys, types, paths, transforms);
 // meshes are loaded later, by the caller, from SceneObject::mesh (or taken from
 // SceneObject::preloaded for glTF nodes). Every error names the file and the key, e.g.
-// "street.json: objects[2].scale: must be > 0".
+// "street.json: objects[2].scale: must be > 0". It also writes scenes back
+// (writeSceneFile), so the format has one home.
 #pragma once
 
 #include <filesystem>
@@ -100,6 +101,19 @@ Result<TriMesh> loadObjectMesh(const SceneObject& object);
 
 /// Reads a scene from JSON text; `file` names it in errors and resolves relative paths.
 Result<Scene> parseScene(const std::string& text, const std::filesystem::path& file);
+
+/// `file` as a path relative to `folder` (absolute when no relative path exists), the form
+/// in which scene files name other files.
+std::string pathRelativeTo(const std::filesystem::path& file, const std::filesystem::path& folder);
+
+/// Writes `scene` as a scene file at `path` (atomically; errors name the file) that
+/// loadScene() reads back as the same objects, settings, camera and light: each object
+/// with its name, its mesh file relative to `path`'s folder (and glTF node), its placement
+/// as a "matrix" (when not the identity), its detail factor and its style keys; the camera
+/// as a view, a pose or a path. `description` goes into the file's "description". The
+/// settings are written as they are (path-valued ones must already be relative to `path`'s
+/// folder).
+Status writeSceneFile(const std::filesystem::path& path, const Scene& scene, const std::string& description = {});
 
 /// The model → world matrix of translate `t`, rotation `r` and scale `s`: T·R·S.
 glm::mat4 composeTransform(glm::vec3 t, const glm::mat4& r, glm::vec3 s);

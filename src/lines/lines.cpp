@@ -10,28 +10,18 @@
 
 namespace lodline {
 
-const char* lineTypeName(LineType type) {
-  switch (type) {
-    case LineType::kContour: return "contour";
-    case LineType::kSuggestive: return "suggestive";
-    case LineType::kCrease: return "crease";
-    case LineType::kBoundary: return "boundary";
-  }
-  return "unknown";
-}
-
 void LineSet::clear() {
   points.clear();
   alpha.clear();
   point_ids.clear();
-  types.clear();
+  kinds.clear();
   sources.clear();
   counts.fill(0);
 }
 
 namespace {
 
-inline void pushSegment(LineSet& out, LineType type, uint32_t source, const glm::vec3& p0,
+inline void pushSegment(LineSet& out, LineKind type, uint32_t source, const glm::vec3& p0,
                         uint32_t id0, float a0, const glm::vec3& p1, uint32_t id1, float a1) {
   out.points.push_back(p0);
   out.points.push_back(p1);
@@ -39,7 +29,7 @@ inline void pushSegment(LineSet& out, LineType type, uint32_t source, const glm:
   out.alpha.push_back(a1);
   out.point_ids.push_back(id0);
   out.point_ids.push_back(id1);
-  out.types.push_back(type);
+  out.kinds.push_back(type);
   out.sources.push_back(source);
   ++out.counts[static_cast<int>(type)];
 }
@@ -56,7 +46,7 @@ inline bool passes(float num, float den) { return (num > 0.0f && den > 0.0f) || 
 
 void extractZeroSet(std::span<const glm::vec3> positions,
                     std::span<const std::array<uint32_t, 3>> faces,
-                    const MeshAdjacency& adj, const ZeroSetInput& in, LineType type,
+                    const MeshAdjacency& adj, const ZeroSetInput& in, LineKind type,
                     LineScratch& scratch, LineSet& out) {
   const size_t ne = adj.edges.size();
   const size_t nv = positions.size();
@@ -174,9 +164,9 @@ void extractZeroSet(std::span<const glm::vec3> positions,
       out.points.insert(out.points.end(), part.points.begin(), part.points.end());
       out.alpha.insert(out.alpha.end(), part.alpha.begin(), part.alpha.end());
       for (uint32_t id : part.point_ids) out.point_ids.push_back(id >= ne ? id + shift : id);
-      out.types.insert(out.types.end(), part.types.begin(), part.types.end());
+      out.kinds.insert(out.kinds.end(), part.kinds.begin(), part.kinds.end());
       out.sources.insert(out.sources.end(), part.sources.begin(), part.sources.end());
-      for (int k = 0; k < kLineTypeCount; ++k) out.counts[k] += part.counts[k];
+      for (int k = 0; k < kLineKindCount; ++k) out.counts[k] += part.counts[k];
       interior_id += scratch.part_interior[c];
     }
   }
@@ -226,7 +216,7 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
     const uint8_t m = scratch.edge_mark[e];
     if (m == 0 || (m == 1 && !want_creases)) continue;
     const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
-    pushSegment(out, m == 2 ? LineType::kBoundary : LineType::kCrease, static_cast<uint32_t>(e),
+    pushSegment(out, m == 2 ? LineKind::kBoundary : LineKind::kCrease, static_cast<uint32_t>(e),
                 mesh.positions[a], a, 1.0f, mesh.positions[b], b, 1.0f);
   }
 }
@@ -242,7 +232,7 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
     ZeroSetInput in;
     in.value = view.ndotv;
     if (params.contours_require_positive_kr) in.test_num = view.kr;
-    extractZeroSet(mesh.positions, mesh.faces, adj, in, LineType::kContour, scratch, out);
+    extractZeroSet(mesh.positions, mesh.faces, adj, in, LineKind::kContour, scratch, out);
   }
   if (params.suggestive && view.sc_num.size() == mesh.positions.size()) {
     ZeroSetInput in;
@@ -252,7 +242,7 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
     in.gate = view.ndotv;
     in.gate_min = params.suggestive_min_ndotv;
     in.fade = params.suggestive_fade / (fs * fs);
-    extractZeroSet(mesh.positions, mesh.faces, adj, in, LineType::kSuggestive, scratch, out);
+    extractZeroSet(mesh.positions, mesh.faces, adj, in, LineKind::kSuggestive, scratch, out);
   }
   extractEdgeLines(mesh, adj, face_normals, params, scratch, out, crease_vertices);
 }

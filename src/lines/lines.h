@@ -19,6 +19,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/line_kind.h"
 #include "core/mesh.h"
 #include "core/worker_pool.h"
 #include "lines/view_quantities.h"
@@ -26,12 +27,6 @@
 #include "shape/shape_cache.h"
 
 namespace lodline {
-
-enum class LineType : uint8_t { kContour = 0, kSuggestive = 1, kCrease = 2, kBoundary = 3 };
-inline constexpr int kLineTypeCount = 4;
-
-/// "contour", "suggestive", "crease", "boundary".
-const char* lineTypeName(LineType type);
 
 /// Which lines to extract, and their thresholds (filled identically by CLI, scene file and
 /// viewer; DESIGN.md "Parameters").
@@ -68,13 +63,13 @@ struct LineSet {
   /// equal positions); used by chainStrokes(). Edge crossings use the edge index, crease and
   /// boundary endpoints the vertex index, points inside a face ids ≥ edgeCount.
   std::vector<uint32_t> point_ids;
-  std::vector<LineType> types;      ///< 1 per segment
+  std::vector<LineKind> kinds;      ///< 1 per segment
   /// 1 per segment: the face it crosses (zero-set lines) or the edge it lies on (creases,
   /// boundaries).
   std::vector<uint32_t> sources;
-  std::array<uint32_t, kLineTypeCount> counts{};  ///< segments per LineType
+  std::array<uint32_t, kLineKindCount> counts{};  ///< segments per LineKind
 
-  size_t segmentCount() const { return types.size(); }
+  size_t segmentCount() const { return kinds.size(); }
   void clear();
 };
 
@@ -106,7 +101,7 @@ struct LineScratch {
 /// (positions, faces), typed `type`. `adjacency` must be built from the same faces.
 void extractZeroSet(std::span<const glm::vec3> positions,
                     std::span<const std::array<uint32_t, 3>> faces,
-                    const MeshAdjacency& adjacency, const ZeroSetInput& in, LineType type,
+                    const MeshAdjacency& adjacency, const ZeroSetInput& in, LineKind type,
                     LineScratch& scratch, LineSet& out);
 
 /// Appends creases (dihedral angle, marked and non-manifold edges) and boundaries, as

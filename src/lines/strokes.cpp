@@ -10,7 +10,7 @@ void StrokeSet::clear() {
   points.clear();
   alpha.clear();
   offsets.clear();
-  types.clear();
+  kinds.clear();
   closed.clear();
 }
 
@@ -25,19 +25,19 @@ void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch) {
   const size_t nends = 2 * ns;
   LODLINE_ASSERT(nends <= kEndMask);
   // Partner ends: two ends join when they are the only two with their (type, point id).
-  // Ids are small (edge, vertex or interior indices), so a table indexed by id·types + type
+  // Ids are small (edge, vertex or interior indices), so a table indexed by id·kind count + kind
   // finds them in one pass; only the entries touched are reset afterwards.
   scratch.partner.assign(nends, kNone);
   uint32_t max_id = 0;
   for (uint32_t id : lines.point_ids) max_id = std::max(max_id, id);
-  const size_t table_size = (static_cast<size_t>(max_id) + 1) * kLineTypeCount;
+  const size_t table_size = (static_cast<size_t>(max_id) + 1) * kLineKindCount;
   if (scratch.first_end.size() < table_size) {
     scratch.first_end.resize(table_size, kNone);
     scratch.end_count.resize(table_size, 0);
   }
   auto slot = [&](size_t k) {
-    return static_cast<size_t>(lines.point_ids[k]) * kLineTypeCount +
-           static_cast<size_t>(lines.types[k / 2]);
+    return static_cast<size_t>(lines.point_ids[k]) * kLineKindCount +
+           static_cast<size_t>(lines.kinds[k / 2]);
   };
   for (size_t k = 0; k < nends; ++k) {
     const size_t t = slot(k);
@@ -73,7 +73,7 @@ void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch) {
   // the walk came back to `start` (closed loop).
   auto walk = [&](uint32_t start) {
     out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
-    out.types.push_back(lines.types[start / 2]);
+    out.kinds.push_back(lines.kinds[start / 2]);
     emit(start);
     uint32_t cur = start;
     bool closed = false;
@@ -96,7 +96,7 @@ void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch) {
     if (scratch.partner[k] == kNone && !scratch.used[k / 2]) walk(k);
   for (uint32_t s = 0; s < ns; ++s)
     if (!scratch.used[s]) walk(2 * s);
-  if (!out.types.empty()) out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
+  if (!out.kinds.empty()) out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
 }
 
 }  // namespace lodline

@@ -22,11 +22,11 @@ struct StrokeSet {
   std::vector<float> alpha;       ///< 1 per point
   /// Stroke s is points[offsets[s] .. offsets[s+1]); strokeCount()+1 entries (or empty).
   std::vector<uint32_t> offsets;
-  std::vector<LineType> types;    ///< 1 per stroke
+  std::vector<LineKind> kinds;    ///< 1 per stroke
   /// 1 per stroke: 1 when closed; a closed stroke repeats its first point at the end.
   std::vector<uint8_t> closed;
 
-  size_t strokeCount() const { return types.size(); }
+  size_t strokeCount() const { return kinds.size(); }
   void clear();
 };
 

@@ -2,6 +2,8 @@
 // implementation of progressive meshes", §3 motivates the compact flat-array encoding.
 #include "pm/pm_file.h"
 
+#include "core/hash.h"
+
 #include <cstdio>
 #include <cstring>
 #include <fstream>

@@ -21,6 +21,8 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/hash.h"
+
 namespace lodline {
 
 namespace {
@@ -424,24 +426,6 @@ Result<ProgressiveMesh> Builder::run() {
 }
 
 }  // namespace
-
-uint64_t hashBytes(const void* data, size_t size, uint64_t seed) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  uint64_t h = seed;
-  constexpr uint64_t kPrime = 0x100000001b3ull;
-  size_t i = 0;
-  for (; i + 8 <= size; i += 8) {
-    uint64_t w;
-    std::memcpy(&w, p + i, 8);
-    h = (h ^ w) * kPrime;
-    h ^= h >> 29;
-  }
-  for (; i < size; ++i) h = (h ^ p[i]) * kPrime;
-  h ^= size;
-  h *= kPrime;
-  h ^= h >> 32;
-  return h;
-}
 
 uint64_t meshContentHash(const TriMesh& mesh) {
   uint64_t h = hashBytes(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));

@@ -147,7 +147,5 @@ using MeshErrorFn = std::function<double(const TriMesh& candidate)>;
 /// in the number of collapses (the search then backs off to a measured level).
 BoundedSimplification simplifyWithinBound(const ProgressiveMesh& pm, double bound, const MeshErrorFn& error);
 
-/// Word-wise 64-bit hash (FNV-1a style mixing per 8-byte word), `seed` chains calls.
-uint64_t hashBytes(const void* data, size_t size, uint64_t seed = 0xcbf29ce484222325ull);
 
 }  // namespace lodline

@@ -5,12 +5,11 @@
 
 #include <algorithm>
 #include <atomic>
-#include <barrier>
 #include <cmath>
-#include <thread>
 
 #include "core/result.h"
 #include "core/timer.h"
+#include "core/worker_pool.h"
 
 namespace lodline {
 namespace {
@@ -511,6 +510,8 @@ ConstantDepthSlope constantDepthSlope(const glm::vec4& c0, const glm::vec4& c1, 
 
 struct SoftRasterizer::Impl {
   std::vector<Worker> workers;
+  std::shared_ptr<WorkerPool> pool;
+  bool pool_given = false;  // by setWorkerPool(): RasterParams::threads does not apply
 };
 
 SoftRasterizer::SoftRasterizer() : impl_(std::make_unique<Impl>()) {}
@@ -530,8 +531,10 @@ void SoftRasterizer::draw(const RasterInput& input, const RasterParams& params, 
   p.tile_size = std::clamp(p.tile_size, 16, 1024);
   if (p.count_fragments && target.fragments.size() != target.depth.depth.size())
     target.fragments.assign(target.depth.depth.size(), 0u);
-  int threads = p.threads > 0 ? p.threads : static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::clamp(threads, 1, 16);
+  // The pool's threads each get a slot: a contiguous range of faces to set up and bin, and
+  // their scratch while drawing tiles.
+  WorkerPool& pool = workerPool(p.threads);
+  const int threads = static_cast<int>(pool.threadCount());
 
   Frame f{&input, &p, &target, 0, 0, p.tile_size, static_cast<size_t>(target.width) * target.height};
   f.tiles_x = (target.width + f.tile - 1) / f.tile;
@@ -559,22 +562,21 @@ void SoftRasterizer::draw(const RasterInput& input, const RasterParams& params, 
   else if (!p.linear_correction)
     mode = Mode::kNearest;
 
-  std::atomic<size_t> next_tile{0};
   Stopwatch sw;
-  std::atomic<int64_t> setup_done_ns{0};
-  const auto t_start = std::chrono::steady_clock::now();
-  std::barrier sync(threads, []() noexcept {});
-  auto run = [&](int t) {
-    // 1. Setup and binning of a contiguous range of faces (keeps face order per tile).
-    Worker& w = workers[t];
-    const size_t nf = input.faces.size();
-    const size_t begin = nf * t / threads, end = nf * (t + 1) / threads;
-    for (size_t fi = begin; fi < end; ++fi) setupFace(f, static_cast<uint32_t>(fi), w);
-    sync.arrive_and_wait();
-    if (t == 0)
-      setup_done_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t_start).count();
-    // 2. Tiles, each drawing the triangles of all workers' bins in face order.
-    for (size_t tile = next_tile++; tile < tile_count; tile = next_tile++) {
+  // 1. Setup and binning: slot t takes a contiguous range of faces, so each tile's bins,
+  //    read in slot order, keep the face order whatever the thread count.
+  const size_t nf = input.faces.size();
+  pool.forRange(static_cast<size_t>(threads), 1, [&](size_t t0, size_t t1) {
+    for (size_t t = t0; t < t1; ++t)
+      for (size_t fi = nf * t / threads, end = nf * (t + 1) / threads; fi < end; ++fi)
+        setupFace(f, static_cast<uint32_t>(fi), workers[t]);
+  });
+  stats_.ms_setup = sw.lap();
+  // 2. Tiles, each drawing the triangles of all slots' bins in face order, with the
+  //    running thread's slot as scratch.
+  pool.forRangeWithSlot(tile_count, 1, [&](size_t tile0, size_t tile1, unsigned slot) {
+    Worker& w = workers[slot];
+    for (size_t tile = tile0; tile < tile1; ++tile) {
       const int tx = static_cast<int>(tile % f.tiles_x), ty = static_cast<int>(tile / f.tiles_x);
       const int x0 = tx * f.tile, y0 = ty * f.tile;
       const int x1 = std::min(x0 + f.tile, target.width) - 1, y1 = std::min(y0 + f.tile, target.height) - 1;
@@ -593,24 +595,26 @@ void SoftRasterizer::draw(const RasterInput& input, const RasterParams& params, 
         }
       }
     }
-  };
-  if (threads == 1) {
-    run(0);
-  } else {
-    std::vector<std::jthread> pool;
-    pool.reserve(threads - 1);
-    for (int t = 1; t < threads; ++t) pool.emplace_back(run, t);
-    run(0);
-  }
-  const double total = sw.lap();
-  stats_.ms_setup = static_cast<double>(setup_done_ns.load()) * 1e-6;
-  stats_.ms_raster = total - stats_.ms_setup;
+  });
+  stats_.ms_raster = sw.lap();
   for (int t = 0; t < threads; ++t) {
     stats_.triangles_drawn += workers[t].setups.size();
     stats_.clipped += workers[t].clipped;
     stats_.fragments += workers[t].fragments;
     stats_.lines += workers[t].lines_computed;
   }
+}
+
+WorkerPool& SoftRasterizer::workerPool(int threads) {
+  if (!impl_->pool ||
+      (!impl_->pool_given && threads > 0 && impl_->pool->threadCount() != static_cast<unsigned>(threads)))
+    impl_->pool = std::make_shared<WorkerPool>(threads > 0 ? static_cast<unsigned>(threads) : 0u);
+  return *impl_->pool;
+}
+
+void SoftRasterizer::setWorkerPool(std::shared_ptr<WorkerPool> pool) {
+  impl_->pool = std::move(pool);
+  impl_->pool_given = impl_->pool != nullptr;
 }
 
 void rasterize(const RasterInput& input, const RasterParams& params, RasterTarget& target) {

@@ -13,10 +13,10 @@
 // and the interpolated attributes of the nearest fragment per pixel (a G-buffer; shading is
 // a separate pass, see soft_renderer.h).
 //
-// Multithreaded by screen tiles: each worker sets up and bins a contiguous range of faces,
-// then workers take tiles from a shared counter and draw each tile's triangles in face
-// order, so the result does not depend on the thread count. Workers are std::threads started
-// per draw (tens of µs); setup records, bins and line arrays are kept and reused.
+// Multithreaded by screen tiles on a WorkerPool (core/worker_pool.h): each thread's slot sets
+// up and bins a contiguous range of faces, then threads take tiles and draw each tile's
+// triangles in face order, so the result does not depend on the thread count. Setup records,
+// bins and line arrays are kept and reused.
 #pragma once
 
 #include <array>
@@ -27,7 +27,9 @@
 
 #include <glm/vec4.hpp>
 
-#include "export/visibility.h"
+#include "core/worker_pool.h"
+
+#include "core/image.h"
 
 namespace lodline {
 
@@ -55,7 +57,8 @@ struct RasterParams {
   /// Interpolate linearly between the two nearest constant-depth lines instead of taking the
   /// nearest one (Han & Wang §4). Default on: the paper's best accuracy/time trade-off.
   bool linear_correction = true;
-  /// Worker threads; 0 = std::thread::hardware_concurrency() (at most 16). Default 0.
+  /// Threads of the rasteriser's own WorkerPool (the caller included); 0 = one per core (at
+  /// most 8). Ignored while a pool is given by SoftRasterizer::setWorkerPool(). Default 0.
   int threads = 0;
   /// Screen tiles are tile_size × tile_size pixels (16..1024). Default 64.
   int tile_size = 64;
@@ -147,6 +150,11 @@ class SoftRasterizer {
   /// for a new frame). target.attribute_count must be ≥ input.attribute_count.
   void draw(const RasterInput& input, const RasterParams& params, RasterTarget& target);
   const RasterStats& stats() const { return stats_; }
+  /// Runs the data-parallel loops on `pool` (shared with the caller's other loops) from now
+  /// on; RasterParams::threads no longer applies.
+  void setWorkerPool(std::shared_ptr<WorkerPool> pool);
+  /// The pool draw() uses: the one given, else one of RasterParams::threads threads.
+  WorkerPool& workerPool(int threads);
 
  private:
   struct Impl;

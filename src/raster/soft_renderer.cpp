@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -13,26 +12,6 @@
 
 namespace lodline {
 namespace {
-
-int threadCount(int requested) {
-  const int t = requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency());
-  return std::clamp(t, 1, 16);
-}
-
-// Runs body(begin, end) over [0, n) split into `threads` contiguous parts.
-template <class F>
-void parallelRanges(int n, int threads, F&& body) {
-  threads = std::clamp(threads, 1, std::max(n, 1));
-  if (threads == 1) {
-    body(0, n);
-    return;
-  }
-  std::vector<std::jthread> pool;
-  pool.reserve(threads - 1);
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back([&, t] { body(n * t / threads, n * (t + 1) / threads); });
-  body(0, n / threads);
-}
 
 uint8_t toByte(float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
 
@@ -70,7 +49,7 @@ glm::vec4 sampleTexture(const Image& image, float u, float v, TextureFilter filt
 }
 
 size_t drawWideLines(std::span<const LineVertex> vertices, const glm::mat4& view_projection,
-                     const LineStyle& style, const DepthImage& depth, Image& image, int threads) {
+                     const LineStyle& style, const DepthImage& depth, Image& image, WorkerPool& pool) {
   const int W = depth.width, H = depth.height;
   // OpenGL rounds the width of aliased wide lines to an integer.
   const int width = std::max(1, static_cast<int>(std::lround(style.width_px)));
@@ -152,50 +131,94 @@ size_t drawWideLines(std::span<const LineVertex> vertices, const glm::mat4& view
       }
     }
   };
-  parallelRanges(H, threads, draw_band);
+  pool.forRange(static_cast<size_t>(H), 16, [&](size_t y0, size_t y1) {
+    draw_band(static_cast<int>(y0), static_cast<int>(y1));
+  });
   return segments;
 }
 
-void SoftRenderer::setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+SoftRenderer::SoftRenderer(const RasterParams& params) : params_(params) { setObjectCount(1); }
+
+void SoftRenderer::setWorkerPool(std::shared_ptr<WorkerPool> pool) { rasterizer_.setWorkerPool(std::move(pool)); }
+
+void SoftRenderer::setObjectCount(size_t n) { objects_.resize(n); }
+
+void SoftRenderer::setMesh(size_t object, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                            std::span<const std::array<uint32_t, 3>> faces) {
-  positions_.assign(positions.begin(), positions.end());
-  normals_.assign(normals.begin(), normals.end());
-  faces_.assign(faces.begin(), faces.end());
+  Object& o = objects_[object];
+  o.positions.assign(positions.begin(), positions.end());
+  o.normals.assign(normals.begin(), normals.end());
+  o.faces.assign(faces.begin(), faces.end());
 }
 
-void SoftRenderer::setTexture(Image texture, std::span<const glm::vec2> uvs) {
-  texture_ = std::move(texture);
-  uvs_.assign(uvs.begin(), uvs.end());
+void SoftRenderer::setTexture(size_t object, Image texture, std::span<const glm::vec2> uvs) {
+  objects_[object].texture = std::move(texture);
+  objects_[object].uvs.assign(uvs.begin(), uvs.end());
 }
 
-void SoftRenderer::setLines(const LineBuffer& lines) { lines_ = lines; }
+void SoftRenderer::setLines(size_t object, const LineBuffer& lines) { objects_[object].lines = lines; }
 
-void SoftRenderer::draw(const Camera& camera, const RenderParams& params) {
-  Stopwatch sw;
-  const int W = params.width, H = params.height;
-  const bool textured = !texture_.rgba.empty() && uvs_.size() == positions_.size();
-  const int N = textured ? 5 : 3;
-  const glm::mat4 view = camera.view();
-  const glm::mat4 view_proj = camera.projection(static_cast<float>(W) / static_cast<float>(H)) * view;
+Status SoftRenderer::supports(const ObjectStyle& style) {
+  if (style.style == Style::kShaded)
+    return Error::usage("the shaded style (Blinn-Phong faces and chamfer highlights) needs OpenGL");
+  if (style.style == Style::kToon && style.chamfer.enabled && style.chamfer.over_toon)
+    return Error::usage("chamfer highlights (--chamfer on) need OpenGL");
+  return {};
+}
+
+void SoftRenderer::gather(const glm::mat4& view, const glm::mat4& view_proj, int attribute_count) {
   const glm::mat3 normal_matrix(view);  // as mesh.vert: mat3(u_view) * a_normal
-  const size_t nv = positions_.size();
-  clip_.resize(nv);
-  attributes_.resize(nv * N);
-  for (size_t v = 0; v < nv; ++v) {
-    clip_[v] = view_proj * glm::vec4(positions_[v], 1.0f);
-    const glm::vec3 n = v < normals_.size() ? normal_matrix * normals_[v] : glm::vec3(0.0f, 0.0f, 1.0f);
-    float* a = &attributes_[v * N];
-    a[0] = n.x;
-    a[1] = n.y;
-    a[2] = n.z;
-    if (textured) {
-      a[3] = uvs_[v].x;
-      a[4] = uvs_[v].y;
-    }
+  const int N = attribute_count;
+  size_t nv = 0, nf = 0;
+  for (const Object& o : objects_) {
+    nv += o.positions.size();
+    nf += o.faces.size();
   }
+  clip_.resize(nv);
+  attributes_.assign(nv * N, 0.0f);
+  faces_.resize(nf);
+  face_object_.resize(nf);
+  size_t v0 = 0, f0 = 0;
+  for (size_t i = 0; i < objects_.size(); ++i) {
+    const Object& o = objects_[i];
+    const bool tex = textured(o);
+    for (size_t v = 0; v < o.positions.size(); ++v) {
+      clip_[v0 + v] = view_proj * glm::vec4(o.positions[v], 1.0f);
+      const glm::vec3 n = v < o.normals.size() ? normal_matrix * o.normals[v] : glm::vec3(0.0f, 0.0f, 1.0f);
+      float* a = &attributes_[(v0 + v) * N];
+      a[0] = n.x;
+      a[1] = n.y;
+      a[2] = n.z;
+      if (tex) {
+        a[3] = o.uvs[v].x;
+        a[4] = o.uvs[v].y;
+      }
+    }
+    const uint32_t base = static_cast<uint32_t>(v0);
+    for (size_t f = 0; f < o.faces.size(); ++f) {
+      faces_[f0 + f] = {o.faces[f][0] + base, o.faces[f][1] + base, o.faces[f][2] + base};
+      face_object_[f0 + f] = static_cast<uint32_t>(i);
+    }
+    v0 += o.positions.size();
+    f0 += o.faces.size();
+  }
+}
+
+void SoftRenderer::draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
+  LODLINE_ASSERT(styles.size() == objects_.size());
+  Stopwatch sw;
+  const int W = frame.width, H = frame.height;
+  width_ = W;
+  height_ = H;
+  const bool any_texture = std::any_of(objects_.begin(), objects_.end(), [&](const Object& o) { return textured(o); });
+  const int N = any_texture ? 5 : 3;
+  const glm::mat4 view = camera.view();
+  const glm::mat4 view_proj = camera.projection(frame.aspect()) * view;
+  gather(view, view_proj, N);
   times_.transform = sw.lap();
 
-  // 1. Faces, pushed back like glPolygonOffset(1, 2) so visible lines pass the depth test.
+  // 1. Faces of every object, pushed back like glPolygonOffset(1, 2) so visible lines pass
+  //    the depth test.
   if (target_.width != W || target_.height != H || target_.attribute_count != N)
     target_.resize(W, H, N);
   else
@@ -215,37 +238,36 @@ void SoftRenderer::draw(const Camera& camera, const RenderParams& params) {
   times_.raster = rasterizer_.stats().ms_raster;
   sw.lap();
 
-  // 2. Shading: the ramp of shaders/toon.frag (256 texels over n·l ∈ [0, 1], nearest).
+  // 2. Shading: each object's ramp (as shaders/toon.frag: 256 texels over n·l ∈ [0, 1],
+  //    nearest); lines-style objects and the empty image take the background colour.
   if (image_.width != W || image_.height != H) image_ = Image(W, H);
-  const ToonParams& toon = params.toon;
-  std::array<float, 256> ramp;
-  for (int i = 0; i < 256; ++i) {
-    const float x = (static_cast<float>(i) + 0.5f) / 256.0f;
-    ramp[i] = x < toon.thresholds[0] ? toon.tones[0] : x < toon.thresholds[1] ? toon.tones[1] : toon.tones[2];
-  }
-  const glm::vec3 light = glm::normalize(toon.light_dir_eye);
-  const uint8_t bg[4] = {toByte(params.background.r), toByte(params.background.g), toByte(params.background.b),
-                         toByte(params.background.a)};
+  std::vector<std::array<float, 256>> ramps(objects_.size());
+  for (size_t i = 0; i < objects_.size(); ++i) ramps[i] = toonRamp(styles[i].toon);
+  const glm::vec3 light = glm::normalize(frame.light_dir_eye);
+  const uint8_t bg[4] = {toByte(frame.background.r), toByte(frame.background.g), toByte(frame.background.b),
+                         toByte(frame.background.a)};
   const size_t plane = static_cast<size_t>(W) * H;
-  const int threads = threadCount(params_.threads);
-  parallelRanges(H, threads, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
+  pool().forRange(static_cast<size_t>(H), 16, [&](size_t y0, size_t y1) {
+    for (int y = static_cast<int>(y0); y < static_cast<int>(y1); ++y)
       for (int x = 0; x < W; ++x) {
         const size_t i = target_.index(x, y);
         uint8_t* px = image_.pixel(x, y);
-        if (target_.face_id[i] == kNoFace || params.style != Style::kToon) {
+        const uint32_t face = target_.face_id[i];
+        const uint32_t obj = face == kNoFace ? 0 : face_object_[face];
+        if (face == kNoFace || styles[obj].style != Style::kToon) {
           std::copy(bg, bg + 4, px);
           continue;
         }
+        const ToonParams& toon = styles[obj].toon;
         glm::vec3 n(target_.attributes[i], target_.attributes[plane + i], target_.attributes[2 * plane + i]);
         const float len = glm::length(n);
         n = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
         if (!target_.front_facing[i]) n = -n;  // two-sided, like gl_FrontFacing
         const float ndotl = std::clamp(glm::dot(n, light), 0.0f, 1.0f);
-        const float tone = ramp[std::min(static_cast<int>(ndotl * 256.0f), 255)];
+        const float tone = ramps[obj][std::min(static_cast<int>(ndotl * 256.0f), 255)];
         glm::vec3 c = toon.base_color * tone;
-        if (textured) {
-          const glm::vec4 t = sampleTexture(texture_, target_.attributes[3 * plane + i],
+        if (textured(objects_[obj])) {
+          const glm::vec4 t = sampleTexture(objects_[obj].texture, target_.attributes[3 * plane + i],
                                             target_.attributes[4 * plane + i], TextureFilter::kBilinear);
           c *= glm::vec3(t);
         }
@@ -257,15 +279,59 @@ void SoftRenderer::draw(const Camera& camera, const RenderParams& params) {
   });
   times_.shade = sw.lap();
 
-  // 3. Lines: depth LEQUAL against the faces, no depth writes, blended.
-  segments_drawn_ = 0;
-  for (int k = 0; k < kLineKindCount; ++k) {
-    const LineStyle& s = params.lines.kinds[k];
-    if (!s.enabled || lines_.count[k] == 0) continue;
-    const std::span<const LineVertex> v(lines_.vertices.data() + lines_.first[k], lines_.count[k]);
-    segments_drawn_ += drawWideLines(v, view_proj, s, target_.depth, image_, threads);
+  // 3. Lines of every object: depth LEQUAL against all faces, no depth writes, blended.
+  for (size_t i = 0; i < objects_.size(); ++i) {
+    Object& o = objects_[i];
+    o.segments_drawn = 0;
+    for (int k = 0; k < kLineKindCount; ++k) {
+      const LineStyle& s = styles[i].lines.kinds[k];
+      if (!s.enabled || o.lines.count[k] == 0) continue;
+      const std::span<const LineVertex> v(o.lines.vertices.data() + o.lines.first[k], o.lines.count[k]);
+      o.segments_drawn += drawWideLines(v, view_proj, s, target_.depth, image_, pool());
+    }
   }
   times_.lines = sw.lap();
+}
+
+void SoftRenderer::drawSurface(const Camera& camera, SurfaceImage& out) {
+  const int W = width_, H = height_;
+  const glm::mat4 view_proj = camera.projection(static_cast<float>(W) / static_cast<float>(H)) * camera.view();
+  // World positions as the attributes (no polygon offset: the surface itself).
+  gather(glm::mat4(1.0f), view_proj, 3);
+  size_t v0 = 0;
+  for (const Object& o : objects_) {
+    for (size_t v = 0; v < o.positions.size(); ++v) {
+      float* a = &attributes_[(v0 + v) * 3];
+      a[0] = o.positions[v].x;
+      a[1] = o.positions[v].y;
+      a[2] = o.positions[v].z;
+    }
+    v0 += o.positions.size();
+  }
+  if (surface_target_.width != W || surface_target_.height != H || surface_target_.attribute_count != 3)
+    surface_target_.resize(W, H, 3);
+  else
+    surface_target_.clear();
+  RasterParams rp = params_;
+  rp.depth_test = true;
+  rp.cull_back_faces = false;
+  rp.interpolation = Interpolation::kExact;  // positions, not texture coordinates: exact
+  RasterInput in;
+  in.clip = clip_;
+  in.attributes = attributes_;
+  in.attribute_count = 3;
+  in.faces = faces_;
+  rasterizer_.draw(in, rp, surface_target_);
+  out.width = W;
+  out.height = H;
+  out.texels.assign(static_cast<size_t>(W) * H, glm::vec4(0.0f));
+  const size_t plane = static_cast<size_t>(W) * H;
+  for (size_t i = 0; i < plane; ++i) {
+    const uint32_t face = surface_target_.face_id[i];
+    if (face == kNoFace) continue;
+    out.texels[i] = glm::vec4(surface_target_.attributes[i], surface_target_.attributes[plane + i],
+                              surface_target_.attributes[2 * plane + i], static_cast<float>(face_object_[face] + 1));
+  }
 }
 
 }  // namespace lodline

@@ -1,15 +1,18 @@
-// The toon style drawn in software, with no OpenGL context (`lodline render --backend soft`):
-// the same picture as src/gl/renderer.cpp + shaders/toon.frag — faces shaded by a ramp of
-// flat tones indexed by max(n·l, 0) (Lake et al. 2000) with the light in eye space, drawn
-// with a polygon offset, then lines depth-tested (LEQUAL, no depth writes) and blended.
+// The lines and toon styles drawn in software, with no OpenGL context (`lodline render
+// --backend soft`): the same picture as src/gl/renderer.cpp + shaders/toon.frag — faces
+// shaded by a ramp of flat tones indexed by max(n·l, 0) (Lake et al. 2000) with the frame's
+// light in eye space (or in the background colour for the lines style), drawn with a polygon
+// offset, then lines depth-tested (LEQUAL, no depth writes) and blended. The shaded style
+// and chamfer highlights need OpenGL (supports() says so).
 // Faces go through the constant-depth-scanline rasteriser (raster.h; Han & Wang 2011,
 // J. CAD & CG 23(6)), which interpolates the eye-space normal and, when a texture is set,
 // its coordinates; the texture (e.g. a detail map or a checker) modulates the base colour.
-// The depth image it leaves is what export/visibility.h needs for SVG hidden-line removal.
+// The depth image it leaves is what export/visibility.h needs for hidden-line removal.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -21,8 +24,9 @@
 #include "core/camera.h"
 #include "core/line_buffer.h"
 #include "core/render_params.h"
-#include "export/visibility.h"
-#include "io/image.h"
+#include "core/image.h"
+#include "core/result.h"
+#include "core/worker_pool.h"
 #include "raster/raster.h"
 
 namespace lodline {
@@ -40,9 +44,9 @@ glm::vec4 sampleTexture(const Image& image, float u, float v, TextureFilter filt
 /// segments neither overlap nor leave gaps. A fragment is kept when its window depth is ≤
 /// `depth` (depth LEQUAL, no writes) and blended (src alpha = style alpha × vertex alpha)
 /// into `image`, which must be depth.width × depth.height. Segments are clipped to the
-/// near and far planes. Work is split into `threads` bands of rows. Returns segments drawn.
+/// near and far planes. Bands of rows run on `pool`. Returns segments drawn.
 size_t drawWideLines(std::span<const LineVertex> vertices, const glm::mat4& view_projection,
-                     const LineStyle& style, const DepthImage& depth, Image& image, int threads);
+                     const LineStyle& style, const DepthImage& depth, Image& image, WorkerPool& pool);
 
 /// Milliseconds per stage of the last SoftRenderer::draw().
 struct SoftTimes {
@@ -53,47 +57,75 @@ struct SoftTimes {
   double lines = 0.0;      ///< wide lines
 };
 
+/// The scene drawn in software, like gl/renderer.h: every object's faces (each in its own
+/// style), then every object's lines, so an object hides the lines of those behind it.
 class SoftRenderer {
  public:
   /// `params` selects the interpolation mode and threads; polygon offset and culling are
-  /// set by draw() to match the GL renderer.
-  explicit SoftRenderer(const RasterParams& params = {}) : params_(params) {}
+  /// set by draw() to match the GL renderer. Holds one object until setObjectCount().
+  explicit SoftRenderer(const RasterParams& params = {});
   void setRasterParams(const RasterParams& params) { params_ = params; }
+  /// Runs the rasteriser, shading and lines on `pool` (e.g. the scene's).
+  void setWorkerPool(std::shared_ptr<WorkerPool> pool);
 
-  /// Copies the surface: one position and normal per vertex, faces index them.
-  void setMesh(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+  /// Number of objects; objects beyond `n` are released, new ones start empty.
+  void setObjectCount(size_t n);
+  size_t objectCount() const { return objects_.size(); }
+
+  /// Copies the surface of `object`: one position and normal per vertex, faces index them.
+  void setMesh(size_t object, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                std::span<const std::array<uint32_t, 3>> faces);
-  /// A texture modulating the toon colour, sampled bilinearly at `uvs` (one per vertex,
-  /// perspective-correctly interpolated). An empty texture removes it.
-  void setTexture(Image texture, std::span<const glm::vec2> uvs);
-  /// Copies the lines, grouped by kind.
-  void setLines(const LineBuffer& lines);
+  /// A texture modulating the toon colour of `object`, sampled bilinearly at `uvs` (one per
+  /// vertex, perspective-correctly interpolated). An empty texture removes it.
+  void setTexture(size_t object, Image texture, std::span<const glm::vec2> uvs);
+  /// Copies the lines of `object`, grouped by kind.
+  void setLines(size_t object, const LineBuffer& lines);
 
-  /// Draws a params.width × params.height frame from `camera` into image() and depth().
-  void draw(const Camera& camera, const RenderParams& params);
+  /// Whether this renderer draws `style`: the lines and toon styles, without chamfer
+  /// highlights. Errors are usage errors naming what is missing.
+  static Status supports(const ObjectStyle& style);
+
+  /// Draws a frame.width × frame.height frame from `camera` into image() and depth():
+  /// object i in styles[i] (objectCount() entries, each supported).
+  void draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles);
+  /// The surface pass of the coherence measure (as the GL renderer's): each pixel's nearest
+  /// world position and object index + 1, into `out` (resized to the last draw's size).
+  void drawSurface(const Camera& camera, SurfaceImage& out);
 
   const Image& image() const { return image_; }
   /// Window depth of the faces (with the polygon offset, like GL's depth buffer).
   const DepthImage& depth() const { return target_.depth; }
   const RasterTarget& target() const { return target_; }
-  size_t faceCount() const { return faces_.size(); }
-  size_t segmentsDrawn() const { return segments_drawn_; }
+  size_t faceCount(size_t object) const { return objects_[object].faces.size(); }
+  size_t segmentsDrawn(size_t object) const { return objects_[object].segments_drawn; }
   const SoftTimes& times() const { return times_; }
   const RasterStats& rasterStats() const { return rasterizer_.stats(); }
 
  private:
+  struct Object {
+    std::vector<glm::vec3> positions, normals;
+    std::vector<std::array<uint32_t, 3>> faces;
+    Image texture;
+    std::vector<glm::vec2> uvs;
+    LineBuffer lines;
+    size_t segments_drawn = 0;
+  };
+  bool textured(const Object& o) const { return !o.texture.rgba.empty() && o.uvs.size() == o.positions.size(); }
+  // All objects' vertices to clip space (attributes: eye normal, uv) and their faces into one
+  // array, face_object_ saying whose each face is.
+  void gather(const glm::mat4& view, const glm::mat4& view_proj, int attribute_count);
+  WorkerPool& pool() { return rasterizer_.workerPool(params_.threads); }
+
   RasterParams params_;
   SoftRasterizer rasterizer_;
-  RasterTarget target_;
+  RasterTarget target_, surface_target_;
   Image image_;
-  std::vector<glm::vec3> positions_, normals_;
-  std::vector<std::array<uint32_t, 3>> faces_;
-  Image texture_;
-  std::vector<glm::vec2> uvs_;
-  LineBuffer lines_;
+  std::vector<Object> objects_;
   std::vector<glm::vec4> clip_;     // per-frame scratch, reused
   std::vector<float> attributes_;   // per-frame scratch, reused
-  size_t segments_drawn_ = 0;
+  std::vector<std::array<uint32_t, 3>> faces_;
+  std::vector<uint32_t> face_object_;
+  int width_ = 0, height_ = 0;
   SoftTimes times_;
 };
 

@@ -63,12 +63,12 @@ class Viewer : public ::testing::Test {
     return s ? std::move(s.value()) : nullptr;
   }
 
-  // The session's current frame drawn offscreen at w×h with `samples`.
-  Image draw(ViewerSession& s, int w, int h, int samples) {
-    auto target = OffscreenTarget::create(w, h, samples);
+  // The session's current frame copied into a w×h offscreen target, as into a window.
+  Image draw(ViewerSession& s, int w, int h) {
+    auto target = OffscreenTarget::create(w, h, 1);
     EXPECT_TRUE(target);
     target->bind();
-    s.draw(w, h);
+    s.draw();
     glFinish();
     return target->readback();
   }
@@ -90,14 +90,14 @@ TEST_F(Viewer, FirstFrameIsWhatRenderWrites) {
   ASSERT_TRUE(s);
   ASSERT_EQ(s->scene().size(), 2u);
   ASSERT_TRUE(s->frame(320, 240, 1.0f / 30.0f).ok());
-  const Image viewer = draw(*s, 320, 240, 1);
+  const Image viewer = draw(*s, 320, 240);
   ASSERT_EQ(test::runLodline("render " + scene + " -o " + (dir_ / "render.png").string()), 0);
   auto rendered = readPng(dir_ / "render.png");
   ASSERT_TRUE(rendered);
   EXPECT_EQ(differing(viewer, *rendered), 0u);
   // And the picture is not empty: both objects drew lines.
-  EXPECT_GT(s->renderer().segmentsDrawn(0), 50u);
-  EXPECT_GT(s->renderer().segmentsDrawn(1), 20u);
+  EXPECT_GT(s->presenter().segmentsDrawn(0), 50u);
+  EXPECT_GT(s->presenter().segmentsDrawn(1), 20u);
 }
 
 TEST_F(Viewer, ASavedViewRendersToTheSamePicture) {
@@ -110,7 +110,7 @@ TEST_F(Viewer, ASavedViewRendersToTheSamePicture) {
   s->pan(12.0f, -7.0f, 320, 240);
   s->detail().target_area = 9.0f;
   s->scene()[1].detail_factor = 1.5f;
-  s->frameParams().lines.kinds[1].enabled = false;
+  s->defaultStyle().lines.kinds[1].enabled = false;
   for (auto& o : s->scene().objects()) o.style.lines.kinds[1].enabled = false;
   LineParams lp = s->lineParams();
   lp.crease_angle_deg = 45.0f;
@@ -130,7 +130,7 @@ TEST_F(Viewer, ASavedViewRendersToTheSamePicture) {
   const Camera a = s->camera(300, 200), b = t->camera(300, 200);
   EXPECT_LT(glm::length(a.eye - b.eye), 1e-4f * glm::length(a.eye));
   ASSERT_TRUE(t->frame(300, 200, 1.0f / 30.0f).ok());
-  const Image viewer = draw(*t, 300, 200, 1);
+  const Image viewer = draw(*t, 300, 200);
   // ...and `render` of the saved file writes exactly that picture.
   ASSERT_EQ(test::runLodline("render " + saved.string() + " -o " + (dir_ / "saved.png").string()), 0);
   auto rendered = readPng(dir_ / "saved.png");
@@ -145,7 +145,7 @@ TEST_F(Viewer, DraggingThePanelsTargetAreaSliderChangesTheActiveFaces) {
   ASSERT_TRUE(s);
   const int w = 900, h = 760;
   ASSERT_TRUE(s->frame(w, h, 1.0f / 30.0f).ok());
-  const size_t faces_before = s->stats().active_faces;
+  const size_t faces_before = s->report().total.active_faces;
   const float t_before = s->detail().target_area;
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -164,7 +164,7 @@ TEST_F(Viewer, DraggingThePanelsTargetAreaSliderChangesTheActiveFaces) {
     io.MouseDown[0] = down;
     ASSERT_TRUE(s->frame(w, h, 1.0f / 30.0f).ok());
     target->bind();
-    s->draw(w, h);
+    s->draw();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui::NewFrame();
     drawPanel(*s, panel, w, h);
@@ -182,11 +182,11 @@ TEST_F(Viewer, DraggingThePanelsTargetAreaSliderChangesTheActiveFaces) {
   frame(ImVec2(r[2] - 1.0f, y), false);                  // release
   for (int i = 0; i < 4; ++i) frame(ImVec2(-100, -100), false);  // adapt (no geomorphs: at once)
   EXPECT_GT(s->detail().target_area, 8.0f * t_before);
-  EXPECT_LT(s->stats().active_faces, faces_before / 2);
+  EXPECT_LT(s->report().total.active_faces, faces_before / 2);
   // The panel was drawn over the picture: its pixels differ from the bare drawing.
   const Image with_panel = target->readback();
   target->bind();
-  s->draw(w, h);
+  s->draw();
   glFinish();
   EXPECT_GT(differing(with_panel, target->readback()), 20000u);
   ImGui_ImplOpenGL3_Shutdown();

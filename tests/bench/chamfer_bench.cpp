@@ -87,7 +87,8 @@ struct Renders {
   Camera camera;
 };
 
-Image renderOnce(const TriMesh& mesh, const Camera& cam, RenderParams rp) {
+Image renderOnce(const TriMesh& mesh, const Camera& cam, const test::Look& look) {
+  const FrameParams& rp = look.frame;
   auto renderer = Renderer::create();
   auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
   if (!renderer || !target) {
@@ -96,20 +97,20 @@ Image renderOnce(const TriMesh& mesh, const Camera& cam, RenderParams rp) {
   }
   // The shaded style draws crease-aware corner normals; the indexed normals are unused.
   std::vector<glm::vec3> normals(mesh.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
-  renderer->setMesh(mesh.positions, normals, mesh.faces);
+  renderer->setMesh(0, mesh.positions, normals, mesh.faces);
   target->bind();
-  renderer->draw(cam, rp, rp.width, rp.height);
+  renderer->draw(cam, rp, std::span<const ObjectStyle>(&look.style, 1));
   glFinish();
   return target->readback();
 }
 
-RenderParams shadedParams(int w, int h, float radius) {
-  RenderParams rp;
-  rp.width = w;
-  rp.height = h;
-  rp.style = Style::kShaded;
-  for (auto& k : rp.lines.kinds) k.enabled = false;
-  rp.chamfer.radius = radius;
+test::Look shadedParams(int w, int h, float radius) {
+  test::Look rp;
+  rp.frame.width = w;
+  rp.frame.height = h;
+  rp.style.style = Style::kShaded;
+  for (auto& k : rp.style.lines.kinds) k.enabled = false;
+  rp.style.chamfer.radius = radius;
   return rp;
 }
 
@@ -214,18 +215,18 @@ int groundTruth(const std::filesystem::path& dir) {
     for (const View& view : views) {
       Renders r;
       r.camera = orbitCamera(bounds, view.orbit, 35.0f, static_cast<float>(w) / h);
-      RenderParams big = shadedParams(w * ss, h * ss, radius);
-      big.msaa = 1;
-      big.chamfer.enabled = false;
+      test::Look big = shadedParams(w * ss, h * ss, radius);
+      big.frame.msaa = 1;
+      big.style.chamfer.enabled = false;
       const Image truth_big = renderOnce(rounded, r.camera, big);
       r.truth = downsample(truth_big, ss);
       r.sharp_truth = downsample(renderOnce(sharp, r.camera, big), ss);
-      RenderParams rp = shadedParams(w, h, radius);
-      rp.chamfer.compose = ChamferCompose::kAlpha;
+      test::Look rp = shadedParams(w, h, radius);
+      rp.style.chamfer.compose = ChamferCompose::kAlpha;
       r.chamfer = renderOnce(sharp, r.camera, rp);
-      rp.chamfer.compose = ChamferCompose::kReplace;
+      rp.style.chamfer.compose = ChamferCompose::kReplace;
       r.replace = renderOnce(sharp, r.camera, rp);
-      rp.chamfer.enabled = false;
+      rp.style.chamfer.enabled = false;
       r.plain = renderOnce(sharp, r.camera, rp);
       const EdgeStats s = compareEdges(sharp, r, radius, w, h);
       std::printf("%-6.3f %-5s %7zu %6zu %8zu  %9.2f %9.2f %9.2f  %9.1f %9.1f %9.1f  %6.2f\n", radius,
@@ -265,15 +266,16 @@ void chamferFrameBenchmark(benchmark::State& state, const std::string& name) {
   if (!setup) return;
   const size_t faces = setup->mesh.faceCount();
   LineDrawing drawing(std::move(setup->mesh));
-  RenderParams rp;
-  rp.style = Style::kShaded;
+  FrameParams rp;
+  ObjectStyle style;
+  style.style = Style::kShaded;
   auto renderer = Renderer::create();
   auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
   if (!renderer || !target) {
     state.SkipWithError("renderer setup failed");
     return;
   }
-  renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces,
+  renderer->setMesh(0, drawing.mesh().positions, drawing.normals(), drawing.mesh().faces,
                     drawing.mesh().marked_edges);
   std::array<bool, kLineKindCount> enabled{};
   enabled.fill(true);
@@ -283,19 +285,19 @@ void chamferFrameBenchmark(benchmark::State& state, const std::string& name) {
   // Warm-up: edge finding and corner normals happen at the first draw.
   target->bind();
   renderer->draw(orbitCamera(drawing.bounds(), {az, 15.0f, 0.0f}, 35.0f, 1280.0f / 720.0f), rp,
-                 rp.width, rp.height);
+                 std::span<const ObjectStyle>(&style, 1));
   glFinish();
   for (auto _ : state) {
     const Camera cam = orbitCamera(drawing.bounds(), {az, 15.0f, 0.0f}, 35.0f, 1280.0f / 720.0f);
     az += 1.0f;
     drawing.update(cam, enabled);
-    renderer->setLines(drawing.lines());
+    renderer->setLines(0, drawing.lines());
     for (int mode = 0; mode < 3; ++mode) {  // replace (default), alpha (the paper's), off
-      rp.chamfer.enabled = mode < 2;
-      rp.chamfer.compose = mode == 0 ? ChamferCompose::kReplace : ChamferCompose::kAlpha;
+      style.chamfer.enabled = mode < 2;
+      style.chamfer.compose = mode == 0 ? ChamferCompose::kReplace : ChamferCompose::kAlpha;
       target->bind();
       Stopwatch sw;
-      renderer->draw(cam, rp, rp.width, rp.height);
+      renderer->draw(cam, rp, std::span<const ObjectStyle>(&style, 1));
       glFinish();
       (mode == 0 ? on_ms : mode == 1 ? alpha_ms : off_ms).push_back(sw.lap());
       if (mode == 0) edges = renderer->chamferEdgesDrawn();

@@ -1,7 +1,8 @@
-// Cost of a detail-controlled frame (DESIGN.md "Figures to reach"; issue: "a frame of a
-// 1M-triangle model with controlled detail must cost no more than rendering its adapted mesh
-// statically plus 10 ms, and far less than the full mesh"). Side by side in one run, 1280x720,
-// slow orbit (1 degree per frame), EGL surfaceless, median ms per stage over the frames:
+// Cost of a detail-controlled frame (docs/design.md §8: the controlled frame of a large model
+// within a small factor of drawing its adapted mesh statically, and far less than the full
+// mesh). Every frame goes through the SceneDrawing and presenter `render` uses. Side by side
+// in one run, 1280x720, slow orbit (1 degree per frame), EGL surfaceless, median ms per
+// stage over the frames:
 //   controlled: adapt + shape update + lines (view, extract, chain) + upload + draw
 //   static:     drawing the same adapted mesh and lines again (no CPU stages)
 //   full:       full-detail mesh: lines (view, extract, chain) + draw
@@ -16,13 +17,11 @@
 #include <utility>
 #include <vector>
 
-#include <glad/gl.h>
-
 #include "core/timer.h"
 #include "frame/lod_drawing.h"
 #include "frame/scene_drawing.h"
 #include "gl/context.h"
-#include "gl/renderer.h"
+#include "present/gl_presenter.h"
 #include "io/generate.h"
 #include "io/load_mesh.h"
 #include "pm/pm_file.h"
@@ -58,6 +57,44 @@ std::shared_ptr<Model> loadModel(const std::string& name) {
   return m;
 }
 
+// A scene of one object drawn in the default style.
+SceneDrawing sceneOf(std::unique_ptr<LodDrawing> drawing, const std::string& name) {
+  SceneDrawing scene;
+  SceneDrawing::Object o;
+  o.name = name;
+  o.input_faces = drawing->drawing().mesh().faceCount();
+  o.drawing = std::move(drawing);
+  scene.add(std::move(o));
+  return scene;
+}
+
+// Per-stage milliseconds of the last frame of a scene: adapt, shape (where the mesh
+// changed), lines; and the progressive meshes' splits + collapses, curvature updates and
+// full recomputes.
+struct Stages {
+  double adapt = 0.0, shape = 0.0, lines = 0.0, ops = 0.0, curvature = 0.0, full = 0.0, faces = 0.0;
+};
+Stages stagesOf(const SceneDrawing& scene) {
+  Stages st;
+  for (const auto& o : scene.objects()) {
+    const LodDrawing& l = *o.drawing;
+    const CpuTimings& t = l.drawing().timings();
+    st.adapt += l.adaptMs();
+    st.lines += t.view + t.extract + t.chain;
+    if (l.meshChanged()) {
+      st.shape += t.shape;
+      const ShapeUpdateStats& us = l.drawing().shape().lastStats();
+      st.curvature += us.curvature_vertices;
+      st.full += us.full ? 1.0 : 0.0;
+    }
+    if (const AdaptiveMesh* lod = l.lod()) {
+      st.ops += static_cast<double>(lod->stats().splits + lod->stats().collapses);
+      st.faces += static_cast<double>(lod->activeFaceCount());
+    }
+  }
+  return st;
+}
+
 void detailFrame(benchmark::State& state, const std::string& name, float target_area) {
   auto model = loadModel(name);
   if (!model) {
@@ -69,55 +106,48 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
     state.SkipWithError(ctx.error().message.c_str());
     return;
   }
-  RenderParams rp;
-  rp.msaa = 1;
-  auto renderer = Renderer::create();
-  auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
-  LodDrawing controlled(model->mesh, model->pm);
-  LodDrawing full(model->mesh);
-  std::array<bool, kLineKindCount> enabled{};
-  enabled.fill(true);
+  FrameParams frame;
+  frame.msaa = 1;
+  // Two presenters on the one context, as two windows of one program would be.
+  auto controlled_presenter = GlPresenter::createOnCurrentContext();
+  auto full_presenter = GlPresenter::createOnCurrentContext();
+  if (!controlled_presenter || !full_presenter) {
+    state.SkipWithError("presenter set-up failed");
+    return;
+  }
+  SceneDrawing controlled = sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm), name);
+  SceneDrawing full = sceneOf(std::make_unique<LodDrawing>(model->mesh), name);
   DetailParams detail;
   detail.target_area = target_area;
-  const float aspect = 1280.0f / 720.0f;
+  const float aspect = frame.aspect();
   // Converge at the first camera, as captures do.
-  (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), rp.width,
-                            rp.height, detail,
-                            1.0f / 30.0f, 300, enabled);
+  (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width,
+                            frame.height, detail, 1.0f / 30.0f, 300);
   std::vector<double> adapt, shape, lines, upload, draw, static_draw, full_lines, full_draw, faces;
   float az = 0.0f;
+  bool first = true;
   for (auto _ : state) {
     const Camera cam = orbitCamera(controlled.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
     az += 1.0f;
-    Stopwatch sw;
-    (void)controlled.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f, enabled);
-    const double cpu = sw.lap();
-    adapt.push_back(controlled.adaptMs());
-    const CpuTimings& t = controlled.drawing().timings();
-    shape.push_back(controlled.meshChanged() ? t.shape : 0.0);
-    lines.push_back(t.view + t.extract + t.chain);
-    (void)cpu;
-    renderer->setMesh(controlled.drawing().mesh().positions, controlled.drawing().normals(),
-                      controlled.drawing().mesh().faces);
-    renderer->setLines(controlled.drawing().lines());
-    upload.push_back(sw.lap());
-    target->bind();
-    renderer->draw(cam, rp, rp.width, rp.height);
-    glFinish();
-    draw.push_back(sw.lap());
-    faces.push_back(static_cast<double>(controlled.lod()->activeFaceCount()));
+    (void)controlled.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
+    const Stages st = stagesOf(controlled);
+    adapt.push_back(st.adapt);
+    shape.push_back(st.shape);
+    lines.push_back(st.lines);
+    (void)(*controlled_presenter)->present(controlled, cam, frame, first);
+    upload.push_back((*controlled_presenter)->times().upload);
+    draw.push_back((*controlled_presenter)->times().render);
+    faces.push_back(st.faces);
     // The same adapted mesh drawn again: the static cost of what controlled detail draws.
-    renderer->draw(cam, rp, rp.width, rp.height);
-    glFinish();
-    static_draw.push_back(sw.lap());
+    (void)(*controlled_presenter)->present(controlled, cam, frame, false);
+    static_draw.push_back((*controlled_presenter)->times().render);
     // Full detail: lines on the full mesh, full mesh drawn.
-    (void)full.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f, enabled);
+    Stopwatch sw;
+    (void)full.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
     full_lines.push_back(sw.lap());
-    renderer->setMesh(full.drawing().mesh().positions, full.drawing().normals(), full.drawing().mesh().faces);
-    renderer->setLines(full.drawing().lines());
-    renderer->draw(cam, rp, rp.width, rp.height);
-    glFinish();
+    (void)(*full_presenter)->present(full, cam, frame, first);
     full_draw.push_back(sw.lap());
+    first = false;
   }
   const double controlled_total = bench::median(adapt) + bench::median(shape) + bench::median(lines) + bench::median(upload) + bench::median(draw);
   state.counters["model_faces"] = static_cast<double>(model->mesh.faceCount());
@@ -167,11 +197,14 @@ void sceneFrame(benchmark::State& state, float target_area) {
     state.SkipWithError("no knot1m or no EGL context");
     return;
   }
-  RenderParams rp;
-  rp.msaa = 1;
-  auto scene_renderer = Renderer::create();
-  auto knot_renderer = Renderer::create();
-  auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
+  FrameParams frame;
+  frame.msaa = 1;
+  auto scene_presenter = GlPresenter::createOnCurrentContext();
+  auto knot_presenter = GlPresenter::createOnCurrentContext();
+  if (!scene_presenter || !knot_presenter) {
+    state.SkipWithError("presenter set-up failed");
+    return;
+  }
   SceneDrawing scene;
   auto pool = std::make_shared<WorkerPool>(ShapeParams{}.threads);
   size_t input_faces = 0;
@@ -179,98 +212,49 @@ void sceneFrame(benchmark::State& state, float target_area) {
     SceneDrawing::Object o;
     o.name = "part" + std::to_string(i);
     o.drawing = std::make_unique<LodDrawing>(parts[i]->mesh, parts[i]->pm, LineParams{}, pool);
-    o.style = rp;
     o.detail_factor = factors[i];
     input_faces += parts[i]->mesh.faceCount();
     scene.add(std::move(o));
   }
-  (void)scene_renderer->setObjectCount(3);
-  std::vector<RenderParams> styles(3, rp);
-  LodDrawing single(knot->mesh, knot->pm);
-  std::array<bool, kLineKindCount> enabled{};
-  enabled.fill(true);
+  SceneDrawing single = sceneOf(std::make_unique<LodDrawing>(knot->mesh, knot->pm), "knot1m");
   DetailParams detail;
   detail.target_area = target_area;
-  const float aspect = 1280.0f / 720.0f;
-  (void)scene.converge(orbitCamera(scene.bounds(), {0.0f, 20.0f, kSceneDistance}, 35.0f, aspect), rp.width, rp.height, detail,
-                       1.0f / 30.0f, 300);
-  (void)single.converge(orbitCamera(single.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), rp.width, rp.height, detail,
-                        1.0f / 30.0f, 300, enabled);
-  for (size_t i = 0; i < scene.size(); ++i) {
-    const LineDrawing& d = scene[i].drawing->drawing();
-    scene_renderer->setMesh(i, d.mesh().positions, d.normals(), d.mesh().faces);
-  }
+  const float aspect = frame.aspect();
+  (void)scene.converge(orbitCamera(scene.bounds(), {0.0f, 20.0f, kSceneDistance}, 35.0f, aspect), frame.width,
+                       frame.height, detail, 1.0f / 30.0f, 300);
+  (void)single.converge(orbitCamera(single.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width, frame.height,
+                        detail, 1.0f / 30.0f, 300);
   std::vector<double> scene_ms, scene_cpu, knot_ms, knot_cpu, scene_faces, knot_faces;
   std::vector<double> scene_adapt, scene_shape, scene_lines, knot_adapt, knot_shape, knot_lines, scene_changes,
-      knot_changes;
-  // Per-stage milliseconds of the last frame: adapt, shape (where the mesh changed), lines.
-  std::vector<double> scene_curv, knot_curv, scene_full, knot_full;
-  double curv_acc = 0.0, full_acc = 0.0;
-  auto stages = [&](const LodDrawing& l, double& a, double& sh, double& li, double& ch) {
-    if (l.meshChanged()) {
-      const ShapeUpdateStats& us = l.drawing().shape().lastStats();
-      curv_acc += us.curvature_vertices;
-      full_acc += us.full ? 1.0 : 0.0;
-    }
-    a += l.adaptMs();
-    const CpuTimings& t = l.drawing().timings();
-    sh += l.meshChanged() ? t.shape : 0.0;
-    li += t.view + t.extract + t.chain;
-    ch += static_cast<double>(l.lod()->stats().splits + l.lod()->stats().collapses);
+      knot_changes, scene_curv, knot_curv, scene_full, knot_full;
+  // One controlled frame of `s` through presenter `p`, its stages recorded.
+  auto run = [&](SceneDrawing& s, GlPresenter& p, const Camera& cam, bool first, std::vector<double>& cpu,
+                 std::vector<double>& total, std::vector<double>& faces, std::vector<double>& a,
+                 std::vector<double>& sh, std::vector<double>& li, std::vector<double>& ops, std::vector<double>& curv,
+                 std::vector<double>& full) {
+    Stopwatch sw;
+    (void)s.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
+    cpu.push_back(sw.elapsed());
+    const Stages st = stagesOf(s);
+    (void)p.present(s, cam, frame, first);
+    total.push_back(sw.elapsed());
+    faces.push_back(st.faces);
+    a.push_back(st.adapt);
+    sh.push_back(st.shape);
+    li.push_back(st.lines);
+    ops.push_back(st.ops);
+    curv.push_back(st.curvature);
+    full.push_back(st.full);
   };
   float az = 0.0f;
+  bool first = true;
   for (auto _ : state) {
     az += 1.0f;
-    {
-      const Camera cam = orbitCamera(scene.bounds(), {az, 20.0f, kSceneDistance}, 35.0f, aspect);
-      Stopwatch sw;
-      (void)scene.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f);
-      scene_cpu.push_back(sw.elapsed());
-      double faces = 0.0, a = 0.0, sh = 0.0, li = 0.0, ch = 0.0;
-      curv_acc = full_acc = 0.0;
-      for (size_t i = 0; i < scene.size(); ++i) stages(*scene[i].drawing, a, sh, li, ch);
-      scene_curv.push_back(curv_acc);
-      scene_full.push_back(full_acc);
-      scene_adapt.push_back(a);
-      scene_shape.push_back(sh);
-      scene_lines.push_back(li);
-      scene_changes.push_back(ch);
-      for (size_t i = 0; i < scene.size(); ++i) {
-        const LodDrawing& l = *scene[i].drawing;
-        if (l.meshChanged())
-          scene_renderer->setMesh(i, l.drawing().mesh().positions, l.drawing().normals(), l.drawing().mesh().faces);
-        scene_renderer->setLines(i, l.drawing().lines());
-        faces += static_cast<double>(l.lod()->activeFaceCount());
-      }
-      target->bind();
-      scene_renderer->draw(cam, rp, styles, rp.width, rp.height);
-      glFinish();
-      scene_ms.push_back(sw.elapsed());
-      scene_faces.push_back(faces);
-    }
-    {
-      const Camera cam = orbitCamera(single.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
-      Stopwatch sw;
-      (void)single.frame(cam, rp.width, rp.height, detail, 1.0f / 30.0f, enabled);
-      knot_cpu.push_back(sw.elapsed());
-      double a = 0.0, sh = 0.0, li = 0.0, ch = 0.0;
-      curv_acc = full_acc = 0.0;
-      stages(single, a, sh, li, ch);
-      knot_curv.push_back(curv_acc);
-      knot_full.push_back(full_acc);
-      knot_adapt.push_back(a);
-      knot_shape.push_back(sh);
-      knot_lines.push_back(li);
-      knot_changes.push_back(ch);
-      if (single.meshChanged())
-        knot_renderer->setMesh(single.drawing().mesh().positions, single.drawing().normals(), single.drawing().mesh().faces);
-      knot_renderer->setLines(single.drawing().lines());
-      target->bind();
-      knot_renderer->draw(cam, rp, rp.width, rp.height);
-      glFinish();
-      knot_ms.push_back(sw.elapsed());
-      knot_faces.push_back(static_cast<double>(single.lod()->activeFaceCount()));
-    }
+    run(scene, **scene_presenter, orbitCamera(scene.bounds(), {az, 20.0f, kSceneDistance}, 35.0f, aspect), first,
+        scene_cpu, scene_ms, scene_faces, scene_adapt, scene_shape, scene_lines, scene_changes, scene_curv, scene_full);
+    run(single, **knot_presenter, orbitCamera(single.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect), first, knot_cpu,
+        knot_ms, knot_faces, knot_adapt, knot_shape, knot_lines, knot_changes, knot_curv, knot_full);
+    first = false;
   }
   state.counters["scene_input_faces"] = static_cast<double>(input_faces);
   state.counters["knot_input_faces"] = static_cast<double>(knot->mesh.faceCount());

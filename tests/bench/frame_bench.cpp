@@ -2,20 +2,19 @@
 // for the CGAL demo meshes at 1280x720 through EGL surfaceless. Run:
 //   ./build/tests/bench/frame_bench --benchmark_counters_tabular=true
 // Counters are median ms per stage: lines (view quantities + extraction + chaining),
-// upload (line buffer), draw (faces + lines, glFinish), readback (resolve + glReadPixels).
+// upload (line buffer), draw (faces + lines, glFinish), readback (resolve + glReadPixels);
+// the frame goes through the same SceneDrawing and presenter as `render`.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <memory>
 #include <vector>
 
-#include <glad/gl.h>
-
 #include "core/timer.h"
-#include "frame/line_drawing.h"
+#include "frame/scene_drawing.h"
 #include "gl/context.h"
-#include "gl/renderer.h"
 #include "io/load_mesh.h"
+#include "present/gl_presenter.h"
 #include "bench_util.h"
 #include "test_util.h"
 
@@ -26,35 +25,38 @@ void frameBenchmark(benchmark::State& state, const std::string& name, Style styl
   auto setup = bench::setUpGlBenchmark(state, name);
   if (!setup) return;
   const size_t faces = setup->mesh.faceCount();
-  LineDrawing drawing(std::move(setup->mesh));
-  RenderParams rp;
-  rp.style = style;
-  rp.msaa = msaa;
-  auto renderer = Renderer::create();
-  auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
-  if (!renderer || !target) {
-    state.SkipWithError("renderer setup failed");
+  // One full-detail object, drawn through the presenter every command uses.
+  SceneDrawing scene;
+  SceneDrawing::Object object;
+  object.name = name;
+  object.style.style = style;
+  object.input_faces = faces;
+  object.drawing = std::make_unique<LodDrawing>(std::move(setup->mesh));
+  scene.add(std::move(object));
+  FrameParams frame;
+  frame.msaa = msaa;
+  auto presenter = GlPresenter::createOnCurrentContext();
+  if (!presenter) {
+    state.SkipWithError(presenter.error().message.c_str());
     return;
   }
-  renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
-  std::array<bool, kLineKindCount> enabled{};
-  enabled.fill(true);
+  GlPresenter& p = **presenter;
+  const DetailParams detail;
   std::vector<double> lines_ms, upload_ms, draw_ms, readback_ms;
   float az = 0.0f;
+  bool first = true;
   for (auto _ : state) {
-    const Camera cam = orbitCamera(drawing.bounds(), {az, 15.0f, 0.0f}, 35.0f, 1280.0f / 720.0f);
+    const Camera cam = orbitCamera(scene.bounds(), {az, 15.0f, 0.0f}, 35.0f, frame.aspect());
     az += 1.0f;  // a slow orbit: one degree per frame
     Stopwatch sw;
-    drawing.update(cam, enabled);
+    (void)scene.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
     lines_ms.push_back(sw.lap());
-    renderer->setLines(drawing.lines());
-    upload_ms.push_back(sw.lap());
-    target->bind();
-    renderer->draw(cam, rp, rp.width, rp.height);
-    glFinish();
-    draw_ms.push_back(sw.lap());
-    benchmark::DoNotOptimize(target->readback());
-    readback_ms.push_back(sw.lap());
+    (void)p.present(scene, cam, frame, first);
+    first = false;
+    upload_ms.push_back(p.times().upload);
+    draw_ms.push_back(p.times().render);
+    benchmark::DoNotOptimize(p.readImage());
+    readback_ms.push_back(p.times().readback);
   }
   state.counters["faces"] = static_cast<double>(faces);
   state.counters["lines_ms"] = bench::median(lines_ms);

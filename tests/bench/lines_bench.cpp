@@ -1,5 +1,5 @@
 // Per-frame cost of the lines stage on ~100k faces: per-view quantities (n·v, kr, Dw kr,
-// suggestive test) + zero-set extraction of all line types, and chaining into strokes, for
+// suggestive test) + zero-set extraction of all line kinds, and chaining into strokes, for
 // a camera orbiting the model (a new view every iteration). Items = vertices.
 #include <benchmark/benchmark.h>
 

@@ -334,10 +334,11 @@ void writeImages(const std::string& dir, const std::vector<Scene>& all, int thre
     std::vector<glm::vec2> uv(s.mesh.vertexCount());
     for (size_t v = 0; v < uv.size(); ++v) uv[v] = {s.uv[2 * v], s.uv[2 * v + 1]};
     SoftRenderer r;
-    r.setMesh(s.mesh.positions, vn, s.mesh.faces);
-    r.setTexture(checker(512, 8), uv);
-    RenderParams rp;
-    r.draw(s.camera, rp);
+    r.setMesh(0, s.mesh.positions, vn, s.mesh.faces);
+    r.setTexture(0, checker(512, 8), uv);
+    const FrameParams frame;
+    const ObjectStyle style;
+    r.draw(s.camera, frame, std::span<const ObjectStyle>(&style, 1));
     (void)writePng(dir + "/softraster-armadillo-checker.png", r.image());
     break;
   }

@@ -62,7 +62,7 @@ TEST(Coherence, RasterizeStrokesIsContinuous) {
   VisibleStrokes s;
   s.points = {{2.5f, 2.5f}, {12.5f, 2.5f}, {12.5f, 9.5f}};
   s.offsets = {0, 3};
-  s.types = {LineType::kContour};
+  s.kinds = {LineKind::kContour};
   s.opacity = {1.0f};
   s.length_px = {17.0f};
   LineMask m;

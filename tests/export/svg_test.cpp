@@ -54,10 +54,10 @@ TEST(Svg, WritesPolylinesPerStrokeWithViewBox) {
                                          {1, 1},                         // 1 point: skipped
                                          {40, 40}, {50, 45}, {60, 40}, {40, 40}};  // closed suggestive
   const std::vector<uint32_t> offsets = {0, 3, 5, 6, 10};
-  const std::vector<LineType> types = {LineType::kContour, LineType::kCrease,
-                                       LineType::kBoundary, LineType::kSuggestive};
+  const std::vector<LineKind> kinds = {LineKind::kContour, LineKind::kCrease,
+                                       LineKind::kBoundary, LineKind::kSuggestive};
   const std::vector<float> opacity = {1.0f, 1.0f, 1.0f, 0.25f};
-  SvgStrokes strokes{points, offsets, types, opacity};
+  SvgStrokes strokes{points, offsets, kinds, opacity};
   const Status s = writeSvg(path, 640, 480, strokes);
   ASSERT_TRUE(s.ok()) << s.error().message;
   const std::string svg = readFile(path);
@@ -81,12 +81,12 @@ TEST(Svg, StyleAndNoBackground) {
   const auto path = dir / "styled.svg";
   const std::vector<glm::vec2> points = {{0, 0}, {1, 1}};
   const std::vector<uint32_t> offsets = {0, 2};
-  const std::vector<LineType> types = {LineType::kContour};
+  const std::vector<LineKind> kinds = {LineKind::kContour};
   SvgStyle style;
   style.background = false;
   style.lines[0].colour = "#ff0000\"><script>";  // hostile: sanitised
   style.lines[0].width = 3.0f;
-  ASSERT_TRUE(writeSvg(path, 10, 10, SvgStrokes{points, offsets, types, {}}, style).ok());
+  ASSERT_TRUE(writeSvg(path, 10, 10, SvgStrokes{points, offsets, kinds, {}}, style).ok());
   const std::string svg = readFile(path);
   EXPECT_TRUE(tagsBalanced(svg));
   EXPECT_EQ(countOf(svg, "<rect"), 0u);
@@ -104,8 +104,8 @@ TEST(Svg, ErrorsNameTheFileAndLeaveNothing) {
   const auto missing_dir = dir / "no_such_dir" / "out.svg";
   const std::vector<glm::vec2> points = {{0, 0}, {1, 1}};
   const std::vector<uint32_t> offsets = {0, 2};
-  const std::vector<LineType> types = {LineType::kContour};
-  const SvgStrokes strokes{points, offsets, types, {}};
+  const std::vector<LineKind> kinds = {LineKind::kContour};
+  const SvgStrokes strokes{points, offsets, kinds, {}};
   Status s = writeSvg(missing_dir, 100, 100, strokes);
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.error().message.find("out.svg"), std::string::npos) << s.error().message;
@@ -116,7 +116,7 @@ TEST(Svg, ErrorsNameTheFileAndLeaveNothing) {
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.error().message.find("bad.svg"), std::string::npos);
   const std::vector<uint32_t> bad_offsets = {0, 7};
-  s = writeSvg(path, 100, 100, SvgStrokes{points, bad_offsets, types, {}});
+  s = writeSvg(path, 100, 100, SvgStrokes{points, bad_offsets, kinds, {}});
   EXPECT_FALSE(s.ok());
   EXPECT_FALSE(std::filesystem::exists(path));
   // A directory in the way of the target.

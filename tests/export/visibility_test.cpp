@@ -64,18 +64,18 @@ TEST(Visibility, StrokesSplitIntoVisibleRuns) {
   s.points = {{-3, 0, -8}, {0, 0, -8}, {3, 0, -8}, {-1, 0.5f, -3}, {1, 0.5f, -3}};
   s.alpha = {1, 1, 1, 0.5f, 0.5f};
   s.offsets = {0, 3, 5};
-  s.types = {LineType::kContour, LineType::kSuggestive};
+  s.kinds = {LineKind::kContour, LineKind::kSuggestive};
   s.closed = {0, 0};
   VisibleStrokes out;
   visibleStrokes(s, cam, d, {}, out);
   ASSERT_EQ(out.strokeCount(), 2u);
-  EXPECT_EQ(out.types[0], LineType::kContour);
+  EXPECT_EQ(out.kinds[0], LineKind::kContour);
   // The visible part of the first stroke starts near the wall's edge (x = 50 px).
   const glm::vec2 first = out.points[out.offsets[0]];
   EXPECT_NEAR(first.x, 50.0f, 2.0f);
   EXPECT_GT(out.length_px[0], 30.0f);
   EXPECT_LT(out.length_px[0], 50.0f);
-  EXPECT_EQ(out.types[1], LineType::kSuggestive);
+  EXPECT_EQ(out.kinds[1], LineKind::kSuggestive);
   EXPECT_NEAR(out.opacity[1], 0.5f, 1e-5f);
   // Projected length of the near stroke: 2 units at depth 3 with f = 50/tan(30°) px.
   EXPECT_NEAR(out.length_px[1], 2.0f / 3.0f * 50.0f / std::tan(glm::radians(30.0f)), 1.5f);
@@ -86,7 +86,7 @@ TEST(Visibility, CountsMidpointsPerType) {
   const DepthImage d = flat(64, 64, windowDepth(cam, 5.0f));
   LineSet lines;
   lines.points = {{0, 0, -3}, {0.1f, 0, -3}, {0, 0, -9}, {0.1f, 0, -9}, {0, 0.1f, -4}, {0, 0.2f, -4}};
-  lines.types = {LineType::kContour, LineType::kContour, LineType::kCrease};
+  lines.kinds = {LineKind::kContour, LineKind::kContour, LineKind::kCrease};
   const auto counts = countVisibleSegments(lines, cam, d);
   EXPECT_EQ(counts[0], 1u);
   EXPECT_EQ(counts[2], 1u);

@@ -39,7 +39,7 @@ TEST(LineDrawing, LazyDerivativesDrawTheSameLines) {
     ASSERT_EQ(a.counts, b.counts) << "frame " << k;
     ASSERT_EQ(a.points, b.points) << "frame " << k;
     ASSERT_EQ(a.alpha, b.alpha) << "frame " << k;
-    suggestive += a.counts[static_cast<int>(LineType::kSuggestive)];
+    suggestive += a.counts[static_cast<int>(LineKind::kSuggestive)];
     // The lazy cache computed far fewer tensors than there are vertices.
     uint32_t valid = 0;
     for (uint32_t v = 0; v < moving.vertexCount(); ++v) valid += lazy.shape().derivativeValid(v);

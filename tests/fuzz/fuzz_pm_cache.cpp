@@ -19,6 +19,7 @@
 #include "harness.h"
 #include "io/load_mesh.h"
 #include "lod/adaptive_mesh.h"
+#include "core/hash.h"
 #include "pm/pm_file.h"
 #include "pm/progressive_mesh.h"
 

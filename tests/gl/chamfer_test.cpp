@@ -257,7 +257,7 @@ TEST(ChamferEdges, RoundedBoxIsClosedAndRoundedWhereExpected) {
 }
 
 // Renders `mesh` shaded, with or without highlights.
-Image renderShaded(const TriMesh& mesh, const Camera& cam, RenderParams rp) {
+Image renderShaded(const TriMesh& mesh, const Camera& cam, const FrameParams& rp, const ObjectStyle& style) {
   LineDrawing drawing(mesh);
   std::array<bool, kLineKindCount> enabled{};
   drawing.update(cam, enabled);
@@ -267,11 +267,11 @@ Image renderShaded(const TriMesh& mesh, const Camera& cam, RenderParams rp) {
   auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
   EXPECT_TRUE(target.ok());
   if (!target) return {};
-  renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
-  renderer->setLines(drawing.lines());
+  renderer->setMesh(0, drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
+  renderer->setLines(0, drawing.lines());
   target->bind();
-  renderer->draw(cam, rp, rp.width, rp.height);
-  if (rp.chamfer.enabled) {
+  renderer->draw(cam, rp, std::span<const ObjectStyle>(&style, 1));
+  if (style.chamfer.enabled) {
     EXPECT_EQ(renderer->chamferEdgesDrawn(), 12u);
   } else {
     EXPECT_EQ(renderer->chamferEdgesDrawn(), 0u);
@@ -294,19 +294,20 @@ float segDist(glm::vec2 q, glm::vec2 a, glm::vec2 b) {
 void checkHighlights(ChamferCompose compose) {
   const glm::vec3 half(1.0f, 0.6f, 0.8f);
   const TriMesh box = makeRoundedBox(half, 0.0f, 0, 1);
-  RenderParams rp;
+  FrameParams rp;
   rp.width = 320;
   rp.height = 240;
   rp.msaa = 4;
-  rp.style = Style::kShaded;
-  for (auto& k : rp.lines.kinds) k.enabled = false;
-  rp.chamfer.radius = 0.02f;  // ≈ 1.5 px at this distance: W saturates on most edges
-  rp.chamfer.compose = compose;
+  ObjectStyle style;
+  style.style = Style::kShaded;
+  for (auto& k : style.lines.kinds) k.enabled = false;
+  style.chamfer.radius = 0.02f;  // ≈ 1.5 px at this distance: W saturates on most edges
+  style.chamfer.compose = compose;
   const Bounds b = computeBounds(box.positions);
   const Camera cam = orbitCamera(b, {35.0f, 25.0f, 0.0f}, 35.0f, 320.0f / 240.0f);
-  const Image on = renderShaded(box, cam, rp);
-  rp.chamfer.enabled = false;
-  const Image off = renderShaded(box, cam, rp);
+  const Image on = renderShaded(box, cam, rp, style);
+  style.chamfer.enabled = false;
+  const Image off = renderShaded(box, cam, rp, style);
   ASSERT_EQ(on.width, 320);
   ASSERT_EQ(off.width, 320);
   if (const char* dir = std::getenv("LODLINE_TEST_IMAGES")) {  // for looking at the renders

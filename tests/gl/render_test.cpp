@@ -25,9 +25,12 @@ struct Rendered {
   size_t segments = 0;
 };
 
-// Renders `mesh` with the given style through `backend`; empty image if no context.
-Rendered renderMesh(TriMesh mesh, ContextBackend backend, RenderParams rp, OrbitView orbit,
+using test::Look;
+
+// Renders `mesh` with the given look through `backend`; empty image if no context.
+Rendered renderMesh(TriMesh mesh, ContextBackend backend, const Look& look, OrbitView orbit,
                     std::string* error = nullptr) {
+  const FrameParams& rp = look.frame;
   Rendered out;
   auto ctx = createHeadlessContext(backend);
   if (!ctx) {
@@ -37,17 +40,15 @@ Rendered renderMesh(TriMesh mesh, ContextBackend backend, RenderParams rp, Orbit
   LineDrawing drawing(std::move(mesh));
   out.camera = orbitCamera(drawing.bounds(), orbit, 35.0f,
                            static_cast<float>(rp.width) / static_cast<float>(rp.height));
-  std::array<bool, kLineKindCount> enabled{};
-  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = rp.lines.kinds[k].enabled;
-  drawing.update(out.camera, enabled);
+  drawing.update(out.camera, look.style.enabledKinds());
   auto renderer = Renderer::create();
   EXPECT_TRUE(renderer.ok()) << renderer.error().message;
   auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
   EXPECT_TRUE(target.ok()) << target.error().message;
-  renderer->setMesh(drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
-  renderer->setLines(drawing.lines());
+  renderer->setMesh(0, drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
+  renderer->setLines(0, drawing.lines());
   target->bind();
-  renderer->draw(out.camera, rp, rp.width, rp.height);
+  renderer->draw(out.camera, rp, std::span<const ObjectStyle>(&look.style, 1));
   out.image = target->readback();
   out.segments = renderer->segmentsDrawn();
   return out;
@@ -55,14 +56,14 @@ Rendered renderMesh(TriMesh mesh, ContextBackend backend, RenderParams rp, Orbit
 
 bool isDark(const uint8_t* p) { return p[0] < 100 && p[1] < 100 && p[2] < 100; }
 
-RenderParams linesOnly(int w, int h) {
-  RenderParams rp;
-  rp.width = w;
-  rp.height = h;
-  rp.style = Style::kLines;
-  rp.msaa = 1;
-  rp.lines[LineKind::kContour].width_px = 1.0f;
-  return rp;
+Look linesOnly(int w, int h) {
+  Look l;
+  l.frame.width = w;
+  l.frame.height = h;
+  l.frame.msaa = 1;
+  l.style.style = Style::kLines;
+  l.style.lines[LineKind::kContour].width_px = 1.0f;
+  return l;
 }
 
 TEST(HeadlessRender, EglContextIsCoreProfile) {
@@ -144,10 +145,10 @@ TEST(HeadlessRender, HiddenLinesRemoved) {
 }
 
 TEST(HeadlessRender, ToonShadesTheSurface) {
-  RenderParams rp;
-  rp.width = 200;
-  rp.height = 160;
-  rp.msaa = 1;
+  Look rp;
+  rp.frame.width = 200;
+  rp.frame.height = 160;
+  rp.frame.msaa = 1;
   Rendered r = renderMesh(makeIcoSphere(1.0f, 4), ContextBackend::kEgl, rp, {0.0f, 0.0f, 4.0f});
   // The centre is lit with one of the ramp's tones times the base colour: not background.
   const uint8_t* c = r.image.pixel(100, 80);
@@ -161,10 +162,10 @@ TEST(HeadlessRender, ToonShadesTheSurface) {
 
 // EGL and OSMesa must draw the same image (both are Mesa's llvmpipe here).
 TEST(HeadlessRender, BackendsAgree) {
-  RenderParams rp;
-  rp.width = 240;
-  rp.height = 180;
-  rp.msaa = 1;
+  Look rp;
+  rp.frame.width = 240;
+  rp.frame.height = 180;
+  rp.frame.msaa = 1;
   std::string err;
   Rendered a = renderMesh(makeTorus(1.0f, 0.35f, 64, 32), ContextBackend::kEgl, rp, {30, 25, 0}, &err);
   ASSERT_FALSE(a.image.rgba.empty()) << err;

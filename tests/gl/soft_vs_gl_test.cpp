@@ -13,6 +13,7 @@
 #include "frame/line_drawing.h"
 #include "gl/context.h"
 #include "gl/renderer.h"
+#include "io/image.h"
 #include "io/generate.h"
 #include "io/load_mesh.h"
 #include "raster/soft_renderer.h"
@@ -31,37 +32,38 @@ struct Scene {
   Camera camera;
 };
 
-Scene makeScene(TriMesh mesh, const RenderParams& rp, OrbitView orbit) {
+using test::Look;
+
+Scene makeScene(TriMesh mesh, const Look& look, OrbitView orbit) {
   Scene s;
   s.drawing = std::make_unique<LineDrawing>(std::move(mesh));
-  s.camera = orbitCamera(s.drawing->bounds(), orbit, 35.0f, static_cast<float>(rp.width) / static_cast<float>(rp.height));
-  std::array<bool, kLineKindCount> enabled{};
-  for (int k = 0; k < kLineKindCount; ++k) enabled[k] = rp.lines.kinds[k].enabled;
-  s.drawing->update(s.camera, enabled);
+  s.camera = orbitCamera(s.drawing->bounds(), orbit, 35.0f, look.frame.aspect());
+  s.drawing->update(s.camera, look.style.enabledKinds());
   return s;
 }
 
-Frame renderGl(const Scene& s, const RenderParams& rp) {
+Frame renderGl(const Scene& s, const Look& look) {
   Frame f;
   auto ctx = createHeadlessContext(ContextBackend::kEgl);
   if (!ctx) return f;
   auto renderer = Renderer::create();
+  const FrameParams& rp = look.frame;
   auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
   if (!renderer || !target) return f;
-  renderer->setMesh(s.drawing->mesh().positions, s.drawing->normals(), s.drawing->mesh().faces);
-  renderer->setLines(s.drawing->lines());
+  renderer->setMesh(0, s.drawing->mesh().positions, s.drawing->normals(), s.drawing->mesh().faces);
+  renderer->setLines(0, s.drawing->lines());
   target->bind();
-  renderer->draw(s.camera, rp, rp.width, rp.height);
+  renderer->draw(s.camera, rp, std::span<const ObjectStyle>(&look.style, 1));
   f.image = target->readback();
-  f.depth = target->readDepth();
+  target->readDepth(f.depth);
   return f;
 }
 
-Frame renderSoft(const Scene& s, const RenderParams& rp) {
+Frame renderSoft(const Scene& s, const Look& look) {
   SoftRenderer r;
-  r.setMesh(s.drawing->mesh().positions, s.drawing->normals(), s.drawing->mesh().faces);
-  r.setLines(s.drawing->lines());
-  r.draw(s.camera, rp);
+  r.setMesh(0, s.drawing->mesh().positions, s.drawing->normals(), s.drawing->mesh().faces);
+  r.setLines(0, s.drawing->lines());
+  r.draw(s.camera, look.frame, std::span<const ObjectStyle>(&look.style, 1));
   return {r.image(), r.depth()};
 }
 
@@ -97,16 +99,16 @@ double unmatchedFraction(const Image& a, const Image& b, int tol) {
   return static_cast<double>(n) / (static_cast<double>(a.width) * a.height);
 }
 
-RenderParams params(int w, int h) {
-  RenderParams rp;
-  rp.width = w;
-  rp.height = h;
-  rp.msaa = 1;  // the software renderer does not antialias
+Look params(int w, int h) {
+  Look rp;
+  rp.frame.width = w;
+  rp.frame.height = h;
+  rp.frame.msaa = 1;  // the software renderer does not antialias
   return rp;
 }
 
 void checkToonAgrees(TriMesh mesh, OrbitView view, const char* name) {
-  const RenderParams rp = params(400, 300);
+  const Look rp = params(400, 300);
   const Scene s = makeScene(std::move(mesh), rp, view);
   const Frame gl = renderGl(s, rp);
   if (gl.image.rgba.empty()) GTEST_SKIP() << "no EGL context";
@@ -158,8 +160,8 @@ TEST(SoftVsGl, ToonArmadilloAgrees) {
 // Hidden-line removal for SVG: every stroke sample classified visible/hidden against the
 // soft depth buffer and against the GL depth buffer.
 void checkVisibilityAgrees(TriMesh mesh, OrbitView view, const char* name) {
-  RenderParams rp = params(400, 300);
-  rp.style = Style::kLines;
+  Look rp = params(400, 300);
+  rp.style.style = Style::kLines;
   const Scene s = makeScene(std::move(mesh), rp, view);
   const Frame gl = renderGl(s, rp);
   if (gl.image.rgba.empty()) GTEST_SKIP() << "no EGL context";

@@ -22,13 +22,13 @@
 namespace lodline {
 namespace {
 
-LineParams only(LineType t) {
+LineParams only(LineKind t) {
   LineParams p;
-  p.contours = t == LineType::kContour;
-  p.suggestive = t == LineType::kSuggestive;
-  p.creases = t == LineType::kCrease;
-  p.marked_edges = t == LineType::kCrease;
-  p.boundaries = t == LineType::kBoundary;
+  p.contours = t == LineKind::kContour;
+  p.suggestive = t == LineKind::kSuggestive;
+  p.creases = t == LineKind::kCrease;
+  p.marked_edges = t == LineKind::kCrease;
+  p.boundaries = t == LineKind::kBoundary;
   return p;
 }
 
@@ -122,7 +122,7 @@ TEST(Contours, SphereContourIsTheAnalyticCircleAndOneClosedStroke) {
   view.eye = d * axis;
   LineExtractor ex;
   LineSet lines;
-  ex.extract(m, shape, view, only(LineType::kContour), 0.01f, lines);
+  ex.extract(m, shape, view, only(LineKind::kContour), 0.01f, lines);
   ASSERT_GT(lines.counts[0], 50u);
   EXPECT_EQ(lines.counts[1] + lines.counts[2] + lines.counts[3], 0u);
   // Circle at distance r²/d from the centre along the axis, radius r·sqrt(1 − r²/d²).
@@ -141,7 +141,7 @@ TEST(Contours, SphereContourIsTheAnalyticCircleAndOneClosedStroke) {
   chainStrokes(lines, strokes, scratch);
   ASSERT_EQ(strokes.strokeCount(), 1u);
   EXPECT_EQ(strokes.closed[0], 1);
-  EXPECT_EQ(strokes.types[0], LineType::kContour);
+  EXPECT_EQ(strokes.kinds[0], LineKind::kContour);
   EXPECT_EQ(strokes.offsets[1] - strokes.offsets[0], lines.counts[0] + 1);
   EXPECT_EQ(strokes.points[strokes.offsets[0]], strokes.points[strokes.offsets[1] - 1]);
   // Length of the circle, measured in a plane ⟂ axis (orthographic "projection").
@@ -163,7 +163,7 @@ TEST(Contours, OrthographicSphereContourIsTheEquator) {
   view.toward_viewer = {0, 1, 0};  // looking down the pole axis
   LineExtractor ex;
   LineSet lines;
-  ex.extract(m, shape, view, only(LineType::kContour), 0.02f, lines);
+  ex.extract(m, shape, view, only(LineKind::kContour), 0.02f, lines);
   ASSERT_GT(lines.counts[0], 0u);
   for (const glm::vec3& p : lines.points) EXPECT_NEAR(p.y, 0.0f, 1e-5f);
 }
@@ -178,7 +178,7 @@ TEST(Contours, RequirePositiveKrTrimsHiddenLoops) {
   view.eye = {0.0f, 1.5f, 4.0f};
   LineExtractor ex;
   LineSet all, trimmed;
-  LineParams p = only(LineType::kContour);
+  LineParams p = only(LineKind::kContour);
   ex.extract(m, shape, view, p, 0.03f, all);
   p.contours_require_positive_kr = true;
   ex.extract(m, shape, view, p, 0.03f, trimmed);
@@ -206,8 +206,8 @@ TEST(Suggestive, NoneOnASphere) {
     LineParams p;
     p.suggestive_threshold = 0.0f;  // even without a threshold: kr > 0 everywhere
     ex.extract(m, shape, view, p, fs, lines);
-    EXPECT_EQ(lines.counts[static_cast<int>(LineType::kSuggestive)], 0u);
-    EXPECT_GT(lines.counts[static_cast<int>(LineType::kContour)], 0u);
+    EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kSuggestive)], 0u);
+    EXPECT_GT(lines.counts[static_cast<int>(LineKind::kContour)], 0u);
     for (float x : ex.viewQuantities().kr) EXPECT_GE(x, 0.0f);
   }
 }
@@ -223,15 +223,15 @@ TEST(Suggestive, TorusFromAboveTheSideHasThemInTheSaddleRegion) {
   LineExtractor ex;
   LineSet lines;
   ex.extract(m, shape, view, LineParams{}, fs, lines);
-  const uint32_t ns = lines.counts[static_cast<int>(LineType::kSuggestive)];
+  const uint32_t ns = lines.counts[static_cast<int>(LineKind::kSuggestive)];
   std::printf("torus: fs %.4g, %u contour and %u suggestive segments\n", fs, lines.counts[0], ns);
   ASSERT_GT(ns, 10u);
-  EXPECT_EQ(lines.counts[static_cast<int>(LineType::kCrease)], 0u);
-  EXPECT_EQ(lines.counts[static_cast<int>(LineType::kBoundary)], 0u);
+  EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kCrease)], 0u);
+  EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kBoundary)], 0u);
   // kr = 0 needs K ≤ 0: the inner half of the tube (distance to the axis < R), and the
   // points must face the viewer and pass the Dw kr > 0 test (alpha in [0, 1]).
   for (size_t s = 0; s < lines.segmentCount(); ++s) {
-    if (lines.types[s] != LineType::kSuggestive) continue;
+    if (lines.kinds[s] != LineKind::kSuggestive) continue;
     for (int e = 0; e < 2; ++e) {
       const glm::vec3 p = lines.points[2 * s + e];
       EXPECT_LT(std::hypot(p.x, p.z), torus.R + 0.01) << "suggestive point on the convex part";
@@ -249,7 +249,7 @@ TEST(Suggestive, TorusFromAboveTheSideHasThemInTheSaddleRegion) {
   ex.extract(m, shape, view, away, fs, far_from_contours);
   EXPECT_LT(far_from_contours.counts[1], ns);
   for (size_t s = 0; s < far_from_contours.segmentCount(); ++s) {
-    if (far_from_contours.types[s] != LineType::kSuggestive) continue;
+    if (far_from_contours.kinds[s] != LineKind::kSuggestive) continue;
     for (uint32_t v : m.faces[far_from_contours.sources[s]])
       EXPECT_GE(ex.viewQuantities().ndotv[v], 0.3f);
   }
@@ -261,7 +261,7 @@ TEST(Suggestive, TorusFromAboveTheSideHasThemInTheSaddleRegion) {
   ex.extract(m, shape, view, strict, fs, fewer);
   EXPECT_LT(fewer.counts[1], ns);
   for (size_t i = 0; i < fewer.points.size(); ++i)
-    if (fewer.types[i / 2] == LineType::kSuggestive) {
+    if (fewer.kinds[i / 2] == LineKind::kSuggestive) {
       EXPECT_EQ(fewer.alpha[i], 1.0f);
     }
 }
@@ -311,8 +311,8 @@ TEST(Creases, CubeEdgesAndMarkedEdges) {
   LineExtractor ex;
   LineSet lines;
   ViewSpec view;
-  ex.extract(m, shape, view, only(LineType::kCrease), 0.1f, lines);
-  EXPECT_EQ(lines.counts[static_cast<int>(LineType::kCrease)], 24u);  // 12 edges × 2
+  ex.extract(m, shape, view, only(LineKind::kCrease), 0.1f, lines);
+  EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kCrease)], 24u);  // 12 edges × 2
   for (size_t i = 0; i < lines.points.size(); ++i) {
     const glm::vec3 a = glm::abs(lines.points[i]);
     // On a cube edge: at least two coordinates at ±1.
@@ -329,30 +329,30 @@ TEST(Creases, CubeEdgesAndMarkedEdges) {
   // A 90° dihedral is not a crease at a 100° threshold; a marked flat edge always is.
   TriMesh marked = m;
   marked.marked_edges.push_back({m.faces[0][0], m.faces[0][2]});  // a flat diagonal
-  LineParams p = only(LineType::kCrease);
+  LineParams p = only(LineKind::kCrease);
   p.crease_angle_deg = 100.0f;
   ex.extract(marked, shape, view, p, 0.1f, lines);
-  EXPECT_EQ(lines.counts[static_cast<int>(LineType::kCrease)], 1u);
+  EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kCrease)], 1u);
   p.marked_edges = false;
   ex.extract(marked, shape, view, p, 0.1f, lines);
-  EXPECT_EQ(lines.counts[static_cast<int>(LineType::kCrease)], 0u);
+  EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kCrease)], 0u);
   // A non-manifold edge (three faces) is drawn as a crease when marked edges are on.
   TriMesh fin;
   fin.positions = {{0, 0, 0}, {1, 0, 0}, {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1}};
   fin.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
   ShapeCache fin_shape;
   fin_shape.compute(fin);
-  LineParams fp = only(LineType::kCrease);
+  LineParams fp = only(LineKind::kCrease);
   fp.crease_angle_deg = 179.0f;
   ex.extract(fin, fin_shape, view, fp, 0.1f, lines);
-  ASSERT_EQ(lines.counts[static_cast<int>(LineType::kCrease)], 1u);
+  ASSERT_EQ(lines.counts[static_cast<int>(LineKind::kCrease)], 1u);
   EXPECT_EQ(lines.sources[0], fin_shape.adjacency().findEdge(0, 1));
   // Smooth surfaces have none at the default threshold.
   const TriMesh sphere = makeIcoSphere(1.0f, 3);
   ShapeCache s2;
   s2.compute(sphere);
-  ex.extract(sphere, s2, view, only(LineType::kCrease), 0.1f, lines);
-  EXPECT_EQ(lines.counts[static_cast<int>(LineType::kCrease)], 0u);
+  ex.extract(sphere, s2, view, only(LineKind::kCrease), 0.1f, lines);
+  EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kCrease)], 0u);
 }
 
 TEST(Boundaries, GridAndCylinderLoops) {
@@ -365,8 +365,8 @@ TEST(Boundaries, GridAndCylinderLoops) {
     const TriMesh g = makeGrid(2.0f, 5);
     ShapeCache shape;
     shape.compute(g);
-    ex.extract(g, shape, view, only(LineType::kBoundary), 0.1f, lines);
-    EXPECT_EQ(lines.counts[static_cast<int>(LineType::kBoundary)], 20u);
+    ex.extract(g, shape, view, only(LineKind::kBoundary), 0.1f, lines);
+    EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kBoundary)], 20u);
     chainStrokes(lines, strokes, scratch);
     ASSERT_EQ(strokes.strokeCount(), 1u);
     EXPECT_EQ(strokes.closed[0], 1);
@@ -377,12 +377,12 @@ TEST(Boundaries, GridAndCylinderLoops) {
     ShapeCache shape;
     shape.compute(c);
     ex.extract(c, shape, view, LineParams{}, 0.05f, lines);
-    EXPECT_EQ(lines.counts[static_cast<int>(LineType::kBoundary)], 48u);
-    EXPECT_EQ(lines.counts[static_cast<int>(LineType::kCrease)], 0u);
+    EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kBoundary)], 48u);
+    EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kCrease)], 0u);
     chainStrokes(lines, strokes, scratch);
     int boundary_loops = 0;
     for (size_t s = 0; s < strokes.strokeCount(); ++s)
-      if (strokes.types[s] == LineType::kBoundary) {
+      if (strokes.kinds[s] == LineKind::kBoundary) {
         ++boundary_loops;
         EXPECT_EQ(strokes.closed[s], 1);
       }
@@ -403,7 +403,7 @@ TEST(ZeroSet, CrossingsSharedExactlyAndAllContoursClosed) {
   for (glm::vec3 eye : {glm::vec3(0, 0, 4), glm::vec3(3, 2, 1), glm::vec3(-1, 4, -2)}) {
     ViewSpec view;
     view.eye = eye;
-    ex.extract(m, shape, view, only(LineType::kContour), fs, lines);
+    ex.extract(m, shape, view, only(LineKind::kContour), fs, lines);
     ASSERT_GT(lines.counts[0], 0u);
     chainStrokes(lines, strokes, scratch);
     size_t points = 0;
@@ -431,7 +431,7 @@ TEST(ZeroSet, TestSplitsSegmentsInsideFaces) {
   in.test_num = num;
   LineScratch scratch;
   LineSet out;
-  extractZeroSet(g.positions, g.faces, adj, in, LineType::kContour, scratch, out);
+  extractZeroSet(g.positions, g.faces, adj, in, LineKind::kContour, scratch, out);
   ASSERT_GT(out.segmentCount(), 0u);
   float min_z = 1e9f, max_z = -1e9f;
   bool has_interior = false;
@@ -452,7 +452,7 @@ TEST(ZeroSet, TestSplitsSegmentsInsideFaces) {
   std::vector<float> gate(g.vertexCount(), -1.0f);
   in.gate = gate;
   out.clear();
-  extractZeroSet(g.positions, g.faces, adj, in, LineType::kContour, scratch, out);
+  extractZeroSet(g.positions, g.faces, adj, in, LineKind::kContour, scratch, out);
   EXPECT_EQ(out.segmentCount(), 0u);
 }
 
@@ -494,10 +494,10 @@ TEST(ViewSpec, FromCamera) {
 }
 
 TEST(LineTypes, Names) {
-  EXPECT_STREQ(lineTypeName(LineType::kContour), "contour");
-  EXPECT_STREQ(lineTypeName(LineType::kSuggestive), "suggestive");
-  EXPECT_STREQ(lineTypeName(LineType::kCrease), "crease");
-  EXPECT_STREQ(lineTypeName(LineType::kBoundary), "boundary");
+  EXPECT_STREQ(lineKindName(LineKind::kContour), "contour");
+  EXPECT_STREQ(lineKindName(LineKind::kSuggestive), "suggestive");
+  EXPECT_STREQ(lineKindName(LineKind::kCrease), "crease");
+  EXPECT_STREQ(lineKindName(LineKind::kBoundary), "boundary");
 }
 
 }  // namespace
@@ -524,13 +524,13 @@ TEST(ExtractLines, WorkerThreadsGiveTheSerialOutput) {
   LineSet serial, threaded;
   extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, serial_scratch, serial);
   extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, threaded_scratch, threaded);
-  ASSERT_GT(serial.counts[static_cast<int>(LineType::kContour)], 100u);
-  ASSERT_GT(serial.counts[static_cast<int>(LineType::kSuggestive)], 100u);
+  ASSERT_GT(serial.counts[static_cast<int>(LineKind::kContour)], 100u);
+  ASSERT_GT(serial.counts[static_cast<int>(LineKind::kSuggestive)], 100u);
   EXPECT_EQ(serial.counts, threaded.counts);
   EXPECT_EQ(serial.points, threaded.points);
   EXPECT_EQ(serial.alpha, threaded.alpha);
   EXPECT_EQ(serial.point_ids, threaded.point_ids);
-  EXPECT_EQ(serial.types, threaded.types);
+  EXPECT_EQ(serial.kinds, threaded.kinds);
   EXPECT_EQ(serial.sources, threaded.sources);
 }
 
@@ -550,7 +550,7 @@ TEST(Strokes, JoinExactlyTheEndsThatPairUp) {
     const int ns = 200 + static_cast<int>(rng() % 300);
     std::map<std::pair<int, uint32_t>, int> ends_with_key;  // (type, id) -> count
     for (int k = 0; k < ns; ++k) {
-      const auto type = static_cast<LineType>(rng() % 2);
+      const auto type = static_cast<LineKind>(rng() % 2);
       const uint32_t a = rng() % 90, b = (rng() % 10 == 0) ? a : rng() % 90;
       for (uint32_t id : {a, b}) {
         lines.points.push_back(glm::vec3(static_cast<float>(id), static_cast<float>(type), 0.0f));
@@ -558,7 +558,7 @@ TEST(Strokes, JoinExactlyTheEndsThatPairUp) {
         lines.point_ids.push_back(id);
         ++ends_with_key[{static_cast<int>(type), id}];
       }
-      lines.types.push_back(type);
+      lines.kinds.push_back(type);
       lines.sources.push_back(static_cast<uint32_t>(k));
       ++lines.counts[static_cast<int>(type)];
     }

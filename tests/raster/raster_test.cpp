@@ -403,22 +403,24 @@ TEST(RasterClipping, DegenerateAndNonFiniteTrianglesDrawNothing) {
 }
 
 TEST(SoftRenderer, ToonCentreHasTheRampTone) {
-  RenderParams rp;
+  FrameParams rp;
   rp.width = 160;
   rp.height = 120;
+  const ObjectStyle style;
   TriMesh sphere = makeIcoSphere(1.0f, 4);
   std::vector<glm::vec3> normals;
   for (auto p : sphere.positions) normals.push_back(glm::normalize(p));
   Camera cam = orbitCamera(computeBounds(sphere.positions), {0, 0, 4}, 35.0f, 160.0f / 120.0f);
   SoftRenderer r;
-  r.setMesh(sphere.positions, normals, sphere.faces);
-  r.draw(cam, rp);
+  r.setMesh(0, sphere.positions, normals, sphere.faces);
+  r.draw(cam, rp, std::span<const ObjectStyle>(&style, 1));
   // At the centre n ≈ (0, 0, 1) in eye space: n·l = l.z of the normalised light.
-  const glm::vec3 l = glm::normalize(rp.toon.light_dir_eye);
-  const float tone = l.z < rp.toon.thresholds[0] ? rp.toon.tones[0] : l.z < rp.toon.thresholds[1] ? rp.toon.tones[1] : rp.toon.tones[2];
+  const glm::vec3 l = glm::normalize(rp.light_dir_eye);
+  const ToonParams& toon = style.toon;
+  const float tone = l.z < toon.thresholds[0] ? toon.tones[0] : l.z < toon.thresholds[1] ? toon.tones[1] : toon.tones[2];
   const uint8_t* c = r.image().pixel(80, 60);
-  EXPECT_NEAR(c[0], std::lround(rp.toon.base_color.r * tone * 255), 1);
-  EXPECT_NEAR(c[2], std::lround(rp.toon.base_color.b * tone * 255), 1);
+  EXPECT_NEAR(c[0], std::lround(toon.base_color.r * tone * 255), 1);
+  EXPECT_NEAR(c[2], std::lround(toon.base_color.b * tone * 255), 1);
   const uint8_t* corner = r.image().pixel(0, 0);
   EXPECT_EQ(corner[0], 255);
   EXPECT_LT(r.depth().at(80, 60), 1.0f);
@@ -443,7 +445,8 @@ TEST(SoftRenderer, WideLinesHaveTheirWidthAndAreDepthTested) {
   depth.depth.assign(W * H, 1.0f);
   Image img(W, H);
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
-  drawWideLines(v, vp, style, depth, img, 2);
+  WorkerPool pool(2);
+  drawWideLines(v, vp, style, depth, img, pool);
   for (int x = 10; x < W - 10; ++x) {  // the line spans x ∈ [8, 56) px
     int dark = 0;
     for (int y = 0; y < H; ++y) dark += img.pixel(x, y)[0] == 0;
@@ -452,7 +455,7 @@ TEST(SoftRenderer, WideLinesHaveTheirWidthAndAreDepthTested) {
   // Behind a surface nearer than the line: nothing drawn.
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
   depth.depth.assign(W * H, 0.01f);
-  drawWideLines(v, vp, style, depth, img, 2);
+  drawWideLines(v, vp, style, depth, img, pool);
   for (size_t i = 0; i < img.rgba.size(); ++i) ASSERT_EQ(img.rgba[i], 255);
 }
 

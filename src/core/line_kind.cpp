@@ -1,0 +1,21 @@
+#include "core/line_kind.h"
+
+namespace lodline {
+
+const char* lineKindName(LineKind k) {
+  switch (k) {
+    case LineKind::kContour: return "contour";
+    case LineKind::kSuggestive: return "suggestive";
+    case LineKind::kCrease: return "crease";
+    case LineKind::kBoundary: return "boundary";
+  }
+  return "unknown";
+}
+
+std::optional<LineKind> parseLineKind(std::string_view name) {
+  for (int k = 0; k < kLineKindCount; ++k)
+    if (name == lineKindName(static_cast<LineKind>(k))) return static_cast<LineKind>(k);
+  return std::nullopt;
+}
+
+}  // namespace lodline

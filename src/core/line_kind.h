@@ -1,0 +1,25 @@
+// The kinds of line lodline draws: one enum for the lines stage (extraction, strokes), the
+// styles, the renderers and the outputs. Values index per-kind arrays and follow the
+// drawing order.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+namespace lodline {
+
+enum class LineKind : uint8_t {
+  kContour = 0,     ///< occluding contours, n·v = 0
+  kSuggestive = 1,  ///< suggestive contours, kr = 0 where Dw kr > 0
+  kCrease = 2,      ///< edges with a large dihedral angle (and marked edges)
+  kBoundary = 3,    ///< edges with one face
+};
+inline constexpr int kLineKindCount = 4;
+
+/// "contour", "suggestive", "crease", "boundary" (the names of --lines and the stats).
+const char* lineKindName(LineKind k);
+/// The kind named `name`, if any.
+std::optional<LineKind> parseLineKind(std::string_view name);
+
+}  // namespace lodline

@@ -1,0 +1,179 @@
+#include "present/capture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/timer.h"
+#include "export/coherence.h"
+#include "export/video_writer.h"
+#include "io/atomic_file.h"
+#include "io/image.h"
+#include "present/frame_report.h"
+#include "present/presenter.h"
+
+namespace lodline {
+namespace {
+
+void progressBar(int64_t done, int64_t total, double elapsed_ms) {
+  const int width = 30;
+  const double f = total ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
+  const int filled = static_cast<int>(f * width);
+  const double eta_s = done ? elapsed_ms / static_cast<double>(done) * static_cast<double>(total - done) / 1000.0 : 0.0;
+  std::fprintf(stderr, "\r  frame %lld/%lld [%s%s] %3d%%  ETA %dm%02ds ", static_cast<long long>(done),
+               static_cast<long long>(total), std::string(filled, '#').c_str(),
+               std::string(width - filled, ' ').c_str(), static_cast<int>(f * 100.0),
+               static_cast<int>(eta_s) / 60, static_cast<int>(eta_s) % 60);
+  std::fflush(stderr);
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t i = std::min(v.size() - 1, static_cast<size_t>(std::ceil(p * static_cast<double>(v.size()))) - (p > 0 ? 1 : 0));
+  return v[i];
+}
+
+double mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+Status writeText(const std::filesystem::path& path, const std::string& text) {
+  return writeFileAtomically(path, [&](std::ostream& os) -> Status {
+    os << text;
+    return {};
+  });
+}
+
+}  // namespace
+
+int64_t captureFrameCount(const CameraPath& path, double fps) {
+  return std::max<int64_t>(1, std::llround(path.duration() * fps));
+}
+
+Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& rq) {
+  SceneDrawing& scene = loaded.drawing;
+  const FrameParams& frame = loaded.view.frame;
+  const ResolvedDetail& detail = loaded.detail;
+  auto presenter = createPresenter(PresenterBackend::kGl, rq.context, scene, frame);
+  if (!presenter) return presenter.error();
+  ScenePresenter& p = **presenter;
+  std::optional<VideoWriter> video;
+  if (!rq.png_sequence) {
+    auto v = VideoWriter::open(rq.output, {frame.width, frame.height, rq.fps, 18});
+    if (!v) return v.error();
+    video.emplace(std::move(v.value()));
+  }
+
+  const bool want_metrics = !rq.metrics.empty() || !rq.stats.empty();
+  CoherenceMeter meter;
+  LineMask mask;
+  SurfaceImage surface;
+  std::ostringstream csv;
+  csv << metricsCsvHeader();
+  std::vector<double> churns, raw_churns, specks_per_frame, frame_ms;
+
+  // Smoothing at the capture's frame rate (Jeong §3.3: f is the capture rate when capturing).
+  const float smoothing_w = detail.smoothing.enabled
+                                ? smoothingWeight(detail.smoothing.alpha, detail.smoothing.seconds, static_cast<float>(rq.fps))
+                                : 1.0f;
+  const double t0 = rq.path.keys().front().time;
+  const float dt = static_cast<float>(1.0 / rq.fps);
+  // One step of the simulation at frame k (time k/fps): the state every later frame builds
+  // on (level of detail, geomorphs, temporal smoothing). Detail parameters were checked by
+  // the caller, so frame() cannot fail.
+  auto simulate = [&](int64_t k) -> Camera {
+    const Camera cam = rq.path.at(t0 + static_cast<double>(k) / rq.fps, scene.bounds());
+    (void)scene.frame(cam, frame.width, frame.height, detail.params, dt, smoothing_w);
+    return cam;
+  };
+  // Frame 0 starts from the detail converged for its camera (as a still render would), not
+  // from the base mesh, so the first frames are not a refinement transient.
+  {
+    const Camera cam0 = rq.path.at(t0, scene.bounds());
+    if (auto steps = scene.converge(cam0, frame.width, frame.height, detail.params, dt, detail.max_adapt_frames); !steps)
+      return steps.error();
+  }
+  // Frames before the range only advance the simulation; the one just before it also gives
+  // the previous frame of the coherence measure, so frame k's metrics are the same whichever
+  // range renders it.
+  for (int64_t k = 0; k < rq.range.first; ++k) {
+    const Camera cam = simulate(k);
+    if (want_metrics && k == rq.range.first - 1) {
+      if (Status s = p.present(scene, cam, frame, true); !s) return s.error();
+      (void)reportFrame(scene, p, &mask);
+      if (Status s = p.readSurface(surface); !s) return s.error();
+      (void)meter.measure(mask, surface, cam);
+    }
+  }
+
+  Stopwatch wall;
+  CaptureOutcome out;
+  out.measured = want_metrics;
+  Status failure;
+  for (int64_t k = rq.range.first; k < rq.range.end && !(rq.interrupted && rq.interrupted->load()); ++k) {
+    Stopwatch frame_clock;
+    const Camera cam = simulate(k);
+    if (failure = p.present(scene, cam, frame, k == rq.range.first); !failure) break;
+    const Image image = p.readImage();
+    if (rq.png_sequence) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "frame_%05lld.png", static_cast<long long>(k));
+      failure = writePng(rq.output / name, image);
+    } else {
+      failure = video->write(image.rgba);
+    }
+    if (!failure) break;
+    if (want_metrics) {
+      const FrameReport report = reportFrame(scene, p, &mask);
+      if (failure = p.readSurface(surface); !failure) break;
+      const FrameCoherence c = meter.measure(mask, surface, cam);
+      writeMetricsRow(csv, k, report, c, frame_clock.elapsed());
+      if (c.compared) {
+        churns.push_back(c.compensated.churn());
+        raw_churns.push_back(c.raw.churn());
+      }
+      specks_per_frame.push_back(static_cast<double>(report.total.specks));
+    }
+    frame_ms.push_back(frame_clock.elapsed());
+    ++out.frames;
+    if (rq.progress) progressBar(out.frames, rq.range.end - rq.range.first, wall.elapsed());
+  }
+  if (rq.progress) std::fputc('\n', stderr);
+  out.interrupted = rq.interrupted && rq.interrupted->load();
+
+  // Finish every output, even after an interruption or a failure: the frames done so far
+  // make a valid video / complete PNG files.
+  if (video)
+    if (Status s = video->finish(); !s && failure) failure = s;
+  if (!rq.metrics.empty())
+    if (Status s = writeText(rq.metrics, csv.str()); !s && failure) failure = s;
+  out.churn_mean = mean(churns);
+  out.churn_p95 = percentile(churns, 0.95);
+  out.churn_raw_mean = mean(raw_churns);
+  out.specks_mean = mean(specks_per_frame);
+  if (!rq.stats.empty()) {
+    nlohmann::json j;
+    j["model"] = {{"path", loaded.view.model.string()}, {"vertices", scene.inputVertexCount()},
+                  {"faces", scene.inputFaceCount()}};
+    j["image"] = {{"width", frame.width}, {"height", frame.height}};
+    j["capture"] = {{"path", rq.path_name}, {"fps", rq.fps}, {"first_frame", rq.range.first},
+                    {"frames", out.frames}, {"interrupted", out.interrupted}};
+    j["coherence"] = {{"churn_mean", out.churn_mean}, {"churn_p95", out.churn_p95},
+                      {"churn_raw_mean", out.churn_raw_mean}, {"churn_raw_p95", percentile(raw_churns, 0.95)},
+                      {"specks_mean", out.specks_mean}};
+    j["ms"] = {{"frame_mean", mean(frame_ms)}, {"frame_p95", percentile(frame_ms, 0.95)}, {"total", wall.elapsed()}};
+    if (Status s = writeText(rq.stats, j.dump(2) + "\n"); !s && failure) failure = s;
+  }
+  if (!failure) return failure.error();
+  return out;
+}
+
+}  // namespace lodline

@@ -1,0 +1,56 @@
+// A capture: a camera path rendered frame by frame at a fixed simulated frame rate (so the
+// result does not depend on the machine's speed) into an MP4 (through ffmpeg) or a PNG
+// sequence, with per-frame temporal-coherence metrics (docs/capture.md). What `lodline
+// capture` does after parsing its options.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "core/result.h"
+#include "frame/camera_path.h"
+#include "frame/scene_builder.h"
+#include "gl/context.h"
+
+namespace lodline {
+
+/// Frames [first, end) of a capture.
+struct FrameRange {
+  int64_t first = 0;
+  int64_t end = 0;  ///< exclusive
+};
+
+/// Frames of `path` at `fps` (at least 1).
+int64_t captureFrameCount(const CameraPath& path, double fps);
+
+struct CaptureRequest {
+  ContextBackend context = ContextBackend::kAuto;
+  CameraPath path;
+  std::string path_name;  ///< as given (for the stats)
+  double fps = 30.0;
+  /// The frames rendered; frames before `first` are simulated only, so frame k is the same
+  /// whichever range renders it. Within [0, captureFrameCount()).
+  FrameRange range;
+  std::filesystem::path output;  ///< an .mp4 file, or a folder for frame_NNNNN.png
+  bool png_sequence = false;
+  std::filesystem::path metrics;  ///< per-frame CSV; empty: none
+  std::filesystem::path stats;    ///< summary JSON; empty: none
+  /// Set (by a signal handler) to stop after the current frame; outputs are finished.
+  const std::atomic<bool>* interrupted = nullptr;
+  bool progress = false;  ///< a progress bar on stderr
+};
+
+struct CaptureOutcome {
+  int64_t frames = 0;  ///< frames written
+  bool interrupted = false;
+  double churn_mean = 0.0, churn_p95 = 0.0, churn_raw_mean = 0.0, specks_mean = 0.0;
+  bool measured = false;  ///< metrics were computed (metrics or stats requested)
+};
+
+/// Runs the capture; every output is finished (a valid video, complete PNGs, the CSV and
+/// JSON of the frames done) even when a frame fails, which is then the error returned.
+Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& request);
+
+}  // namespace lodline

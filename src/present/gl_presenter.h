@@ -1,0 +1,50 @@
+// The OpenGL presenter: gl/renderer.h drawing into an offscreen multisampled target of the
+// frame's size, read back for files or copied to a window (the viewer), so the window shows
+// exactly the pixels `render` writes.
+#pragma once
+
+#include <memory>
+
+#include "gl/context.h"
+#include "gl/renderer.h"
+#include "present/presenter.h"
+
+namespace lodline {
+
+class GlPresenter final : public ScenePresenter {
+ public:
+  /// Creates a headless context of kind `context` (EGL surfaceless, OSMesa) and an
+  /// offscreen target of frame's size and multisampling. Errors: no context, shaders, a size
+  /// above the GL limit.
+  static Result<std::unique_ptr<GlPresenter>> createHeadless(ContextBackend context, const FrameParams& frame);
+  /// Uses the current context (a window's); the offscreen target follows the frame's size.
+  static Result<std::unique_ptr<GlPresenter>> createOnCurrentContext();
+
+  /// Copies the last present()'s image into the bound draw framebuffer (a window).
+  void blitToBound() const;
+
+  Status check(const SceneDrawing&) const override { return {}; }
+  Status readSurface(SurfaceImage& out) override;
+  size_t facesDrawn(size_t object) const override { return renderer_->faceCount(object); }
+  size_t segmentsDrawn(size_t object) const override { return renderer_->segmentsDrawn(object); }
+  std::string backendName() const override;
+  std::string description() const override { return description_; }
+
+ protected:
+  Status upload(const SceneDrawing& scene, bool all_meshes) override;
+  Status draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) override;
+  Image readColour() override { return target_->readback(); }
+  void readDepth(DepthImage& out) override { target_->readDepth(out); }
+
+ private:
+  GlPresenter() = default;
+  Status ensureTarget(const FrameParams& frame);
+  // Declared first, destroyed last: the GL objects below need the context.
+  std::unique_ptr<GlContext> context_;  // null on a window's context
+  std::unique_ptr<Renderer> renderer_;
+  std::unique_ptr<OffscreenTarget> target_;
+  std::unique_ptr<SurfaceTarget> surface_;
+  std::string description_;
+};
+
+}  // namespace lodline

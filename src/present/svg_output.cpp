@@ -1,0 +1,43 @@
+#include "present/svg_output.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace lodline {
+namespace {
+
+std::string colourToHex(const glm::vec4& c) {
+  char buf[8];
+  auto byte = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+  std::snprintf(buf, sizeof(buf), "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
+  return buf;
+}
+
+}  // namespace
+
+SvgStyle svgStyleOf(const ObjectStyle& style, const FrameParams& frame) {
+  SvgStyle s;
+  s.background = frame.background.a > 0.0f;
+  s.background_colour = colourToHex(frame.background);
+  for (int k = 0; k < kLineKindCount; ++k) {
+    const LineStyle& ls = style.lines.kinds[k];
+    s.lines[k] = {colourToHex(ls.color), ls.width_px, ls.color.a};
+  }
+  return s;
+}
+
+Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scene, ScenePresenter& presenter) {
+  const FrameParams& frame = presenter.frame();
+  const std::vector<VisibleStrokes>& visible = presenter.visible();
+  std::vector<SvgLayer> layers;
+  for (size_t i = 0; i < scene.size(); ++i) {
+    const VisibleStrokes& v = visible[i];
+    layers.push_back({scene[i].name, SvgStrokes{v.points, v.offsets, v.kinds, v.opacity}, svgStyleOf(scene[i].style, frame)});
+  }
+  ObjectStyle page_style;
+  return writeSvgLayers(path, frame.width, frame.height, layers, svgStyleOf(page_style, frame));
+}
+
+}  // namespace lodline
