@@ -21,6 +21,7 @@ struct BenchOptions {
   std::string pre_simplify = "0.02%";
   std::string context = "auto";
   std::string modes = "none,cluster,hybrid,pm";
+  std::string snapshot;
 };
 
 int runWalkthroughCommand(CLI::App& cmd, BenchOptions& o) {
@@ -43,6 +44,7 @@ int runWalkthroughCommand(CLI::App& cmd, BenchOptions& o) {
   rq.pixel_error = o.detail.pixel_error;
   rq.pre_simplify = *bound;
   rq.context = *context;
+  rq.snapshot_prefix = o.snapshot;
   auto results = runWalkthrough(*input, rq, std::cout);
   if (!results) return reportError(results.error());
   return 0;
@@ -69,6 +71,8 @@ Command addBenchCommand(CLI::App& parent) {
       ->capture_default_str();
   walk->add_option("--context", o->context, "OpenGL context: auto, egl or osmesa")->capture_default_str();
   walk->add_option("--modes", o->modes, "Comma-separated subset of none,cluster,hybrid,pm")->capture_default_str();
+  walk->add_option("--snapshot", o->snapshot,
+                   "Write each mode's first frame (converged at the path's start, not timed) as PREFIX-MODE.png");
   return {bench, [o, walk]() -> int {
             if (!walk->parsed()) return reportError(Error::usage("bench: expected a benchmark (walkthrough)"));
             return runWalkthroughCommand(*walk, *o);

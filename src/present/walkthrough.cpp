@@ -6,6 +6,7 @@
 
 #include "cgal/simplify.h"
 #include "core/timer.h"
+#include "io/image.h"
 #include "present/presenter.h"
 
 namespace lodline {
@@ -72,6 +73,9 @@ Result<std::vector<WalkthroughResult>> runWalkthrough(const SceneInput& input, c
       return st.error();
     if (Status st = presenter->present(*scene, first, frame, true); !st) return st.error();
     r.setup_s = sw.lap() / 1000.0;
+    if (!rq.snapshot_prefix.empty())
+      if (Status st = writePng(rq.snapshot_prefix + "-" + mode + ".png", presenter->readImage()); !st)
+        return st.error();
     double total = 0.0, cpu = 0.0, faces = 0.0;
     for (int i = 0; i < rq.frames; ++i) {
       const double t = path.keys().front().time + i * dt;

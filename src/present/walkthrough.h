@@ -31,6 +31,9 @@ struct WalkthroughRequest {
   float pixel_error = 1.0f;  ///< clustering's K, px²
   double pre_simplify = 0.0002;  ///< hybrid: static E_s bound, fraction of the diagonal
   ContextBackend context = ContextBackend::kAuto;
+  /// Non-empty: each mode's first frame (converged at the path's first camera, untimed) is
+  /// written as PREFIX-MODE.png, to compare a benchmark frame with `render`.
+  std::string snapshot_prefix;
 };
 
 /// One mode's figures.

@@ -246,6 +246,22 @@ TEST_F(Cli, SoftBackendRendersWithoutOpenGl) {
   EXPECT_NE(lodline("render --help").output.find("--backend"), std::string::npos);
 }
 
+// --backend soft draws the lines and toon styles; what it cannot draw (the shaded style,
+// chamfer highlights) is refused with a one-line usage error, never drawn as something else.
+TEST_F(Cli, SoftBackendRefusesWhatItCannotDraw) {
+  const std::string out = (dir_ / "soft.png").string();
+  for (const std::string opts : {"--style shaded", "--chamfer on"}) {
+    CliRun r = lodline("render " + sphere_ + " -o " + out + " --backend soft " + opts);
+    EXPECT_EQ(r.code, 2) << opts << ": " << r.output;
+    EXPECT_NE(r.output.find("--backend soft"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("OpenGL (use --backend gl)"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one line: " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  EXPECT_EQ(lodline("render " + sphere_ + " -o " + out + " --backend soft --style lines").code, 0);
+  EXPECT_EQ(lodline("render " + sphere_ + " -o " + out + " --backend soft --style toon").code, 0);
+}
+
 // The SVG written with --backend soft (visibility from the software depth buffer) matches
 // the OpenGL render of the same lines (GL depth test).
 void checkSoftSvgAgainstGl(const std::filesystem::path& dir, const std::string& model, const std::string& view) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 
 #include <glm/geometric.hpp>
@@ -186,6 +187,73 @@ TEST_F(SceneCli, BuildAndBenchTakeScenes) {
                 "--cache-dir " + (dir_ / "cache").string(), &out), 0) << out;
   EXPECT_NE(out.find("in 2 objects"), std::string::npos) << out;
   EXPECT_NE(out.find("| pm |"), std::string::npos) << out;
+}
+
+// Pixels that differ between two images of one size (SIZE_MAX when the sizes differ).
+size_t differingPixels(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height) return SIZE_MAX;
+  size_t n = 0;
+  for (size_t i = 0; i < a.rgba.size(); i += 4) n += std::memcmp(&a.rgba[i], &b.rgba[i], 4) != 0;
+  return n;
+}
+
+// `bench walkthrough` builds its scene as `render` does: settings, styles and the scene's
+// light. Its first frame of each mode is `render`'s picture of the same scene, bit for bit.
+TEST_F(SceneCli, BenchWalkthroughDrawsWhatRenderDraws) {
+  const nlohmann::json path = {{"keys", {{{"time", 0}, {"eye", {0, 1, 9}}, {"target", {0, 0, 0}}, {"fov", 35}},
+                                         {{"time", 1}, {"eye", {1, 1, 9}}, {"target", {0, 0, 0}}, {"fov", 35}}}}};
+  write("path.json", path);
+  const nlohmann::json objects = {{{"name", "lit"}, {"mesh", "sphere.off"}, {"translate", {-1.2, 0, 0}}},
+                                  {{"name", "drawn"}, {"mesh", "sphere.off"}, {"translate", {1.2, 0, 0}}, {"style", "lines"}}};
+  const nlohmann::json settings = {{"size", "320x240"}, {"msaa", 1}, {"target-area", 12}};
+  nlohmann::json scene = {{"settings", settings}, {"camera", {{"path", "path.json"}}}, {"objects", objects}};
+  scene["light"] = {{"direction", {1.0, -0.2, 0.3}}};  // from the right and below: far from the default
+  write("lit.json", scene);
+  scene.erase("light");
+  write("unlit.json", scene);
+  std::string out;
+  ASSERT_EQ(test::runLodline("bench walkthrough " + (dir_ / "lit.json").string() + " --frames 2 --modes pm,none --snapshot " +
+                                 (dir_ / "bench").string(),
+                             &out),
+            0)
+      << out;
+  ASSERT_EQ(run((dir_ / "lit.json").string() + " -o " + (dir_ / "render.png").string()), 0);
+  ASSERT_EQ(run((dir_ / "lit.json").string() + " --full-detail -o " + (dir_ / "full.png").string()), 0);
+  ASSERT_EQ(run((dir_ / "unlit.json").string() + " -o " + (dir_ / "unlit.png").string()), 0);
+  auto bench_pm = readPng(dir_ / "bench-pm.png"), bench_none = readPng(dir_ / "bench-none.png");
+  auto render = readPng(dir_ / "render.png"), full = readPng(dir_ / "full.png"), unlit = readPng(dir_ / "unlit.png");
+  ASSERT_TRUE(bench_pm && bench_none && render && full && unlit);
+  EXPECT_EQ(bench_pm->width, 320);
+  EXPECT_EQ(differingPixels(*bench_pm, *render), 0u);
+  EXPECT_EQ(differingPixels(*bench_none, *full), 0u);
+  // The light matters: without it, the toon sphere's tones are elsewhere.
+  EXPECT_GT(differingPixels(*render, *unlit), 1000u);
+}
+
+// The software backend draws scenes too: every object in its own style, one object hiding
+// another's lines, close to the OpenGL picture.
+TEST_F(SceneCli, SoftBackendDrawsScenes) {
+  const nlohmann::json front = {{"name", "front"}, {"mesh", "sphere.off"}, {"translate", {0, 0, 2}}};
+  const nlohmann::json back = {{"name", "back"}, {"mesh", "sphere.off"}, {"translate", {0.9, 0.3, -1}}, {"style", "lines"}};
+  const nlohmann::json settings = {{"size", "320x240"}, {"msaa", 1}};
+  write("two.json", {{"settings", settings}, {"camera", frontCamera()}, {"objects", {front, back}}});
+  const std::string in = (dir_ / "two.json").string();
+  ASSERT_EQ(run(in + " -o " + (dir_ / "gl.png").string() + " --stats " + (dir_ / "gl.json").string()), 0);
+  ASSERT_EQ(run(in + " --backend soft -o " + (dir_ / "soft.png").string() + " --stats " + (dir_ / "soft.json").string()),
+            0);
+  auto gl = readPng(dir_ / "gl.png"), soft = readPng(dir_ / "soft.png");
+  ASSERT_TRUE(gl && soft);
+  // Tone borders and line pixels may move by a pixel; most pixels are equal.
+  EXPECT_LT(differingPixels(*gl, *soft), static_cast<size_t>(0.05 * 320 * 240));
+  const auto g = stats(dir_ / "gl.json"), s = stats(dir_ / "soft.json");
+  EXPECT_EQ(s["context"]["backend"], "soft");
+  ASSERT_EQ(s["objects"].size(), 2u);
+  EXPECT_EQ(s["objects"][1]["style"], "lines");
+  EXPECT_EQ(s["faces_drawn"], g["faces_drawn"]);
+  // The front sphere hides most of the back one's contour in both.
+  EXPECT_NEAR(s["objects"][1]["line_pixels"].get<double>(), g["objects"][1]["line_pixels"].get<double>(),
+              0.05 * g["objects"][1]["line_pixels"].get<double>() + 5);
+  EXPECT_LT(s["objects"][1]["lines"]["contour"].get<int>(), s["objects"][1]["lines_extracted"]["contour"].get<int>() * 0.9);
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 #include <glad/gl.h>
 #include <nlohmann/json.hpp>
@@ -137,6 +139,60 @@ TEST_F(Viewer, ASavedViewRendersToTheSamePicture) {
   ASSERT_TRUE(rendered);
   EXPECT_EQ(rendered->width, 300);
   EXPECT_EQ(differing(viewer, *rendered), 0u);
+}
+
+// One frame, three readers: the viewer's panel (the session's report), `render --stats` and
+// the first row of `capture --metrics` count it the same way (one definition of each count).
+TEST_F(Viewer, PanelStatsAndMetricsCountTheSameFrame) {
+  auto s = open({(dir_ / "scene.json").string()});
+  ASSERT_TRUE(s);
+  ASSERT_TRUE(s->frame(320, 240, 1.0f / 30.0f).ok());
+  s->orbit(25.0f, 10.0f);
+  const auto view = dir_ / "view.json";
+  ASSERT_TRUE(s->saveView(view, 320, 240).ok());
+  // The panel of a session opened on the saved view: its first frame.
+  auto t = open({view.string()});
+  ASSERT_TRUE(t);
+  ASSERT_TRUE(t->frame(320, 240, 1.0f / 30.0f).ok());
+  const ObjectReport& panel = t->report().total;
+  // --stats of `render` of the same view.
+  ASSERT_EQ(test::runLodline("render " + view.string() + " -o " + (dir_ / "v.png").string() + " --stats " +
+                             (dir_ / "v.json").string()),
+            0);
+  const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir_ / "v.json"));
+  // --metrics of a capture whose first frame has that camera.
+  const Camera cam = t->camera(320, 240);
+  auto key = [&](double time) {
+    return nlohmann::json{{"time", time},
+                          {"eye", {cam.eye.x, cam.eye.y, cam.eye.z}},
+                          {"target", {cam.target.x, cam.target.y, cam.target.z}},
+                          {"up", {cam.up.x, cam.up.y, cam.up.z}},
+                          {"fov", cam.fov_deg}};
+  };
+  std::ofstream(dir_ / "still.json") << nlohmann::json{{"keys", {key(0.0), key(1.0)}}}.dump();
+  ASSERT_EQ(test::runLodline("capture " + view.string() + " --path " + (dir_ / "still.json").string() +
+                             " --frames 1 -o " + (dir_ / "frames").string() + "/ --metrics " + (dir_ / "m.csv").string()),
+            0);
+  std::ifstream csv(dir_ / "m.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  std::map<std::string, double> metrics;
+  {
+    std::stringstream h(header), r(row);
+    std::string name, value;
+    while (std::getline(h, name, ',') && std::getline(r, value, ',')) metrics[name] = std::stod(value);
+  }
+  EXPECT_GT(panel.strokes, 5u);
+  EXPECT_GT(panel.line_pixels, 100u);
+  EXPECT_EQ(panel.strokes, stats["strokes"].get<uint64_t>());
+  EXPECT_EQ(panel.specks, stats["specks"].get<uint64_t>());
+  EXPECT_EQ(panel.line_pixels, stats["line_pixels"].get<uint64_t>());
+  EXPECT_EQ(panel.active_faces, stats["active_faces"].get<uint64_t>());
+  EXPECT_EQ(static_cast<double>(panel.strokes), metrics["strokes"]);
+  EXPECT_EQ(static_cast<double>(panel.specks), metrics["specks"]);
+  EXPECT_EQ(static_cast<double>(panel.line_pixels), metrics["line_pixels"]);
+  EXPECT_EQ(static_cast<double>(panel.active_faces), metrics["active_faces"]);
 }
 
 #ifdef LODLINE_HAVE_VIEWER

@@ -173,6 +173,45 @@ TEST(CompensatedCoherence, ALineRemovedInOneFrameCountsOnce) {
   EXPECT_GT(compareMasks(with, rim(s2)).churn(), lost.churn());  // raw also counts the rim's motion
 }
 
+// The meter keeps the previous frame: the first frame compares with nothing, the next ones
+// with the frame before, and the caller gets buffers back to refill.
+TEST(CompensatedCoherence, TheMeterComparesEachFrameWithThePreviousOne) {
+  const Camera cam = lookAt({0, 0, 8}, {0, 0, 0});
+  const SurfaceImage s = raycastSphere(cam, {0, 0, 0}, 1.5f);
+  CoherenceMeter meter;
+  LineMask mask = rim(s);
+  SurfaceImage surface = s;
+  const uint64_t rim_pixels = mask.count();
+  FrameCoherence f = meter.measure(mask, surface, cam);
+  EXPECT_FALSE(f.compared);
+  EXPECT_EQ(f.compensated.line_pixels, rim_pixels);
+  EXPECT_EQ(f.compensated.appeared + f.compensated.vanished, 0u);
+  EXPECT_TRUE(meter.hasPrevious());
+  // Second frame: the rim plus a 40-px line; 40 pixels appeared.
+  mask = rim(s);
+  hline(mask, kH / 2, kW / 2 - 20, kW / 2 + 20);
+  surface = s;
+  f = meter.measure(mask, surface, cam);
+  EXPECT_TRUE(f.compared);
+  EXPECT_EQ(f.compensated.appeared, 40u);
+  EXPECT_EQ(f.raw.appeared, 40u);
+  EXPECT_EQ(f.compensated.vanished, 0u);
+  // Third frame: the line is gone again, compared with the second frame (not the first).
+  mask = rim(s);
+  surface = s;
+  f = meter.measure(mask, surface, cam);
+  EXPECT_EQ(f.compensated.vanished, 40u);
+  EXPECT_EQ(f.compensated.appeared, 0u);
+  // After reset() the next frame is a first frame again.
+  meter.reset();
+  mask = rim(s);
+  hline(mask, 5, 5, 45);
+  surface = s;
+  f = meter.measure(mask, surface, cam);
+  EXPECT_FALSE(f.compared);
+  EXPECT_EQ(f.compensated.appeared, 0u);
+}
+
 TEST(CompensatedCoherence, AStaticCameraGivesTheRawMeasure) {
   const Camera cam = lookAt({0, 0, 8}, {0.2f, -0.1f, 0});
   const SurfaceImage s = raycastSphere(cam, {0, 0, 0}, 1.5f);

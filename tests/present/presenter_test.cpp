@@ -1,0 +1,159 @@
+// The last stage of a frame (present/): the GL and software presenters draw, read back and
+// count the same scene alike; the frame report's totals are the sums of its objects; the
+// software presenter refuses what it cannot draw.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "frame/scene_drawing.h"
+#include "io/generate.h"
+#include "present/frame_report.h"
+#include "present/gl_presenter.h"
+#include "present/soft_presenter.h"
+#include "test_util.h"
+
+namespace lodline {
+namespace {
+
+// Two spheres seen from +Z, the front one toon-shaded, the back one in the lines style and
+// partly hidden by the front one.
+SceneDrawing twoSpheres() {
+  SceneDrawing scene;
+  auto pool = std::make_shared<WorkerPool>(2);
+  const glm::vec3 offsets[2] = {{0.0f, 0.0f, 1.5f}, {0.9f, 0.3f, -1.0f}};
+  for (int i = 0; i < 2; ++i) {
+    TriMesh m = makeIcoSphere(1.0f, 4);
+    for (glm::vec3& p : m.positions) p += offsets[i];
+    SceneDrawing::Object o;
+    o.name = i == 0 ? "front" : "back";
+    o.style.style = i == 0 ? Style::kToon : Style::kLines;
+    o.input_faces = m.faceCount();
+    o.input_vertices = m.vertexCount();
+    o.drawing = std::make_unique<LodDrawing>(std::move(m), LineParams{}, pool);
+    scene.add(std::move(o));
+  }
+  return scene;
+}
+
+Camera frontCamera(float aspect) {
+  Camera cam;
+  cam.eye = {0.0f, 0.0f, 9.0f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  cam.fov_deg = 35.0f;
+  (void)aspect;
+  return cam;
+}
+
+FrameParams smallFrame() {
+  FrameParams f;
+  f.width = 320;
+  f.height = 240;
+  f.msaa = 1;
+  return f;
+}
+
+double visibleLength(const VisibleStrokes& v) {
+  double len = 0.0;
+  for (float l : v.length_px) len += l;
+  return len;
+}
+
+TEST(Presenter, GlAndSoftDrawAndCountTheSameScene) {
+  auto gl = GlPresenter::createHeadless(ContextBackend::kEgl, smallFrame());
+  if (!gl) GTEST_SKIP() << gl.error().message;
+  SceneDrawing scene = twoSpheres();
+  const FrameParams frame = smallFrame();
+  const Camera cam = frontCamera(frame.aspect());
+  ASSERT_TRUE(scene.frame(cam, frame.width, frame.height, DetailParams{}, 1.0f / 30.0f).ok());
+  SoftPresenter soft;
+  ASSERT_TRUE((*gl)->present(scene, cam, frame, true).ok());
+  ASSERT_TRUE(soft.present(scene, cam, frame, true).ok());
+  const FrameReport a = reportFrame(scene, **gl), b = reportFrame(scene, soft);
+  ASSERT_EQ(a.objects.size(), 2u);
+  ASSERT_EQ(b.objects.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(a.objects[i].faces_drawn, b.objects[i].faces_drawn);
+    EXPECT_EQ(a.objects[i].line_segments, b.objects[i].line_segments);
+    EXPECT_EQ(a.objects[i].lines_extracted, b.objects[i].lines_extracted);
+    const double la = visibleLength((*gl)->visible()[i]), lb = visibleLength(soft.visible()[i]);
+    EXPECT_GT(la, 100.0) << i;
+    EXPECT_NEAR(la, lb, 0.02 * la) << "visible stroke length of object " << i;
+  }
+  // The back sphere's contour is partly hidden by the front sphere.
+  const double hidden_len = visibleLength((*gl)->visible()[1]);
+  EXPECT_LT(a.objects[1].lines[0], a.objects[1].lines_extracted[0]);
+  EXPECT_GT(hidden_len, 0.0);
+  // Surfaces agree: where both saw a surface, the same point and object.
+  SurfaceImage sa, sb;
+  ASSERT_TRUE((*gl)->readSurface(sa).ok());
+  ASSERT_TRUE(soft.readSurface(sb).ok());
+  ASSERT_EQ(sa.texels.size(), sb.texels.size());
+  size_t both = 0, same_object = 0, close = 0, coverage_differs = 0;
+  for (size_t i = 0; i < sa.texels.size(); ++i) {
+    const glm::vec4 &p = sa.texels[i], &q = sb.texels[i];
+    coverage_differs += (p.w > 0.0f) != (q.w > 0.0f);
+    if (p.w > 0.0f && q.w > 0.0f) {
+      ++both;
+      same_object += p.w == q.w;
+      close += glm::length(glm::vec3(p) - glm::vec3(q)) < 0.01f;
+    }
+  }
+  EXPECT_GT(both, 5000u);
+  EXPECT_GT(static_cast<double>(same_object) / both, 0.995);
+  EXPECT_GT(static_cast<double>(close) / both, 0.995);
+  EXPECT_LT(static_cast<double>(coverage_differs) / sa.texels.size(), 0.005);
+}
+
+TEST(Presenter, ReportTotalsAreTheSumsOfTheObjects) {
+  auto gl = GlPresenter::createHeadless(ContextBackend::kEgl, smallFrame());
+  if (!gl) GTEST_SKIP() << gl.error().message;
+  SceneDrawing scene = twoSpheres();
+  const FrameParams frame = smallFrame();
+  const Camera cam = frontCamera(frame.aspect());
+  ASSERT_TRUE(scene.frame(cam, frame.width, frame.height, DetailParams{}, 1.0f / 30.0f).ok());
+  ASSERT_TRUE((*gl)->present(scene, cam, frame, true).ok());
+  LineMask mask;
+  const FrameReport r = reportFrame(scene, **gl, &mask);
+  uint64_t faces = 0, strokes = 0, specks = 0, pixels = 0, segments = 0;
+  for (const ObjectReport& o : r.objects) {
+    faces += o.active_faces;
+    strokes += o.strokes;
+    specks += o.specks;
+    pixels += o.line_pixels;
+    segments += o.line_segments;
+    EXPECT_LE(o.strokes, o.strokes_extracted + o.strokes_extracted);  // splits at hidden parts at most double
+    EXPECT_EQ(o.active_faces, o.faces_drawn);
+  }
+  EXPECT_EQ(r.total.active_faces, faces);
+  EXPECT_EQ(r.total.strokes, strokes);
+  EXPECT_EQ(r.total.specks, specks);
+  EXPECT_EQ(r.total.line_segments, segments);
+  // A pixel both objects' lines cross counts once in the total.
+  EXPECT_LE(r.total.line_pixels, pixels);
+  EXPECT_GT(r.total.line_pixels, pixels / 2);
+  EXPECT_EQ(mask.count(), r.total.line_pixels);
+  // The stats JSON carries the same numbers.
+  const nlohmann::json j = frameStatsJson(r);
+  EXPECT_EQ(j["strokes"].get<uint64_t>(), r.total.strokes);
+  EXPECT_EQ(j["objects"][1]["name"], "back");
+  EXPECT_EQ(j["objects"][1]["style"], "lines");
+}
+
+TEST(Presenter, SoftRefusesTheShadedStyleAndChamferHighlights) {
+  SceneDrawing scene = twoSpheres();
+  SoftPresenter soft;
+  EXPECT_TRUE(soft.check(scene).ok());
+  scene[1].style.style = Style::kShaded;
+  Status s = soft.check(scene);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().kind, Error::Kind::kUsage);
+  EXPECT_NE(s.error().message.find("'back'"), std::string::npos) << s.error().message;
+  // present() refuses too, before drawing anything.
+  EXPECT_FALSE(soft.present(scene, frontCamera(1.0f), smallFrame(), true).ok());
+  scene[1].style.style = Style::kToon;
+  scene[1].style.chamfer.over_toon = true;
+  EXPECT_FALSE(soft.check(scene).ok());
+}
+
+}  // namespace
+}  // namespace lodline
