@@ -1,6 +1,6 @@
 #version 330 core
 // Chamfer edge highlights, per pixel (Wei, Shi, Yong, "Rendering chamfering structures of
-// sharp edges", Visual Computer 2014; DESIGN.md §2). The edge is a thin rounded strip whose
+// sharp edges", Visual Computer 2014; docs/design.md §2.2). The edge is a thin rounded strip whose
 // normals sweep the arc N(t) = cos t·u + sin t·w, t ∈ [0, β], from N1 to N2. The pixel shows
 // Blinn–Phong averaged over the strip's projected width: ∫ I(N) (P·dN) / ∫ (P·dN), with P ⟂
 // to the view direction and the edge axis. For each of the light L (diffuse, n = 1) and the

@@ -1,6 +1,6 @@
 #version 330 core
 // Chamfer edge highlights (Wei, Shi, Yong, "Rendering chamfering structures of sharp
-// edges", Visual Computer 2014; DESIGN.md §2): every sharp edge is a GL_LINES segment whose
+// edges", Visual Computer 2014; docs/design.md §2.2): every sharp edge is a GL_LINES segment whose
 // vertices carry both adjacent face normals N1, N2 and the edge radius r_e (0 = use the
 // constant u_radius). The fragment shader (chamfer.frag) integrates Blinn–Phong over the arc.
 layout(location = 0) in vec3 a_position;

@@ -1,5 +1,5 @@
 // `lodline compare A B`: Pan, Zhou, Shi's approximation error E_s of mesh B against mesh A
-// (DESIGN.md §4; exact point-to-triangle distances through CGAL's AABB tree, src/cgal),
+// (docs/design.md §2.4; exact point-to-triangle distances through CGAL's AABB tree, src/cgal),
 // absolute and relative to A's bounding-box diagonal, and the symmetric Hausdorff distance
 // over the vertices of both meshes.
 #include <iomanip>

@@ -1,6 +1,6 @@
 // The only translation unit that includes CGAL (see mesh_distance.h): point-to-triangle
 // distances through CGAL::AABB_tree over a Simple_cartesian<double> kernel, for the error
-// E_s of Pan, Zhou, Shi (hybrid static + dynamic simplification, DESIGN.md §4).
+// E_s of Pan, Zhou, Shi (hybrid static + dynamic simplification, docs/design.md §2.4).
 #include "cgal/mesh_distance.h"
 
 #include <algorithm>

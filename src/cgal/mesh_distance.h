@@ -1,7 +1,7 @@
 // Exact surface-to-surface distances between two triangle meshes, for the static half of
 //
 //   Pan, Zhou, Shi, "Real-time rendering algorithm based on hybrid static and dynamic
-//   simplification methods" (DESIGN.md §4): the approximation error of a simplified mesh
+//   simplification methods" (docs/design.md §2.4): the approximation error of a simplified mesh
 //     E_s = (Σ_{v∈X_o} d(v, M_s) + Σ_{v∈X_s} d(v, M_o)) / (|X_o| + |X_s|),
 //   X_o, X_s the vertex sets of the original and simplified meshes and d the exact
 //   point-to-surface distance, reported relative to the bounding-box diagonal of M_o.

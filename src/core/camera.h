@@ -1,6 +1,6 @@
 // Camera maths shared by every stage: view/projection matrices, the orbit
-// placement used by --view, and the image-space area factor of DESIGN.md
-// (Jeong et al. 2005 §3.1: A_img = k·A/d² in perspective, k·A in orthographic).
+// placement used by --view, and the image-space area factor of docs/design.md
+// §2.1 (Jeong et al. 2005 §3.1: A_img = k·A/d² in perspective, k·A in orthographic).
 #pragma once
 
 #include <glm/mat4x4.hpp>

@@ -1,5 +1,5 @@
 // The triangle mesh that flows between stages: flat arrays, 32-bit indices
-// (STYLE.md §2). OpenMesh is used by io/ to read files, never in the frame loop.
+// (docs/design.md §6). OpenMesh is used by io/ to read files, never in the frame loop.
 #pragma once
 
 #include <array>

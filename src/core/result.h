@@ -1,5 +1,5 @@
 // Error values for anything that comes from the outside world (files, contexts,
-// shaders): STYLE.md §7. Internal invariants use LODLINE_ASSERT instead.
+// shaders): docs/design.md §6. Internal invariants use LODLINE_ASSERT instead.
 #pragma once
 
 #include <cassert>

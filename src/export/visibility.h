@@ -1,7 +1,7 @@
 // Hidden-line removal for vector output and for counting what is really visible: line
-// samples are tested against a depth image of the shaded surface (DESIGN.md "Hidden lines":
-// "test segment samples against a depth/ID buffer (needed for SVG)"). The depth image comes
-// from whichever rasteriser drew the faces (OpenGL here); this file needs no GL.
+// samples are tested against a depth image of the shaded surface (docs/design.md §3.7). The
+// depth image comes from whichever renderer drew the faces (OpenGL or the software one);
+// this file needs no GL.
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// The CPU half of a frame (DESIGN.md pipeline: io → shape → lines): for one model, the
+// The CPU half of a frame (docs/design.md §1: io → shape → lines): for one model, the
 // surface arrays the renderer draws and, per view, the extracted lines grouped by kind.
 // Both `lodline render` and the viewer drive this same object, so they draw the same thing.
 #pragma once

@@ -1,4 +1,4 @@
-// Sharp-edge finding for the chamfer highlights (Wei, Shi, Yong 2014; DESIGN.md §2).
+// Sharp-edge finding for the chamfer highlights (Wei, Shi, Yong 2014; docs/design.md §2.2).
 #include "gl/chamfer_edges.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Sharp edges for the chamfer highlights (Wei, Shi, Yong 2014; DESIGN.md §2): edges of the
+// Sharp edges for the chamfer highlights (Wei, Shi, Yong 2014; docs/design.md §2.2): edges of the
 // mesh actually drawn (the adapted mesh under level of detail) whose dihedral angle (the
 // angle between the two face normals) reaches a threshold, plus the edges the file marks
 // (TriMesh::marked_edges). GL-free; the ChamferLayer uploads the result.

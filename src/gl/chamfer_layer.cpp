@@ -1,4 +1,4 @@
-// Chamfer highlight layer (Wei, Shi, Yong 2014; DESIGN.md §2). See chamfer_layer.h.
+// Chamfer highlight layer (Wei, Shi, Yong 2014; docs/design.md §2.2). See chamfer_layer.h.
 #include "gl/chamfer_layer.h"
 
 #include <algorithm>

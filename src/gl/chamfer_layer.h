@@ -1,5 +1,5 @@
 // The chamfer highlight layer (Wei, Shi, Yong, "Rendering chamfering structures of sharp
-// edges", Visual Computer 2014; DESIGN.md §2): sharp edges drawn as 1-px line primitives
+// edges", Visual Computer 2014; docs/design.md §2.2): sharp edges drawn as 1-px line primitives
 // carrying both face normals, shaded per pixel by integrating Blinn–Phong over the arc of
 // normals (shaders/chamfer.frag, table F(φ, n) in a 1024×128 R32F texture) and blended over
 // the faces with W = K·r_e/(d·r_max). Also draws the faces of the shaded style (per-pixel

@@ -1,4 +1,4 @@
-// Chamfer highlight maths (Wei, Shi, Yong 2014; DESIGN.md §2). See chamfer_math.h; the
+// Chamfer highlight maths (Wei, Shi, Yong 2014; docs/design.md §2.2). See chamfer_math.h; the
 // fragment shader shaders/chamfer.frag repeats these steps in GLSL.
 #include "gl/chamfer_math.h"
 

@@ -1,6 +1,6 @@
 // GL-free maths of the chamfer edge highlights (Wei, Shi, Yong, "Rendering chamfering
 // structures of sharp edges", The Visual Computer 2014; the facts used are summarised in
-// DESIGN.md §2 "Chamfer edge highlights"): a sharp edge is treated as a thin rounded strip (a partial cylinder of
+// docs/design.md §2.2): a sharp edge is treated as a thin rounded strip (a partial cylinder of
 // radius r_e) whose normals sweep the arc from the face normal N1 to N2. A pixel on the edge
 // shows the Blinn–Phong intensity averaged over the strip's projected width, i.e. integrated
 // over the arc with the weight P·dN (P ⟂ to the view direction and to the edge axis):

@@ -1,6 +1,6 @@
 // Headless OpenGL through EGL on Mesa's surfaceless platform (EGL_MESA_platform_surfaceless):
 // no display, no window; rendering goes into FBOs. Sequence measured to work on Debian 12 /
-// Mesa 22.3 (DESIGN.md "OpenGL on this kind of machine").
+// Mesa 22.3 (docs/design.md §7).
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
@@ -66,7 +66,7 @@ Result<std::unique_ptr<GlContext>> createEglContext() {
     eglTerminate(dpy);
     return Error::runtime("eglBindAPI(EGL_OPENGL_API) failed: " + eglErrorString(eglGetError()));
   }
-  // Core profile without the forward-compatible flag, so glLineWidth > 1 works (DESIGN.md).
+  // Core profile without the forward-compatible flag, so glLineWidth > 1 works (docs/design.md §7).
   EGLContext ctx = EGL_NO_CONTEXT;
   for (const EGLint minor_version : {5, 3}) {
     const EGLint minor_for_major = minor_version;

@@ -1,4 +1,4 @@
-// Move-only RAII owners of OpenGL objects (STYLE.md §8). Each must be destroyed while the
+// Move-only RAII owners of OpenGL objects (docs/design.md §6). Each must be destroyed while the
 // context that created it is current.
 #pragma once
 

@@ -25,7 +25,7 @@ Result<GlfwWindow> GlfwWindow::create(int width, int height, const std::string& 
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, minor == 5 ? 4 : 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, minor);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    // Not forward-compatible: glLineWidth > 1 must keep working (DESIGN.md).
+    // Not forward-compatible: glLineWidth > 1 must keep working (docs/design.md §7).
     glfwWindowHint(GLFW_SAMPLES, samples > 1 ? samples : 0);
     w.window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (w.window_) break;

@@ -1,4 +1,4 @@
-// The OpenGL stage (DESIGN.md pipeline: gl): toon-shaded, Blinn–Phong-shaded (or
+// The OpenGL stage (docs/design.md §1: gl): toon-shaded, Blinn–Phong-shaded (or
 // background-coloured) faces drawn first with a polygon offset, then the chamfer highlights
 // of sharp edges (ChamferLayer, Wei, Shi, Yong 2014) blended over them, then lines with depth test LEQUAL and depth writes off
 // so hidden parts of lines are removed and visible ones never z-fight with their faces.

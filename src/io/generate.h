@@ -49,7 +49,7 @@ namespace lodline {
 /// radius r, made of many small patches. Each 90° edge arc has `arc_segments` segments (even,
 /// ≥ 2; ignored when r = 0), each flat part `flat_segments` (≥ 1). With r = 0 it is the sharp
 /// box (12 triangles when flat_segments = 1). Closed, welded, counter-clockwise outward. The
-/// ground truth of the chamfer highlights (Wei, Shi, Yong 2014, their Fig. 5; DESIGN.md §2).
+/// ground truth of the chamfer highlights (Wei, Shi, Yong 2014, their Fig. 5; docs/design.md §2.2).
 TriMesh makeRoundedBox(glm::vec3 half, float r, int arc_segments, int flat_segments);
 
 }  // namespace lodline

@@ -1,6 +1,6 @@
 // Line extraction: every view-dependent line is the zero set of a per-vertex scalar, masked
-// by the sign of a per-vertex test num/den, found by one generic extractor (DESIGN.md
-// "Extraction"); creases and boundaries come from the edge list.
+// by the sign of a per-vertex test num/den, found by one generic extractor (docs/design.md
+// §3.6); creases and boundaries come from the edge list.
 //
 // Papers: DeCarlo, Finkelstein, Rusinkiewicz, Santella, "Suggestive Contours for Conveying
 // Shape" (SIGGRAPH 2003), §4 (object-space extraction on faces, threshold on the derivative);
@@ -29,11 +29,11 @@
 namespace lodline {
 
 /// Which lines to extract, and their thresholds (filled identically by CLI, scene file and
-/// viewer; DESIGN.md "Parameters").
+/// viewer; docs/design.md §4).
 struct LineParams {
   bool contours = true;  ///< occluding contours, n·v = 0. Default on
   /// Keep contour points only where kr > 0 (trims the contour loops hidden behind the
-  /// surface; DESIGN.md "Extraction"). Default off.
+  /// surface; docs/design.md §3.6). Default off.
   bool contours_require_positive_kr = false;
   bool suggestive = true;  ///< suggestive contours, kr = 0 where Dw kr > 0. Default on
   /// Keep suggestive points where tanθ·Dw kr > suggestive_threshold / fs² (fs = feature

@@ -5,7 +5,7 @@
 // Conveying Shape" (SIGGRAPH 2003), §3–4 (kr, Dw kr > 0, the tanθ-scaled threshold); D.
 // DeCarlo, A. Finkelstein, S. Rusinkiewicz, "Interactive Rendering of Suggestive Contours
 // with Temporal Coherence" (NPAR 2004), §3 (Dw kr = C(w,w,w) − 2·τ²·cotθ, the term for w
-// turning as one moves along w). See DESIGN.md "Line maths".
+// turning as one moves along w). See docs/design.md §3.4.
 //
 // Notation: v̂ = unit vector from the surface point to the eye, θ = angle between n and v̂,
 // w = projection of v̂ onto the tangent plane (|w| = sinθ), ŵ = w/|w|, u = v̂·e1, v = v̂·e2

@@ -1,5 +1,5 @@
 // View-dependent floating-cell vertex clustering (Pan, Zhou, Shi, "Real-time rendering
-// algorithm based on hybrid static and dynamic simplification methods"; DESIGN.md §4).
+// algorithm based on hybrid static and dynamic simplification methods"; docs/design.md §2.4).
 // See vertex_clustering.h for the radius derivation.
 #include "lod/vertex_clustering.h"
 

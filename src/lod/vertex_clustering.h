@@ -1,7 +1,7 @@
 // View-dependent floating-cell vertex clustering, recomputed every frame: the dynamic half of
 //
 //   Pan, Zhou, Shi, "Real-time rendering algorithm based on hybrid static and dynamic
-//   simplification methods" (DESIGN.md §4): vertex weights C_i, frustum and back-face
+//   simplification methods" (docs/design.md §2.4): vertex weights C_i, frustum and back-face
 //   culling marking vertices −1, and in weight order each unclustered vertex absorbing the
 //   unclustered vertices inside a sphere of radius R = sqrt(K·W·H/(Width·Height))·|OP|/|OP'|.
 //

@@ -512,7 +512,7 @@ TriMesh ProgressiveMesh::baseMesh(std::vector<uint32_t>* base_node_ids) const {
   return m;
 }
 
-// ---- Error-bounded static simplification (Pan, Zhou, Shi; DESIGN.md §4) ----
+// ---- Error-bounded static simplification (Pan, Zhou, Shi; docs/design.md §2.4) ----
 
 TriMesh pmLevelMesh(const ProgressiveMesh& pm, uint32_t collapses) {
   const uint32_t n = pm.vertexCount();

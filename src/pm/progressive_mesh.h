@@ -140,7 +140,7 @@ struct BoundedSimplification {
 /// Pan et al.'s E_s relative to the diagonal), or a negative value if it cannot be measured.
 using MeshErrorFn = std::function<double(const TriMesh& candidate)>;
 
-/// Error-bounded static simplification (Pan, Zhou, Shi, DESIGN.md §4): runs the quadric-error
+/// Error-bounded static simplification (Pan, Zhou, Shi, docs/design.md §2.4): runs the quadric-error
 /// collapses of `pm` in their order and keeps the longest prefix whose measured `error` is at
 /// most `bound`, found by bisection over the collapse count (about log2(collapses)+2 calls).
 /// Every returned level was measured, so the bound holds even where the error is not monotone

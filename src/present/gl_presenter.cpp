@@ -2,7 +2,16 @@
 
 #include <glad/gl.h>
 
+#include "gl/renderer.h"
+
 namespace lodline {
+
+GlPresenter::~GlPresenter() = default;
+
+size_t GlPresenter::facesDrawn(size_t object) const { return renderer_->faceCount(object); }
+size_t GlPresenter::segmentsDrawn(size_t object) const { return renderer_->segmentsDrawn(object); }
+Image GlPresenter::readColour() { return target_->readback(); }
+void GlPresenter::readDepth(DepthImage& out) { target_->readDepth(out); }
 
 Result<std::unique_ptr<GlPresenter>> GlPresenter::createOnCurrentContext() {
   std::unique_ptr<GlPresenter> p(new GlPresenter());

@@ -6,13 +6,19 @@
 #include <memory>
 
 #include "gl/context.h"
-#include "gl/renderer.h"
 #include "present/presenter.h"
 
 namespace lodline {
 
+// gl/renderer.h stays out of this header, so code that holds a presenter (the viewer)
+// includes no drawing backend (docs/design.md §5).
+class Renderer;
+class OffscreenTarget;
+class SurfaceTarget;
+
 class GlPresenter final : public ScenePresenter {
  public:
+  ~GlPresenter() override;
   /// Creates a headless context of kind `context` (EGL surfaceless, OSMesa) and an
   /// offscreen target of frame's size and multisampling. Errors: no context, shaders, a size
   /// above the GL limit.
@@ -25,16 +31,16 @@ class GlPresenter final : public ScenePresenter {
 
   Status check(const SceneDrawing&) const override { return {}; }
   Status readSurface(SurfaceImage& out) override;
-  size_t facesDrawn(size_t object) const override { return renderer_->faceCount(object); }
-  size_t segmentsDrawn(size_t object) const override { return renderer_->segmentsDrawn(object); }
+  size_t facesDrawn(size_t object) const override;
+  size_t segmentsDrawn(size_t object) const override;
   std::string backendName() const override;
   std::string description() const override { return description_; }
 
  protected:
   Status upload(const SceneDrawing& scene, bool all_meshes) override;
   Status draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) override;
-  Image readColour() override { return target_->readback(); }
-  void readDepth(DepthImage& out) override { target_->readDepth(out); }
+  Image readColour() override;
+  void readDepth(DepthImage& out) override;
 
  private:
   GlPresenter() = default;

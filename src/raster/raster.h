@@ -1,4 +1,4 @@
-// Software triangle rasteriser with constant-depth scanlines (DESIGN.md §3):
+// Software triangle rasteriser with constant-depth scanlines (docs/design.md §2.3):
 // Han, Wang, "Linear texture coordinate interpolation in rasterization", J. CAD & CG 23(6),
 // 2011 — §2 (lines of constant depth are parallel in screen space and perspective-correct
 // attributes are linear along them), §3 (per-triangle arrays of start value and step for each

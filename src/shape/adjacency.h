@@ -1,4 +1,4 @@
-// Mesh adjacency over flat arrays (STYLE.md §2): vertex→face rings, an undirected edge list
+// Mesh adjacency over flat arrays (docs/design.md §6): vertex→face rings, an undirected edge list
 // with its adjacent faces, and the three edges of every face. Built once per connectivity,
 // or brought up to date in place when a few face slots change (a view-dependent mesh splits
 // and collapses a few hundred vertices per frame); the per-frame stages (shape, lines) only

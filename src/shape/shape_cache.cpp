@@ -34,7 +34,7 @@ inline void frameFromNormal(const glm::vec3& n, glm::vec3& u, glm::vec3& v) {
   v = glm::cross(n, u);
 }
 
-// Mixed Voronoi corner areas of a triangle (DESIGN.md "Corner areas"); e[j] is the edge
+// Mixed Voronoi corner areas of a triangle (docs/design.md §3.1); e[j] is the edge
 // opposite corner j, `area` the triangle area (> 0).
 inline void cornerAreasOf(const glm::vec3 e[3], float area, std::array<float, 3>& out) {
   const float l2[3] = {glm::dot(e[0], e[0]), glm::dot(e[1], e[1]), glm::dot(e[2], e[2])};
@@ -118,7 +118,7 @@ inline glm::vec4 principalInFace(const glm::vec4& m, const glm::vec2& ab) {
 }
 
 // Solves the symmetric tridiagonal system with diagonal d[0..N) and off-diagonal o[0..N-1)
-// (the full matrix: entry (i, i+1) = entry (i+1, i) = o[i]; cf. DESIGN.md on the
+// (the full matrix: entry (i, i+1) = entry (i+1, i) = o[i]; cf. docs/design.md §3.2 on the
 // upper-triangle-only bug) by LDLᵀ in double. False when a pivot is not clearly positive
 // (degenerate face).
 template <int N>

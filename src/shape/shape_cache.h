@@ -7,7 +7,7 @@
 // weighting by Voronoi area), §4 (the same fit one order up for the derivative tensor C).
 // Corner areas follow Meyer, Desbrun, Schröder, Barr, "Discrete Differential-Geometry
 // Operators for Triangulated 2-Manifolds" (VisMath 2002), §3.3 (mixed Voronoi areas with
-// the obtuse-triangle rule) — see DESIGN.md "Line maths".
+// the obtuse-triangle rule) — see docs/design.md §3.
 //
 // Sign convention: with the mesh oriented counter-clockwise seen from outside, normals point
 // outward and a convex surface has positive curvature (sphere of radius r: k1 = k2 = 1/r).
@@ -109,14 +109,14 @@ struct FeatureSizeParams {
   float max_fraction_of_radius = 0.05f; ///< cap: fs ≤ this · bounding radius. Default 0.05
 };
 
-/// A length scale of the model (DESIGN.md "Feature size"), in model units, for making
+/// A length scale of the model (docs/design.md §3.5), in model units, for making
 /// thresholds scale-free (suggestive-contour thresholds scale as 1/fs²). Deterministic.
 /// Returns the cap when all sampled curvatures vanish, and 1 for an empty or zero-size input.
 float computeFeatureSize(std::span<const float> k1, std::span<const float> k2,
                          float bounding_radius, const FeatureSizeParams& params = {});
 
 /// Stateful per-vertex shape quantities for a mesh whose positions change every frame
-/// (STYLE.md §4–5). Allocation-free after warm-up for position-only updates.
+/// (docs/design.md §6, items 4–5). Allocation-free after warm-up for position-only updates.
 ///
 ///   ShapeCache shape;
 ///   shape.compute(mesh);                    // once, or when connectivity changes

@@ -1,4 +1,4 @@
-// Hybrid static + dynamic simplification through the CLI (Pan, Zhou, Shi; DESIGN.md §4):
+// Hybrid static + dynamic simplification through the CLI (Pan, Zhou, Shi; docs/design.md §2.4):
 // `simplify`, `compare`, `build --pre-simplify`, `render --lod cluster` and
 // `bench walkthrough`.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Chamfer edge highlights (Wei, Shi, Yong, "Rendering chamfering structures of sharp edges",
-// Visual Computer 2014; DESIGN.md §2): ground truth and cost.
+// Visual Computer 2014; docs/design.md §2.2): ground truth and cost.
 //
 //   ./build/tests/bench/chamfer_bench --ground-truth DIR
 //       The paper's Fig. 5 comparison: a box with real rounded edges of radius r (many small

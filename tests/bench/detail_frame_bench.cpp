@@ -287,7 +287,7 @@ void sceneFrame(benchmark::State& state, float target_area) {
 
 int main(int argc, char** argv) {
   // T = 16 px² (the default), and T = 7 px², which adapts the knot to ~100k active faces
-  // (the size DESIGN.md's CPU figure is stated for).
+  // (the size of the CPU-stage figure in docs/performance.md).
   const std::pair<const char*, float> cases[] = {{"armadillo.off", 16.0f}, {"knot1m", 16.0f}, {"knot1m", 7.0f}};
   for (const auto& [name, t] : cases)
     benchmark::RegisterBenchmark((std::string("detail_frame/") + name + "/T:" + std::to_string(static_cast<int>(t))).c_str(),

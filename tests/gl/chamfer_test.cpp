@@ -1,5 +1,5 @@
 // Chamfer edge highlights (Wei, Shi, Yong, "Rendering chamfering structures of sharp edges",
-// Visual Computer 2014; DESIGN.md §2): the F(φ, n) table against direct integration, the
+// Visual Computer 2014; docs/design.md §2.2): the F(φ, n) table against direct integration, the
 // per-pixel formula against brute-force integration over the arc, sharp-edge finding, and a
 // headless render where the highlights appear on a box's edges only when switched on.
 #include <gtest/gtest.h>
