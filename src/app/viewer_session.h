@@ -52,7 +52,6 @@ class ViewerSession {
   void advancePlayback(double seconds) { play_time_ += seconds; dirty_ = true; }
 
   // ---- parameters the panel edits (call touch() or setLineParams() after a change) ----
-  FrameParams& frameParams() { return loaded_->view.frame; }
   /// The style the panel's global controls edit (objects without style keys of their own).
   ObjectStyle& defaultStyle() { return loaded_->view.style; }
   DetailParams& detail() { return loaded_->detail.params; }

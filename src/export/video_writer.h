@@ -41,7 +41,6 @@ class VideoWriter {
   /// with 0 when closing the file fails, e.g. on a full disk), removes it and returns an
   /// error quoting ffmpeg's first error line. ffmpeg's messages never reach stderr.
   Status finish();
-  int framesWritten() const { return frames_; }
 
  private:
   VideoWriter() = default;

@@ -76,8 +76,6 @@ class LineDrawing {
   /// The extracted segments (all enabled kinds), as the lines stage produced them.
   const LineSet& segments() const { return segments_; }
   const StrokeSet& strokes() const { return strokes_; }
-  /// Model length scale used for the scale-free suggestive-contour thresholds.
-  float featureSize() const { return feature_size_; }
   const CpuTimings& timings() const { return timings_; }
   const ShapeCache& shape() const { return shape_; }
   /// The threads of this drawing's data-parallel loops (shape stage, view quantities);

@@ -152,7 +152,6 @@ class AdaptiveMesh {
 
   uint32_t activeVertexCount() const { return active_vertices_; }
   uint32_t activeFaceCount() const { return static_cast<uint32_t>(active_faces_.size()); }
-  bool isActive(uint32_t node) const { return node_slot_[node] != kPmNone; }
   const LodStats& stats() const { return stats_; }
   const LodChanges& changes() const { return changes_; }
   const ProgressiveMesh& pm() const { return pm_; }

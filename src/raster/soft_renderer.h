@@ -64,7 +64,6 @@ class SoftRenderer {
   /// `params` selects the interpolation mode and threads; polygon offset and culling are
   /// set by draw() to match the GL renderer. Holds one object until setObjectCount().
   explicit SoftRenderer(const RasterParams& params = {});
-  void setRasterParams(const RasterParams& params) { params_ = params; }
   /// Runs the rasteriser, shading and lines on `pool` (e.g. the scene's).
   void setWorkerPool(std::shared_ptr<WorkerPool> pool);
 
@@ -95,11 +94,9 @@ class SoftRenderer {
   const Image& image() const { return image_; }
   /// Window depth of the faces (with the polygon offset, like GL's depth buffer).
   const DepthImage& depth() const { return target_.depth; }
-  const RasterTarget& target() const { return target_; }
   size_t faceCount(size_t object) const { return objects_[object].faces.size(); }
   size_t segmentsDrawn(size_t object) const { return objects_[object].segments_drawn; }
   const SoftTimes& times() const { return times_; }
-  const RasterStats& rasterStats() const { return rasterizer_.stats(); }
 
  private:
   struct Object {

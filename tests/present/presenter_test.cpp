@@ -35,12 +35,11 @@ SceneDrawing twoSpheres() {
   return scene;
 }
 
-Camera frontCamera(float aspect) {
+Camera frontCamera() {
   Camera cam;
   cam.eye = {0.0f, 0.0f, 9.0f};
   cam.target = {0.0f, 0.0f, 0.0f};
   cam.fov_deg = 35.0f;
-  (void)aspect;
   return cam;
 }
 
@@ -52,40 +51,50 @@ FrameParams smallFrame() {
   return f;
 }
 
+// The two spheres through a headless GL presenter: the scene's lines computed, presented.
+struct GlFixture : ::testing::Test {
+  void SetUp() override {
+    auto p = GlPresenter::createHeadless(ContextBackend::kEgl, frame);
+    if (!p) GTEST_SKIP() << p.error().message;
+    gl = std::move(p.value());
+    ASSERT_TRUE(scene.frame(camera, frame.width, frame.height, DetailParams{}, 1.0f / 30.0f).ok());
+    ASSERT_TRUE(gl->present(scene, camera, frame, true).ok());
+  }
+  const FrameParams frame = smallFrame();
+  const Camera camera = frontCamera();
+  SceneDrawing scene = twoSpheres();
+  std::unique_ptr<GlPresenter> gl;
+};
+
 double visibleLength(const VisibleStrokes& v) {
   double len = 0.0;
   for (float l : v.length_px) len += l;
   return len;
 }
 
-TEST(Presenter, GlAndSoftDrawAndCountTheSameScene) {
-  auto gl = GlPresenter::createHeadless(ContextBackend::kEgl, smallFrame());
-  if (!gl) GTEST_SKIP() << gl.error().message;
-  SceneDrawing scene = twoSpheres();
-  const FrameParams frame = smallFrame();
-  const Camera cam = frontCamera(frame.aspect());
-  ASSERT_TRUE(scene.frame(cam, frame.width, frame.height, DetailParams{}, 1.0f / 30.0f).ok());
+using Presenter = GlFixture;
+
+TEST_F(Presenter, GlAndSoftDrawAndCountTheSameScene) {
   SoftPresenter soft;
-  ASSERT_TRUE((*gl)->present(scene, cam, frame, true).ok());
-  ASSERT_TRUE(soft.present(scene, cam, frame, true).ok());
-  const FrameReport a = reportFrame(scene, **gl), b = reportFrame(scene, soft);
+  ASSERT_TRUE(soft.present(scene, camera, frame, true).ok());
+  const FrameReport a = reportFrame(scene, *gl), b = reportFrame(scene, soft);
   ASSERT_EQ(a.objects.size(), 2u);
   ASSERT_EQ(b.objects.size(), 2u);
   for (size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(a.objects[i].faces_drawn, b.objects[i].faces_drawn);
     EXPECT_EQ(a.objects[i].line_segments, b.objects[i].line_segments);
     EXPECT_EQ(a.objects[i].lines_extracted, b.objects[i].lines_extracted);
-    const double la = visibleLength((*gl)->visible()[i]), lb = visibleLength(soft.visible()[i]);
+    const double la = visibleLength(gl->visible()[i]), lb = visibleLength(soft.visible()[i]);
     EXPECT_GT(la, 100.0) << i;
     EXPECT_NEAR(la, lb, 0.02 * la) << "visible stroke length of object " << i;
   }
   // The back sphere's contour is partly hidden by the front sphere.
-  const double hidden_len = visibleLength((*gl)->visible()[1]);
+  const double hidden_len = visibleLength(gl->visible()[1]);
   EXPECT_LT(a.objects[1].lines[0], a.objects[1].lines_extracted[0]);
   EXPECT_GT(hidden_len, 0.0);
   // Surfaces agree: where both saw a surface, the same point and object.
   SurfaceImage sa, sb;
-  ASSERT_TRUE((*gl)->readSurface(sa).ok());
+  ASSERT_TRUE(gl->readSurface(sa).ok());
   ASSERT_TRUE(soft.readSurface(sb).ok());
   ASSERT_EQ(sa.texels.size(), sb.texels.size());
   size_t both = 0, same_object = 0, close = 0, coverage_differs = 0;
@@ -104,16 +113,9 @@ TEST(Presenter, GlAndSoftDrawAndCountTheSameScene) {
   EXPECT_LT(static_cast<double>(coverage_differs) / sa.texels.size(), 0.005);
 }
 
-TEST(Presenter, ReportTotalsAreTheSumsOfTheObjects) {
-  auto gl = GlPresenter::createHeadless(ContextBackend::kEgl, smallFrame());
-  if (!gl) GTEST_SKIP() << gl.error().message;
-  SceneDrawing scene = twoSpheres();
-  const FrameParams frame = smallFrame();
-  const Camera cam = frontCamera(frame.aspect());
-  ASSERT_TRUE(scene.frame(cam, frame.width, frame.height, DetailParams{}, 1.0f / 30.0f).ok());
-  ASSERT_TRUE((*gl)->present(scene, cam, frame, true).ok());
+TEST_F(Presenter, ReportTotalsAreTheSumsOfTheObjects) {
   LineMask mask;
-  const FrameReport r = reportFrame(scene, **gl, &mask);
+  const FrameReport r = reportFrame(scene, *gl, &mask);
   uint64_t faces = 0, strokes = 0, specks = 0, pixels = 0, segments = 0;
   for (const ObjectReport& o : r.objects) {
     faces += o.active_faces;
@@ -139,7 +141,7 @@ TEST(Presenter, ReportTotalsAreTheSumsOfTheObjects) {
   EXPECT_EQ(j["objects"][1]["style"], "lines");
 }
 
-TEST(Presenter, SoftRefusesTheShadedStyleAndChamferHighlights) {
+TEST(SoftPresenter, RefusesTheShadedStyleAndChamferHighlights) {
   SceneDrawing scene = twoSpheres();
   SoftPresenter soft;
   EXPECT_TRUE(soft.check(scene).ok());
@@ -149,7 +151,7 @@ TEST(Presenter, SoftRefusesTheShadedStyleAndChamferHighlights) {
   EXPECT_EQ(s.error().kind, Error::Kind::kUsage);
   EXPECT_NE(s.error().message.find("'back'"), std::string::npos) << s.error().message;
   // present() refuses too, before drawing anything.
-  EXPECT_FALSE(soft.present(scene, frontCamera(1.0f), smallFrame(), true).ok());
+  EXPECT_FALSE(soft.present(scene, frontCamera(), smallFrame(), true).ok());
   scene[1].style.style = Style::kToon;
   scene[1].style.chamfer.over_toon = true;
   EXPECT_FALSE(soft.check(scene).ok());
