@@ -34,6 +34,16 @@ void uploadArray(GLenum target, const GlBuffer& buffer, std::span<const T> data)
   }
 }
 
+// OpenGL's rows run bottom-up: flips `data` (rows of `row` elements) in place, so row 0 is
+// the top (no per-frame copy of the image).
+template <class T>
+void flipRows(std::vector<T>& data, size_t row, int height) {
+  for (int y = 0; y < height / 2; ++y) {
+    auto top = data.begin() + static_cast<ptrdiff_t>(y * row);
+    std::swap_ranges(top, top + static_cast<ptrdiff_t>(row), data.begin() + static_cast<ptrdiff_t>((height - 1 - y) * row));
+  }
+}
+
 // A framebuffer with a colour renderbuffer of `color_format` and a 24-bit depth renderbuffer,
 // `samples` per pixel (0: not multisampled). `what` names it in the error.
 Status makeTargetFramebuffer(GLenum color_format, int width, int height, GLsizei samples, const char* what,
@@ -135,12 +145,6 @@ void Renderer::setLines(size_t object, const LineBuffer& lines) {
   uploadArray(GL_ARRAY_BUFFER, o.line_vertices, std::span<const LineVertex>(lines.vertices));
   o.first = lines.first;
   o.count = lines.count;
-}
-
-size_t Renderer::faceCount() const {
-  size_t n = 0;
-  for (const Object& o : objects_) n += o.face_count;
-  return n;
 }
 
 size_t Renderer::segmentsDrawn() const {
@@ -314,11 +318,7 @@ void SurfaceTarget::readback(SurfaceImage& out) const {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, out.texels.data());
-  // OpenGL's rows run bottom-up: flip in place (no per-frame copy of the image).
-  for (int y = 0; y < height_ / 2; ++y) {
-    auto top = out.texels.begin() + static_cast<ptrdiff_t>(y) * width_;
-    std::swap_ranges(top, top + width_, out.texels.begin() + static_cast<ptrdiff_t>(height_ - 1 - y) * width_);
-  }
+  flipRows(out.texels, static_cast<size_t>(width_), height_);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
@@ -354,16 +354,7 @@ Image OffscreenTarget::readback() const {
   Image image(width_, height_);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
-  // OpenGL's rows run bottom to top; flip in place.
-  const size_t row = static_cast<size_t>(width_) * 4;
-  std::vector<uint8_t> tmp(row);
-  for (int y = 0; y < height_ / 2; ++y) {
-    uint8_t* a = image.rgba.data() + y * row;
-    uint8_t* b = image.rgba.data() + (height_ - 1 - y) * row;
-    std::memcpy(tmp.data(), a, row);
-    std::memcpy(a, b, row);
-    std::memcpy(b, tmp.data(), row);
-  }
+  flipRows(image.rgba, static_cast<size_t>(width_) * 4, height_);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return image;
 }
@@ -378,11 +369,7 @@ void OffscreenTarget::readDepth(DepthImage& d) const {
   d.depth.resize(static_cast<size_t>(width_) * height_);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT, d.depth.data());
-  // OpenGL's rows run bottom-up: flip in place.
-  for (int y = 0; y < height_ / 2; ++y) {
-    auto top = d.depth.begin() + static_cast<ptrdiff_t>(y) * width_;
-    std::swap_ranges(top, top + width_, d.depth.begin() + static_cast<ptrdiff_t>(height_ - 1 - y) * width_);
-  }
+  flipRows(d.depth, static_cast<size_t>(width_), height_);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

@@ -50,8 +50,7 @@ class Renderer {
   /// those behind it.
   void draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles);
 
-  /// Faces uploaded, over all objects / of one object.
-  size_t faceCount() const;
+  /// Faces uploaded of one object.
   size_t faceCount(size_t object) const { return objects_[object].face_count; }
   /// Segments drawn by the last draw() (enabled kinds only), over all objects / of one.
   size_t segmentsDrawn() const;
