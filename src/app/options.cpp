@@ -35,7 +35,16 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
                  "Colour and width of one line kind, KIND=COLOUR[:WIDTH], e.g. suggestive=#804020:1.2 "
                  "(repeatable; applied after --line-width)");
   cmd.add_option("--lines", o.lines,
-                 "Comma-separated line kinds to draw: contour, suggestive, crease, boundary (or none)")
+                 "Comma-separated line kinds to draw: contour, suggestive, crease, boundary, intersection "
+                 "(or none)")
+      ->capture_default_str();
+  cmd.add_option("--hidden-lines", o.hidden_lines,
+                 "Draw the hidden parts of lines too: off, or COLOUR[:WIDTH][:dash=ON,OFF] (pixels), e.g. "
+                 "grey:1:dash=4,3 (docs/visibility.md)")
+      ->capture_default_str();
+  cmd.add_option("--outline", o.outline,
+                 "complete: where the interpolated contour leaves the object's outline (coarse meshes), the "
+                 "mesh's own silhouette edges draw it; contour: the interpolated contour only")
       ->capture_default_str();
   cmd.add_option("--chamfer", o.chamfer,
                  "Chamfer highlights on sharp edges: auto (with --style shaded), on (also over "
@@ -156,7 +165,7 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
                         "' (expected replace or alpha)");
   for (const std::string& spec : o.line_styles) {
     const auto bad = Error::usage("--line-style: invalid value '" + spec +
-                                  "' (expected KIND=COLOUR[:WIDTH], KIND one of contour, suggestive, crease, boundary)");
+                                  "' (expected KIND=COLOUR[:WIDTH], KIND one of " + lineKindList() + ")");
     const auto eq = spec.find('=');
     if (eq == std::string::npos) return bad;
     const std::string kind = spec.substr(0, eq);
@@ -186,6 +195,12 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   r.line_params.suggestive_threshold = o.suggestive_threshold;
   r.line_params.suggestive_fade = o.suggestive_fade;
   r.line_params.crease_angle_deg = o.crease_angle;
+  if (o.outline != "complete" && o.outline != "contour")
+    return Error::usage("--outline: expected complete or contour, got '" + o.outline + "'");
+  r.line_params.complete_outline = o.outline == "complete";
+  auto hidden = parseHiddenLines(o.hidden_lines);
+  if (!hidden) return hidden.error();
+  r.style.hidden = *hidden;
   for (auto& k : r.style.lines.kinds) k.enabled = false;
   std::stringstream ss(o.lines);
   std::string item;
@@ -193,8 +208,7 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
     if (item == "none" || item.empty()) continue;
     const auto kind = parseLineKind(item);
     if (!kind)
-      return Error::usage("--lines: unknown line kind '" + item +
-                          "' (expected contour, suggestive, crease, boundary or none)");
+      return Error::usage("--lines: unknown line kind '" + item + "' (expected " + lineKindList() + " or none)");
     r.style.lines[*kind].enabled = true;
   }
   return r;
@@ -227,7 +241,8 @@ Result<ObjectStyle> resolveObjectStyle(const ViewOptions& base, const nlohmann::
         o.line_styles.push_back(text(v));
     } else if (key == "line-width") {
       if (Status s = number(v, key, o.line_width); !s) return s.error();
-    } else if (key == "chamfer") o.chamfer = text(v);
+    } else if (key == "hidden-lines") o.hidden_lines = text(v);
+    else if (key == "chamfer") o.chamfer = text(v);
     else if (key == "chamfer-radius") {
       if (Status s = number(v, key, o.chamfer_radius); !s) return s.error();
     } else {
@@ -287,6 +302,8 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   s["suggestive-threshold"] = exact(lines.suggestive_threshold);
   s["suggestive-fade"] = exact(lines.suggestive_fade);
   s["crease-angle"] = exact(lines.crease_angle_deg);
+  s["outline"] = lines.complete_outline ? "complete" : "contour";
+  s["hidden-lines"] = formatHiddenLines(style.hidden);
 
   const DetailParams& d = detail.params;
   s["lod"] = lodChoiceName(detail.lod);

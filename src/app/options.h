@@ -28,7 +28,9 @@ struct ViewOptions {
   float line_width = 0.0f;  ///< contour width in px; 0 = default (others scale with it)
   std::string background = "white";
   int msaa = 4;
-  std::string lines = "contour,suggestive,crease,boundary";
+  std::string lines = "contour,suggestive,crease,boundary,intersection";
+  std::string hidden_lines = "off";  ///< off or COLOUR[:WIDTH][:dash=ON,OFF]
+  std::string outline = "complete";  ///< complete (mesh silhouette fills contour gaps) or contour
   std::vector<std::string> line_styles;  ///< "KIND=COLOUR[:WIDTH]", repeatable
   // Chamfer edge highlights (ChamferParams; Wei, Shi, Yong 2014).
   std::string chamfer = "auto";   ///< auto (with the shaded style), on (also over toon), off

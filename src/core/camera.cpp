@@ -61,14 +61,40 @@ float pixelAreaFactor(const Camera& cam, int image_height) {
   return f * f;
 }
 
+PixelProjector::PixelProjector(const Camera& cam, int width, int height)
+    : view_(cam.view()), width_(width), height_(height), near_(cam.near_plane), far_(cam.far_plane),
+      ortho_(cam.orthographic) {
+  view_proj_ = cam.projection(static_cast<float>(width) / static_cast<float>(height)) * view_;
+}
+
+bool PixelProjector::project(glm::vec3 p, glm::vec2& px, float& eye_depth) const {
+  const glm::vec4 c = view_proj_ * glm::vec4(p, 1.0f);
+  if (c.w <= 1e-12f) return false;
+  px = {(c.x / c.w * 0.5f + 0.5f) * static_cast<float>(width_), (0.5f - c.y / c.w * 0.5f) * static_cast<float>(height_)};
+  eye_depth = eyeDepth(p);
+  return true;
+}
+
+float PixelProjector::eyeDepth(glm::vec3 p) const { return -(view_ * glm::vec4(p, 1.0f)).z; }
+
+float PixelProjector::eyeDepthOfWindow(float window_depth) const {
+  if (ortho_) return near_ + window_depth * (far_ - near_);
+  const float ndc_z = 2.0f * window_depth - 1.0f;
+  return 2.0f * near_ * far_ / (far_ + near_ - ndc_z * (far_ - near_));
+}
+
 glm::vec2 projectToPixels(const Camera& cam, glm::vec3 p, int width, int height, float* depth) {
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const glm::vec4 eye_p = cam.view() * glm::vec4(p, 1.0f);
-  if (depth) *depth = -eye_p.z;
-  const glm::vec4 clip = cam.projection(aspect) * eye_p;
-  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-  return {(ndc.x * 0.5f + 0.5f) * static_cast<float>(width),
-          (0.5f - ndc.y * 0.5f) * static_cast<float>(height)};
+  const PixelProjector proj(cam, width, height);
+  glm::vec2 px(0.0f);
+  float z = 0.0f;
+  if (!proj.project(p, px, z)) {  // behind the eye: the plain perspective divide, as before
+    const glm::vec4 c = cam.projection(static_cast<float>(width) / static_cast<float>(height)) * cam.view() *
+                        glm::vec4(p, 1.0f);
+    px = {(c.x / c.w * 0.5f + 0.5f) * static_cast<float>(width), (0.5f - c.y / c.w * 0.5f) * static_cast<float>(height)};
+    z = proj.eyeDepth(p);
+  }
+  if (depth) *depth = z;
+  return px;
 }
 
 }  // namespace lodline

@@ -47,8 +47,30 @@ void fitClipPlanes(Camera& cam, const Bounds& bounds);
 /// distance d covers k·A/d² pixels² (perspective) or k·A (orthographic).
 float pixelAreaFactor(const Camera& cam, int image_height);
 
+/// The one projector from model space to pixels of a `width`×`height` image (origin
+/// top-left, y down), with eye-space depth (the distance along the view direction), and the
+/// inverse of OpenGL's window-depth mapping for reading depth buffers.
+class PixelProjector {
+ public:
+  PixelProjector(const Camera& cam, int width, int height);
+  /// Pixel position and eye depth of `p`; false behind the eye (or on its plane).
+  bool project(glm::vec3 p, glm::vec2& px, float& eye_depth) const;
+  /// Eye depth of `p`.
+  float eyeDepth(glm::vec3 p) const;
+  /// Eye depth of a window depth in [0, 1] (OpenGL's default depth range).
+  float eyeDepthOfWindow(float window_depth) const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  glm::mat4 view_, view_proj_;
+  int width_, height_;
+  float near_, far_;
+  bool ortho_;
+};
+
 /// Projects a model-space point to pixel coordinates (origin top-left, y down); `depth`
-/// receives the eye-space distance along the view direction.
+/// receives the eye-space distance along the view direction (PixelProjector, once).
 glm::vec2 projectToPixels(const Camera& cam, glm::vec3 p, int width, int height,
                           float* depth = nullptr);
 

@@ -8,6 +8,7 @@ const char* lineKindName(LineKind k) {
     case LineKind::kSuggestive: return "suggestive";
     case LineKind::kCrease: return "crease";
     case LineKind::kBoundary: return "boundary";
+    case LineKind::kIntersection: return "intersection";
   }
   return "unknown";
 }
@@ -17,5 +18,7 @@ std::optional<LineKind> parseLineKind(std::string_view name) {
     if (name == lineKindName(static_cast<LineKind>(k))) return static_cast<LineKind>(k);
   return std::nullopt;
 }
+
+const char* lineKindList() { return "contour, suggestive, crease, boundary, intersection"; }
 
 }  // namespace lodline

@@ -14,12 +14,17 @@ enum class LineKind : uint8_t {
   kSuggestive = 1,  ///< suggestive contours, kr = 0 where Dw kr > 0
   kCrease = 2,      ///< edges with a large dihedral angle (and marked edges)
   kBoundary = 3,    ///< edges with one face
+  /// where two objects' surfaces (or two parts of one surface) cross (cgal/intersections.h)
+  kIntersection = 4,
 };
-inline constexpr int kLineKindCount = 4;
+inline constexpr int kLineKindCount = 5;
 
-/// "contour", "suggestive", "crease", "boundary" (the names of --lines and the stats).
+/// "contour", "suggestive", "crease", "boundary", "intersection" (the names of --lines and
+/// the stats).
 const char* lineKindName(LineKind k);
 /// The kind named `name`, if any.
 std::optional<LineKind> parseLineKind(std::string_view name);
+/// Every kind's name, comma-separated ("contour, suggestive, ...") for messages.
+const char* lineKindList();
 
 }  // namespace lodline

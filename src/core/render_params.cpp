@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <vector>
 
 namespace lodline {
 
@@ -68,6 +71,55 @@ Result<glm::vec4> parseColor(const std::string& s) {
     c[i] = static_cast<float>(v) / 255.0f;
   }
   return c;
+}
+
+Result<HiddenLineStyle> parseHiddenLines(const std::string& s) {
+  HiddenLineStyle h;
+  if (s == "off") return h;
+  const auto bad = Error::usage("--hidden-lines: invalid value '" + s +
+                                "' (expected off or COLOUR[:WIDTH][:dash=ON,OFF], e.g. grey:1:dash=4,3)");
+  h.enabled = true;
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (true) {
+    const size_t colon = s.find(':', start);
+    parts.push_back(s.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  auto c = parseColor(parts[0]);
+  if (!c) return bad;
+  h.color = *c;
+  auto number = [](const std::string& t, float& out) {
+    auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), out);
+    return ec == std::errc() && p == t.data() + t.size() && std::isfinite(out);
+  };
+  for (size_t i = 1; i < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    if (part.rfind("dash=", 0) == 0) {
+      const std::string v = part.substr(5);
+      const size_t comma = v.find(',');
+      if (comma == std::string::npos || !number(v.substr(0, comma), h.dash_on) ||
+          !number(v.substr(comma + 1), h.dash_off) || h.dash_on <= 0.0f || h.dash_off < 0.0f ||
+          h.dash_on > 1000.0f || h.dash_off > 1000.0f)
+        return bad;
+    } else if (i == 1) {
+      if (!number(part, h.width_px) || !(h.width_px > 0.0f && h.width_px <= 64.0f)) return bad;
+    } else {
+      return bad;
+    }
+  }
+  return h;
+}
+
+std::string formatHiddenLines(const HiddenLineStyle& h) {
+  if (!h.enabled) return "off";
+  char buf[96];
+  auto byte = [](float v) { return static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+  std::snprintf(buf, sizeof(buf), "#%02x%02x%02x%02x:%.9g:dash=%.9g,%.9g", byte(h.color.r), byte(h.color.g),
+                byte(h.color.b), byte(h.color.a), static_cast<double>(h.width_px), static_cast<double>(h.dash_on),
+                static_cast<double>(h.dash_off));
+  return buf;
 }
 
 Result<std::array<int, 2>> parseSize(const std::string& s) {

@@ -29,13 +29,14 @@ struct LineStyle {
 };
 
 /// Per-kind styles. Defaults: black contours 2.5 px, dark-grey suggestive contours 1.5 px,
-/// creases 1.5 px dark blue-grey, boundaries 2 px black.
+/// creases 1.5 px dark blue-grey, boundaries 2 px black, intersections 1.5 px near-black.
 struct LineStyles {
   std::array<LineStyle, kLineKindCount> kinds{{
       {true, {0.0f, 0.0f, 0.0f, 1.0f}, 2.5f},
       {true, {0.12f, 0.12f, 0.12f, 1.0f}, 1.5f},
       {true, {0.15f, 0.18f, 0.25f, 1.0f}, 1.5f},
       {true, {0.0f, 0.0f, 0.0f, 1.0f}, 2.0f},
+      {true, {0.06f, 0.06f, 0.06f, 1.0f}, 1.5f},
   }};
   LineStyle& operator[](LineKind k) { return kinds[static_cast<int>(k)]; }
   const LineStyle& operator[](LineKind k) const { return kinds[static_cast<int>(k)]; }
@@ -111,12 +112,25 @@ struct FrameParams {
   float aspect() const { return static_cast<float>(width) / static_cast<float>(height); }
 };
 
+/// How the hidden parts of lines are drawn (technical illustration: grey dashes), all kinds
+/// alike. Off by default (`--hidden-lines off`).
+struct HiddenLineStyle {
+  bool enabled = false;
+  glm::vec4 color{0.55f, 0.55f, 0.55f, 1.0f};  ///< RGBA in [0,1]. Default mid grey
+  float width_px = 1.0f;                       ///< Default 1 px
+  /// Dash pattern along the line, pixels: `dash_on` drawn, `dash_off` skipped; dash_off 0
+  /// draws solid lines. Default 4 on, 3 off.
+  float dash_on = 4.0f;
+  float dash_off = 3.0f;
+};
+
 /// How one object is drawn. A single model is a scene of one object in the frame's style.
 struct ObjectStyle {
   Style style = Style::kToon;
   ToonParams toon;
   ChamferParams chamfer;
   LineStyles lines;
+  HiddenLineStyle hidden;
   /// The line kinds to extract and draw (LineStyle::enabled), indexed by LineKind.
   std::array<bool, kLineKindCount> enabledKinds() const;
 };
@@ -131,6 +145,12 @@ const char* styleName(Style s);
 /// Parses a colour: "#rgb", "#rrggbb", "#rrggbbaa", "transparent", or a name (white, black,
 /// paper, grey/gray, red, green, blue).
 Result<glm::vec4> parseColor(const std::string& s);
+/// Parses the value of --hidden-lines: "off", or COLOUR[:WIDTH][:dash=ON,OFF] (width in
+/// (0, 64] px; dash lengths ≥ 0 px, OFF = 0 for solid lines), e.g. "#888:1:dash=4,3".
+Result<HiddenLineStyle> parseHiddenLines(const std::string& s);
+/// The --hidden-lines value that parseHiddenLines() reads back as `h`.
+std::string formatHiddenLines(const HiddenLineStyle& h);
+
 /// Parses "WxH" (each 16..16384).
 Result<std::array<int, 2>> parseSize(const std::string& s);
 

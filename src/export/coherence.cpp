@@ -25,32 +25,10 @@ uint64_t unmatched(const LineMask& a, const LineMask& b, int r) {
   return n;
 }
 
-// Projection of world points by one camera into an image of the surface buffer's size.
-class Projection {
- public:
-  Projection(const Camera& cam, int width, int height) : width_(width), height_(height) {
-    view_ = cam.view();
-    view_proj_ = cam.projection(static_cast<float>(width) / static_cast<float>(height)) * view_;
-  }
-  // Pixel position (x right, y down) and eye-space depth; false behind the eye.
-  bool project(glm::vec3 p, glm::vec2& px, float& depth) const {
-    const glm::vec4 c = view_proj_ * glm::vec4(p, 1.0f);
-    if (c.w <= 1e-12f) return false;
-    px = {(c.x / c.w * 0.5f + 0.5f) * static_cast<float>(width_), (0.5f - c.y / c.w * 0.5f) * static_cast<float>(height_)};
-    depth = -(view_ * glm::vec4(p, 1.0f)).z;
-    return true;
-  }
-  float depth(glm::vec3 p) const { return -(view_ * glm::vec4(p, 1.0f)).z; }
-
- private:
-  int width_, height_;
-  glm::mat4 view_, view_proj_;
-};
-
 // Moves every line pixel of `from` (frame A) to frame B by its surface point's image motion;
 // `out` gets the moved pixel of each kept line pixel; returns the number dropped.
-uint64_t moveLinePixels(const LineMask& from, const SurfaceImage& surf_a, const Projection& proj_a,
-                        const SurfaceImage& surf_b, const Projection& proj_b, const CompensationParams& params,
+uint64_t moveLinePixels(const LineMask& from, const SurfaceImage& surf_a, const PixelProjector& proj_a,
+                        const SurfaceImage& surf_b, const PixelProjector& proj_b, const CompensationParams& params,
                         std::vector<glm::ivec2>& out) {
   out.clear();
   uint64_t dropped = 0;
@@ -101,7 +79,7 @@ uint64_t moveLinePixels(const LineMask& from, const SurfaceImage& surf_a, const 
         for (int xx = std::max(0, sx - 1); xx <= std::min(w - 1, sx + 1) && !open; ++xx) {
           const glm::vec4& s = surf_b.at(xx, yy);
           if (s.w <= 0.0f) open = true;
-          else farthest = std::max(farthest, proj_b.depth(glm::vec3(s)));
+          else farthest = std::max(farthest, proj_b.eyeDepth(glm::vec3(s)));
         }
       if (!open && farthest < db * (1.0f - params.depth_tolerance)) {
         ++dropped;
@@ -146,7 +124,7 @@ CompensatedChange compareMasksCompensated(const LineMask& previous, const Surfac
     c.appeared = c.line_pixels;  // no comparable previous frame: everything is new
     return c;
   }
-  const Projection prev_proj(previous_camera, w, h), cur_proj(current_camera, w, h);
+  const PixelProjector prev_proj(previous_camera, w, h), cur_proj(current_camera, w, h);
   std::vector<glm::ivec2> moved;
   // Forward: does each previous line pixel still have a line where its point went?
   c.dropped += moveLinePixels(previous, previous_surface, prev_proj, current_surface, cur_proj, params, moved);
@@ -157,7 +135,7 @@ CompensatedChange compareMasksCompensated(const LineMask& previous, const Surfac
   return c;
 }
 
-void rasterizeStrokes(const VisibleStrokes& strokes, int width, int height, LineMask& out) {
+void rasterizeStrokes(const StrokeRuns& strokes, int width, int height, LineMask& out) {
   out.width = width;
   out.height = height;
   out.on.assign(static_cast<size_t>(width) * height, 0);

@@ -34,7 +34,7 @@ struct LineMask {
 
 /// Marks the pixels under the visible strokes' samples (≤ 1 px apart, so strokes are
 /// continuous) and under the straight pieces between them. `out` is resized to w×h.
-void rasterizeStrokes(const VisibleStrokes& strokes, int width, int height, LineMask& out);
+void rasterizeStrokes(const StrokeRuns& strokes, int width, int height, LineMask& out);
 
 struct MaskChange {
   uint64_t line_pixels = 0;  ///< pixels on in the current mask

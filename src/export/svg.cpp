@@ -27,45 +27,62 @@ void writeNumber(std::ostream& os, float v, int decimals) {
   os << buf;
 }
 
-// Polylines of one layer's strokes, grouped by type.
-void writeStrokes(std::ostream& os, const SvgStrokes& strokes, const SvgStyle& style, int decimals) {
+// Polylines of the strokes of `strokes` that `select` accepts, in one group of class
+// `cls` and style `ls` (dashed by `dash` when given); nothing when none is accepted.
+template <class Select>
+void writeGroup(std::ostream& os, const SvgStrokes& strokes, const char* cls, const SvgLineStyle& ls,
+                const std::array<float, 2>* dash, int decimals, Select&& select) {
   const size_t ns = strokes.kinds.size();
-  for (int type = 0; type < kLineKindCount; ++type) {
-    const SvgLineStyle& ls = style.lines[type];
-    bool open = false;
-    for (size_t s = 0; s < ns; ++s) {
-      if (static_cast<int>(strokes.kinds[s]) != type) continue;
-      const uint32_t begin = strokes.offsets[s], end = strokes.offsets[s + 1];
-      if (end - begin < 2) continue;
-      if (!open) {
-        os << "<g class=\"" << lineKindName(static_cast<LineKind>(type))
-           << "\" fill=\"none\" stroke=\"" << sanitizeColour(ls.colour) << "\" stroke-width=\"";
-        writeNumber(os, ls.width, 3);
-        os << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
-        open = true;
-      }
-      os << "<polyline";
-      float op = ls.opacity * (strokes.opacity.empty() ? 1.0f : strokes.opacity[s]);
-      if (!std::isfinite(op)) op = 1.0f;
-      op = std::clamp(op, 0.0f, 1.0f);
-      if (op < 1.0f) {
-        os << " stroke-opacity=\"";
-        writeNumber(os, op, 3);
+  bool open = false;
+  for (size_t s = 0; s < ns; ++s) {
+    if (!select(s)) continue;
+    const uint32_t begin = strokes.offsets[s], end = strokes.offsets[s + 1];
+    if (end - begin < 2) continue;
+    if (!open) {
+      os << "<g class=\"" << cls << "\" fill=\"none\" stroke=\"" << sanitizeColour(ls.colour) << "\" stroke-width=\"";
+      writeNumber(os, ls.width, 3);
+      os << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"";
+      if (dash && (*dash)[1] > 0.0f) {
+        os << " stroke-dasharray=\"";
+        writeNumber(os, (*dash)[0], 3);
+        os << ' ';
+        writeNumber(os, (*dash)[1], 3);
         os << '"';
       }
-      os << " points=\"";
-      for (uint32_t i = begin; i < end; ++i) {
-        glm::vec2 p = strokes.points[i];
-        if (!std::isfinite(p.x) || !std::isfinite(p.y)) p = glm::vec2(0.0f);
-        if (i > begin) os << ' ';
-        writeNumber(os, p.x, decimals);
-        os << ',';
-        writeNumber(os, p.y, decimals);
-      }
-      os << "\"/>\n";
+      os << ">\n";
+      open = true;
     }
-    if (open) os << "</g>\n";
+    os << "<polyline";
+    float op = ls.opacity * (strokes.opacity.empty() ? 1.0f : strokes.opacity[s]);
+    if (!std::isfinite(op)) op = 1.0f;
+    op = std::clamp(op, 0.0f, 1.0f);
+    if (op < 1.0f) {
+      os << " stroke-opacity=\"";
+      writeNumber(os, op, 3);
+      os << '"';
+    }
+    os << " points=\"";
+    for (uint32_t i = begin; i < end; ++i) {
+      glm::vec2 p = strokes.points[i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) p = glm::vec2(0.0f);
+      if (i > begin) os << ' ';
+      writeNumber(os, p.x, decimals);
+      os << ',';
+      writeNumber(os, p.y, decimals);
+    }
+    os << "\"/>\n";
   }
+  if (open) os << "</g>\n";
+}
+
+// One layer: its hidden lines (when enabled) under its visible lines, grouped by kind.
+void writeStrokes(std::ostream& os, const SvgLayer& layer, int decimals) {
+  const SvgStyle& style = layer.style;
+  if (style.hidden_enabled)
+    writeGroup(os, layer.hidden, "hidden", style.hidden, &style.hidden_dash, decimals, [](size_t) { return true; });
+  for (int kind = 0; kind < kLineKindCount; ++kind)
+    writeGroup(os, layer.strokes, lineKindName(static_cast<LineKind>(kind)), style.lines[kind], nullptr, decimals,
+               [&](size_t s) { return static_cast<int>(layer.strokes.kinds[s]) == kind; });
 }
 
 // Group ids: letters, digits, '-', '_' and '.', starting with a letter.
@@ -90,18 +107,18 @@ Status writeSvgLayers(const std::filesystem::path& path, int width, int height, 
   if (width <= 0 || height <= 0)
     return Error::runtime(name + ": invalid SVG size " + std::to_string(width) + "x" +
                           std::to_string(height));
-  for (const SvgLayer& layer : layers) {
-    const SvgStrokes& strokes = layer.strokes;
-    const size_t ns = strokes.kinds.size();
-    if (ns > 0 && strokes.offsets.size() != ns + 1)
-      return Error::runtime(name + ": stroke offsets (" + std::to_string(strokes.offsets.size()) +
-                            ") do not match stroke count (" + std::to_string(ns) + ")");
-    if (!strokes.opacity.empty() && strokes.opacity.size() != ns)
-      return Error::runtime(name + ": stroke opacities do not match stroke count");
-    for (size_t s = 0; s < ns; ++s)
-      if (strokes.offsets[s] > strokes.offsets[s + 1] || strokes.offsets[s + 1] > strokes.points.size())
-        return Error::runtime(name + ": stroke " + std::to_string(s) + " is out of range");
-  }
+  for (const SvgLayer& layer : layers)
+    for (const SvgStrokes* strokes : {&layer.strokes, &layer.hidden}) {
+      const size_t ns = strokes->kinds.size();
+      if (ns > 0 && strokes->offsets.size() != ns + 1)
+        return Error::runtime(name + ": stroke offsets (" + std::to_string(strokes->offsets.size()) +
+                              ") do not match stroke count (" + std::to_string(ns) + ")");
+      if (!strokes->opacity.empty() && strokes->opacity.size() != ns)
+        return Error::runtime(name + ": stroke opacities do not match stroke count");
+      for (size_t s = 0; s < ns; ++s)
+        if (strokes->offsets[s] > strokes->offsets[s + 1] || strokes->offsets[s + 1] > strokes->points.size())
+          return Error::runtime(name + ": stroke " + std::to_string(s) + " is out of range");
+    }
 
   return writeFileAtomically(path, [&](std::ostream& os) -> Status {
     os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -113,7 +130,7 @@ Status writeSvgLayers(const std::filesystem::path& path, int width, int height, 
     for (const SvgLayer& layer : layers) {
       const bool group = layers.size() > 1;
       if (group) os << "<g id=\"" << sanitizeId(layer.name) << "\">\n";
-      writeStrokes(os, layer.strokes, layer.style, std::clamp(layer.style.decimals, 0, 6));
+      writeStrokes(os, layer, std::clamp(layer.style.decimals, 0, 6));
       if (group) os << "</g>\n";
     }
     os << "</svg>\n";

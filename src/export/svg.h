@@ -24,13 +24,19 @@ struct SvgLineStyle {
   float opacity = 1.0f;            ///< multiplied by the stroke's own opacity. Default 1
 };
 
-/// Per-type styles and the page.
+/// Per-kind styles and the page.
 struct SvgStyle {
   /// Indexed by LineKind: contour black 2 px, suggestive dark grey 1.5 px, crease dark blue
-  /// 1 px, boundary black 1.5 px.
+  /// 1 px, boundary black 1.5 px, intersection near-black 1.5 px.
   std::array<SvgLineStyle, kLineKindCount> lines = {
       SvgLineStyle{"#000000", 2.0f, 1.0f}, SvgLineStyle{"#333333", 1.5f, 1.0f},
-      SvgLineStyle{"#1f3a70", 1.0f, 1.0f}, SvgLineStyle{"#000000", 1.5f, 1.0f}};
+      SvgLineStyle{"#1f3a70", 1.0f, 1.0f}, SvgLineStyle{"#000000", 1.5f, 1.0f},
+      SvgLineStyle{"#0f0f0f", 1.5f, 1.0f}};
+  /// The hidden lines (all kinds), written only when `hidden_enabled`: a group of class
+  /// "hidden" under the visible ones, dashed by `hidden_dash` (on, off px; off 0 = solid).
+  bool hidden_enabled = false;
+  SvgLineStyle hidden{"#8c8c8c", 1.0f, 1.0f};
+  std::array<float, 2> hidden_dash{4.0f, 3.0f};
   bool background = true;             ///< fill the page first. Default true
   std::string background_colour = "#ffffff";  ///< Default white
   int decimals = 2;                   ///< digits after the point in coordinates. Default 2
@@ -52,11 +58,12 @@ Status writeSvg(const std::filesystem::path& path, int width, int height,
                 const SvgStrokes& strokes, const SvgStyle& style = {});
 
 /// The strokes of one object of a scene, in its own line styles (`style.lines`,
-/// `style.decimals`; its page fields are unused).
+/// `style.hidden*`, `style.decimals`; its page fields are unused).
 struct SvgLayer {
   std::string name;  ///< written as the group's id (sanitised)
   SvgStrokes strokes;
   SvgStyle style;
+  SvgStrokes hidden = {};  ///< the hidden runs (written when style.hidden_enabled)
 };
 
 /// Several objects in one SVG, in order (later layers on top), each in a <g id="name">

@@ -9,44 +9,7 @@
 namespace lodline {
 namespace {
 
-// Projection of model points to pixel position + eye depth, and the inverse of the depth
-// mapping for the buffer's values, for one camera and image size.
-class Projector {
- public:
-  Projector(const Camera& cam, int width, int height)
-      : width_(width), height_(height), near_(cam.near_plane), far_(cam.far_plane),
-        ortho_(cam.orthographic) {
-    view_proj_ = cam.projection(static_cast<float>(width) / static_cast<float>(height)) * cam.view();
-  }
-
-  /// Pixel position (x right, y down) and eye-space depth; false behind the eye.
-  bool project(glm::vec3 p, glm::vec2& px, float& eye_depth) const {
-    const glm::vec4 c = view_proj_ * glm::vec4(p, 1.0f);
-    if (c.w <= 1e-12f) return false;
-    const glm::vec3 ndc = glm::vec3(c) / c.w;
-    px = {(ndc.x * 0.5f + 0.5f) * static_cast<float>(width_), (0.5f - ndc.y * 0.5f) * static_cast<float>(height_)};
-    eye_depth = eyeDepth(ndc.z * 0.5f + 0.5f);
-    return true;
-  }
-
-  /// Eye-space depth of a window depth in [0, 1] (OpenGL's default depth range).
-  float eyeDepth(float window_depth) const {
-    if (ortho_) return near_ + window_depth * (far_ - near_);
-    const float ndc_z = 2.0f * window_depth - 1.0f;
-    return 2.0f * near_ * far_ / (far_ + near_ - ndc_z * (far_ - near_));
-  }
-
-  int width() const { return width_; }
-  int height() const { return height_; }
-
- private:
-  glm::mat4 view_proj_;
-  int width_, height_;
-  float near_, far_;
-  bool ortho_;
-};
-
-bool visibleAt(const Projector& proj, const DepthImage& depth, glm::vec2 px, float eye_depth,
+bool visibleAt(const PixelProjector& proj, const DepthImage& depth, glm::vec2 px, float eye_depth,
                const VisibilityParams& params) {
   const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
   if (x < 0 || y < 0 || x >= depth.width || y >= depth.height) return false;
@@ -56,80 +19,152 @@ bool visibleAt(const Projector& proj, const DepthImage& depth, glm::vec2 px, flo
     for (int xx = std::max(0, x - r); xx <= std::min(depth.width - 1, x + r); ++xx)
       farthest = std::max(farthest, depth.at(xx, yy));
   if (farthest >= 1.0f) return true;  // background next to the sample: nothing in front
-  const float surface = proj.eyeDepth(farthest);
+  const float surface = proj.eyeDepthOfWindow(farthest);
   return eye_depth <= surface * (1.0f + params.relative_tolerance);
 }
 
 }  // namespace
 
-void VisibleStrokes::clear() {
+void StrokeRuns::clear() {
   points.clear();
+  positions.clear();
+  alpha.clear();
   offsets.clear();
   kinds.clear();
+  strokes.clear();
   opacity.clear();
   length_px.clear();
 }
 
-void appendStrokes(const VisibleStrokes& from, VisibleStrokes& to) {
+double StrokeRuns::totalLength() const {
+  double len = 0.0;
+  for (float l : length_px) len += l;
+  return len;
+}
+
+void appendStrokes(const StrokeRuns& from, StrokeRuns& to) {
   if (from.strokeCount() == 0) return;
   const uint32_t base = static_cast<uint32_t>(to.points.size());
   if (to.offsets.empty()) to.offsets.push_back(0);
   to.points.insert(to.points.end(), from.points.begin(), from.points.end());
+  to.positions.insert(to.positions.end(), from.positions.begin(), from.positions.end());
+  to.alpha.insert(to.alpha.end(), from.alpha.begin(), from.alpha.end());
   for (size_t s = 0; s < from.strokeCount(); ++s) to.offsets.push_back(base + from.offsets[s + 1]);
   to.kinds.insert(to.kinds.end(), from.kinds.begin(), from.kinds.end());
+  to.strokes.insert(to.strokes.end(), from.strokes.begin(), from.strokes.end());
   to.opacity.insert(to.opacity.end(), from.opacity.begin(), from.opacity.end());
   to.length_px.insert(to.length_px.end(), from.length_px.begin(), from.length_px.end());
 }
 
 bool isPointVisible(const Camera& camera, const DepthImage& depth, glm::vec3 p,
                     const VisibilityParams& params) {
-  const Projector proj(camera, depth.width, depth.height);
+  const PixelProjector proj(camera, depth.width, depth.height);
   glm::vec2 px;
   float z = 0.0f;
   return proj.project(p, px, z) && visibleAt(proj, depth, px, z, params);
 }
 
-void visibleStrokes(const StrokeSet& strokes, const Camera& camera, const DepthImage& depth,
-                    const VisibilityParams& params, VisibleStrokes& out) {
-  out.clear();
-  const Projector proj(camera, depth.width, depth.height);
-  out.offsets.push_back(0);
+namespace {
+
+// Builds the runs of one output from the samples of one stroke: a run opens at a sample,
+// keeps the stroke's own points (is_vertex) and the last sample before it closes.
+class RunBuilder {
+ public:
+  RunBuilder(StrokeRuns* out, LineKind kind, uint32_t stroke) : out_(out), kind_(kind), stroke_(stroke) {
+    if (out_ && out_->offsets.empty()) out_->offsets.push_back(0);
+  }
+  void add(glm::vec2 px, glm::vec3 p, float alpha, bool is_vertex) {
+    if (!out_) return;
+    if (!open_) {
+      open_ = true;
+      push(px, p, alpha);
+      has_pending_ = false;
+    } else {
+      length_ += glm::length(px - last_px_);
+      if (is_vertex) {
+        push(px, p, alpha);
+        has_pending_ = false;
+      } else {
+        pending_ = {px, p, alpha};
+        has_pending_ = true;
+      }
+    }
+    last_px_ = px;
+    alpha_sum_ += alpha;
+    ++samples_;
+  }
+  void close() {
+    if (!out_ || !open_) return;
+    open_ = false;
+    if (has_pending_) push(pending_.px, pending_.p, pending_.alpha);
+    has_pending_ = false;
+    const uint32_t first = out_->offsets.back();
+    if (samples_ >= 2 && out_->points.size() - first >= 2) {
+      out_->offsets.push_back(static_cast<uint32_t>(out_->points.size()));
+      out_->kinds.push_back(kind_);
+      out_->strokes.push_back(stroke_);
+      out_->opacity.push_back(alpha_sum_ / static_cast<float>(samples_));
+      out_->length_px.push_back(length_);
+    } else {  // a single sample is no stroke
+      out_->points.resize(first);
+      out_->positions.resize(first);
+      out_->alpha.resize(first);
+    }
+    alpha_sum_ = 0.0f;
+    samples_ = 0;
+    length_ = 0.0f;
+  }
+
+ private:
+  struct Sample {
+    glm::vec2 px;
+    glm::vec3 p;
+    float alpha;
+  };
+  void push(glm::vec2 px, glm::vec3 p, float alpha) {
+    out_->points.push_back(px);
+    out_->positions.push_back(p);
+    out_->alpha.push_back(alpha);
+  }
+  StrokeRuns* out_;
+  LineKind kind_;
+  uint32_t stroke_;
+  bool open_ = false, has_pending_ = false;
+  Sample pending_{};
+  glm::vec2 last_px_{0.0f};
+  float alpha_sum_ = 0.0f, length_ = 0.0f;
+  uint32_t samples_ = 0;
+};
+
+}  // namespace
+
+void splitStrokes(const StrokeSet& strokes, const Camera& camera, const DepthImage& depth,
+                  const VisibilityParams& params, StrokeRuns* visible, StrokeRuns* hidden) {
+  if (visible) visible->clear();
+  if (hidden) hidden->clear();
+  const PixelProjector proj(camera, depth.width, depth.height);
   const float spacing = std::max(params.sample_spacing_px, 0.05f);
   for (size_t s = 0; s < strokes.strokeCount(); ++s) {
     const uint32_t begin = strokes.offsets[s], end = strokes.offsets[s + 1];
-    bool open_run = false;
-    float alpha_sum = 0.0f;
-    uint32_t alpha_n = 0;
-    float length = 0.0f;
-    auto close_run = [&]() {
-      if (!open_run) return;
-      open_run = false;
-      const uint32_t first = out.offsets.back();
-      if (out.points.size() - first >= 2) {
-        out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
-        out.kinds.push_back(strokes.kinds[s]);
-        out.opacity.push_back(alpha_n ? alpha_sum / static_cast<float>(alpha_n) : 1.0f);
-        out.length_px.push_back(length);
-      } else {
-        out.points.resize(first);  // a single visible sample is no stroke
-      }
-      alpha_sum = 0.0f;
-      alpha_n = 0;
-      length = 0.0f;
-    };
-    auto add_sample = [&](glm::vec3 p, float alpha) {
+    RunBuilder vis(visible, strokes.kinds[s], static_cast<uint32_t>(s));
+    RunBuilder hid(hidden, strokes.kinds[s], static_cast<uint32_t>(s));
+    auto add_sample = [&](glm::vec3 p, float alpha, bool is_vertex) {
       glm::vec2 px;
       float z = 0.0f;
-      const bool vis = proj.project(p, px, z) && visibleAt(proj, depth, px, z, params);
-      if (!vis) {
-        close_run();
+      const bool inside = proj.project(p, px, z) && px.x >= 0.0f && px.y >= 0.0f &&
+                          px.x < static_cast<float>(depth.width) && px.y < static_cast<float>(depth.height);
+      if (!inside) {
+        vis.close();
+        hid.close();
         return;
       }
-      if (open_run) length += glm::length(px - out.points.back());
-      open_run = true;
-      out.points.push_back(px);
-      alpha_sum += alpha;
-      ++alpha_n;
+      if (visibleAt(proj, depth, px, z, params)) {
+        hid.close();
+        vis.add(px, p, alpha, is_vertex);
+      } else {
+        vis.close();
+        hid.add(px, p, alpha, is_vertex);
+      }
     };
     for (uint32_t i = begin; i + 1 < end; ++i) {
       const glm::vec3 a = strokes.points[i], b = strokes.points[i + 1];
@@ -140,19 +175,23 @@ void visibleStrokes(const StrokeSet& strokes, const Camera& camera, const DepthI
         steps = std::clamp(static_cast<int>(std::ceil(glm::length(pb - pa) / spacing)), 1, 4096);
       for (int k = 0; k < steps; ++k) {
         const float t = static_cast<float>(k) / static_cast<float>(steps);
-        add_sample(a + t * (b - a), strokes.alpha[i] + t * (strokes.alpha[i + 1] - strokes.alpha[i]));
+        add_sample(a + t * (b - a), strokes.alpha[i] + t * (strokes.alpha[i + 1] - strokes.alpha[i]), k == 0);
       }
     }
-    if (end > begin) add_sample(strokes.points[end - 1], strokes.alpha[end - 1]);
-    close_run();
+    if (end > begin) add_sample(strokes.points[end - 1], strokes.alpha[end - 1], true);
+    vis.close();
+    hid.close();
   }
+  // Empty outputs still have their leading offset, like filled ones.
+  if (visible && visible->offsets.empty()) visible->offsets.push_back(0);
+  if (hidden && hidden->offsets.empty()) hidden->offsets.push_back(0);
 }
 
 std::array<uint32_t, kLineKindCount> countVisibleSegments(const LineSet& lines, const Camera& camera,
                                                           const DepthImage& depth,
                                                           const VisibilityParams& params) {
   std::array<uint32_t, kLineKindCount> counts{};
-  const Projector proj(camera, depth.width, depth.height);
+  const PixelProjector proj(camera, depth.width, depth.height);
   for (size_t s = 0; s < lines.segmentCount(); ++s) {
     const glm::vec3 mid = 0.5f * (lines.points[2 * s] + lines.points[2 * s + 1]);
     glm::vec2 px;
@@ -160,6 +199,21 @@ std::array<uint32_t, kLineKindCount> countVisibleSegments(const LineSet& lines, 
     if (proj.project(mid, px, z) && visibleAt(proj, depth, px, z, params))
       ++counts[static_cast<int>(lines.kinds[s])];
   }
+  return counts;
+}
+
+std::array<uint32_t, kLineKindCount> countVisibleSegments(const StrokeSet& strokes, const Camera& camera,
+                                                          const DepthImage& depth,
+                                                          const VisibilityParams& params) {
+  std::array<uint32_t, kLineKindCount> counts{};
+  const PixelProjector proj(camera, depth.width, depth.height);
+  for (size_t s = 0; s < strokes.strokeCount(); ++s)
+    for (uint32_t i = strokes.offsets[s]; i + 1 < strokes.offsets[s + 1]; ++i) {
+      const glm::vec3 mid = 0.5f * (strokes.points[i] + strokes.points[i + 1]);
+      glm::vec2 px;
+      float z = 0.0f;
+      if (proj.project(mid, px, z) && visibleAt(proj, depth, px, z, params)) ++counts[static_cast<int>(strokes.kinds[s])];
+    }
   return counts;
 }
 

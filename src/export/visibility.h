@@ -23,39 +23,59 @@ struct VisibilityParams {
   /// distance, above the faces' polygon offset and depth quantisation.
   float relative_tolerance = 0.002f;
   /// The surface depth is the farthest over a (2r+1)² pixel neighbourhood, so a contour on
-  /// the silhouette is not hidden by its own faces. Default r = 1.
+  /// the silhouette is not hidden by its own faces: the depth slope within r pixels is the
+  /// tolerance (docs/visibility.md). Default r = 1.
   int neighbourhood = 1;
   /// Samples per stroke segment are spaced at most this many pixels apart. Default 1.
   float sample_spacing_px = 1.0f;
 };
 
-/// Visible parts of strokes as 2D pixel polylines (origin top-left, y down).
-struct VisibleStrokes {
-  std::vector<glm::vec2> points;
-  std::vector<uint32_t> offsets;  ///< stroke s is points[offsets[s], offsets[s+1]); count+1 entries
-  std::vector<LineKind> kinds;    ///< 1 per stroke
-  std::vector<float> opacity;     ///< 1 per stroke: mean alpha of its points
-  std::vector<float> length_px;   ///< 1 per stroke
+/// Runs of strokes in pixels: the visible (or the hidden) parts of a StrokeSet. A run's
+/// points are its first and last samples and the stroke's own points between them (the
+/// samples in between lie on the straight pieces, so nothing is lost).
+struct StrokeRuns {
+  std::vector<glm::vec2> points;     ///< pixels (origin top-left, y down)
+  std::vector<glm::vec3> positions;  ///< 1 per point: the same point in model space
+  std::vector<float> alpha;          ///< 1 per point: the stroke's opacity there
+  std::vector<uint32_t> offsets;     ///< run r is points[offsets[r], offsets[r+1]); count+1 entries
+  std::vector<LineKind> kinds;       ///< 1 per run
+  std::vector<uint32_t> strokes;     ///< 1 per run: the index of its stroke in the StrokeSet
+  std::vector<float> opacity;        ///< 1 per run: mean alpha of its samples
+  std::vector<float> length_px;      ///< 1 per run
 
   size_t strokeCount() const { return kinds.size(); }
+  /// Total length of the runs, pixels.
+  double totalLength() const;
   void clear();
 };
 
-/// Appends the strokes of `from` to `to` (scenes: every object's visible strokes as one set).
-void appendStrokes(const VisibleStrokes& from, VisibleStrokes& to);
+/// Appends the runs of `from` to `to` (scenes: every object's runs as one set).
+void appendStrokes(const StrokeRuns& from, StrokeRuns& to);
 
 /// True when the model-space point `p` is not hidden by the surface in `depth`, as seen by
 /// `camera` (the camera `depth` was drawn with); points outside the image are not visible.
 bool isPointVisible(const Camera& camera, const DepthImage& depth, glm::vec3 p,
                     const VisibilityParams& params = {});
 
-/// Splits every stroke of `strokes` into its visible runs, sampled along the stroke.
-void visibleStrokes(const StrokeSet& strokes, const Camera& camera, const DepthImage& depth,
-                    const VisibilityParams& params, VisibleStrokes& out);
+/// Splits every stroke of `strokes` into its visible and its hidden runs, sampled along the
+/// stroke at most params.sample_spacing_px apart (samples outside the image or behind the
+/// eye belong to neither). Either output may be null. Runs of one sample are dropped.
+void splitStrokes(const StrokeSet& strokes, const Camera& camera, const DepthImage& depth,
+                  const VisibilityParams& params, StrokeRuns* visible, StrokeRuns* hidden);
+
+/// The visible runs only (splitStrokes with no hidden output).
+inline void visibleStrokes(const StrokeSet& strokes, const Camera& camera, const DepthImage& depth,
+                           const VisibilityParams& params, StrokeRuns& out) {
+  splitStrokes(strokes, camera, depth, params, &out, nullptr);
+}
 
 /// Segments of `lines` whose midpoint is visible, per LineKind.
 std::array<uint32_t, kLineKindCount> countVisibleSegments(const LineSet& lines,
                                                           const Camera& camera,
+                                                          const DepthImage& depth,
+                                                          const VisibilityParams& params = {});
+/// The same for the segments between consecutive points of the strokes of `strokes`.
+std::array<uint32_t, kLineKindCount> countVisibleSegments(const StrokeSet& strokes, const Camera& camera,
                                                           const DepthImage& depth,
                                                           const VisibilityParams& params = {});
 

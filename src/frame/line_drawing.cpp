@@ -153,25 +153,15 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   timings_.extract = sw.lap();
   chainStrokes(segments_, strokes_, chain_scratch_);
   timings_.chain = sw.lap();
-
-  // Group segments by kind for the renderer (LineKind and LineKind share their order).
-  buffer_.clear();
-  buffer_.vertices.resize(segments_.points.size());
-  std::array<uint32_t, kLineKindCount> next{};
-  uint32_t start = 0;
-  for (int k = 0; k < kLineKindCount; ++k) {
-    buffer_.first[k] = start;
-    buffer_.count[k] = 2 * segments_.counts[k];
-    next[k] = start;
-    start += buffer_.count[k];
+  // The mesh's own silhouette (present/ completes the outline with it).
+  if (p.contours && p.complete_outline) {
+    extractMeshSilhouette(mesh_, shape_.adjacency(), shape_.faceNormals(), ViewSpec::fromCamera(camera), silhouette_);
+    chainStrokes(silhouette_, silhouette_strokes_, chain_scratch_);
+  } else {
+    silhouette_.clear();
+    silhouette_strokes_.clear();
   }
-  for (size_t s = 0; s < segments_.segmentCount(); ++s) {
-    const int k = static_cast<int>(segments_.kinds[s]);
-    for (int e = 0; e < 2; ++e) {
-      const size_t i = 2 * s + e;
-      buffer_.vertices[next[k]++] = {segments_.points[i], segments_.alpha[i]};
-    }
-  }
+  timings_.silhouette = sw.lap();
 }
 
 }  // namespace lodline

@@ -8,7 +8,6 @@
 #include <span>
 
 #include "core/camera.h"
-#include "core/line_buffer.h"
 #include "core/mesh.h"
 #include "lines/lines.h"
 #include "lines/strokes.h"
@@ -23,6 +22,7 @@ struct CpuTimings {
   double view = 0.0;     ///< per-view quantities (n·v, kr, Dw kr)
   double extract = 0.0;  ///< zero-set extraction
   double chain = 0.0;    ///< chaining segments into strokes
+  double silhouette = 0.0;  ///< the mesh's own silhouette, extracted and chained
 };
 
 class LineDrawing {
@@ -72,10 +72,13 @@ class LineDrawing {
   const Bounds& bounds() const { return bounds_; }
   /// Vertex normals for shading: the temporally smoothed ones after a smoothed update().
   std::span<const glm::vec3> normals() const;
-  const LineBuffer& lines() const { return buffer_; }
   /// The extracted segments (all enabled kinds), as the lines stage produced them.
   const LineSet& segments() const { return segments_; }
   const StrokeSet& strokes() const { return strokes_; }
+  /// The mesh's own silhouette chained into strokes (kind contour), extracted with the
+  /// contours when LineParams::complete_outline is set (else empty): what completes the
+  /// outline where the interpolated contour leaves it.
+  const StrokeSet& silhouetteStrokes() const { return silhouette_strokes_; }
   const CpuTimings& timings() const { return timings_; }
   const ShapeCache& shape() const { return shape_; }
   /// The threads of this drawing's data-parallel loops (shape stage, view quantities);
@@ -105,10 +108,9 @@ class LineDrawing {
   std::vector<uint32_t> needed_;     // vertices whose Dw kr this frame needs (lazy derivatives)
   std::vector<uint8_t> needed_mark_;
   LineScratch scratch_;
-  LineSet segments_;
-  StrokeSet strokes_;
+  LineSet segments_, silhouette_;
+  StrokeSet strokes_, silhouette_strokes_;
   ChainScratch chain_scratch_;
-  LineBuffer buffer_;
   CpuTimings timings_;
 };
 

@@ -83,6 +83,7 @@ CpuTimings SceneDrawing::timings() const {
     t.view += ot.view;
     t.extract += ot.extract;
     t.chain += ot.chain;
+    t.silhouette += ot.silhouette;
   }
   return t;
 }

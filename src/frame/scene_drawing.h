@@ -14,6 +14,7 @@
 
 #include "core/render_params.h"
 #include "frame/lod_drawing.h"
+#include "lines/strokes.h"
 
 namespace lodline {
 
@@ -29,6 +30,10 @@ class SceneDrawing {
     float detail_factor = 1.0f;
     size_t input_vertices = 0;  ///< of the full-detail mesh, in world space
     size_t input_faces = 0;
+    /// Where this object's surface crosses another object's (of a higher index) or itself:
+    /// polylines on the full-detail meshes in world space, kind LineKind::kIntersection,
+    /// computed once when the scene is built (objects are rigid).
+    StrokeSet intersections;
   };
 
   /// Adds an object (its drawing must be non-null). Bounds grow to include it.

@@ -108,10 +108,10 @@ Result<Renderer::Object> Renderer::makeObject() const {
   glBindVertexArray(o.line_vao.id());
   glBindBuffer(GL_ARRAY_BUFFER, o.line_vertices.id());
   glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(LineVertex), nullptr);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(ScreenLineVertex), nullptr);
   glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(LineVertex),
-                        reinterpret_cast<const void*>(offsetof(LineVertex, alpha)));
+  glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(ScreenLineVertex),
+                        reinterpret_cast<const void*>(offsetof(ScreenLineVertex, alpha)));
   glBindVertexArray(0);
   return o;
 }
@@ -139,12 +139,14 @@ void Renderer::setMesh(size_t object, std::span<const glm::vec3> positions, std:
   o.face_count = faces.size();
 }
 
-void Renderer::setLines(size_t object, const LineBuffer& lines) {
+void Renderer::setLines(size_t object, const ScreenLines& lines) {
   Object& o = objects_[object];
   glBindVertexArray(0);
-  uploadArray(GL_ARRAY_BUFFER, o.line_vertices, std::span<const LineVertex>(lines.vertices));
+  uploadArray(GL_ARRAY_BUFFER, o.line_vertices, std::span<const ScreenLineVertex>(lines.vertices));
   o.first = lines.first;
   o.count = lines.count;
+  o.hidden_first = lines.hidden_first;
+  o.hidden_count = lines.hidden_count;
 }
 
 size_t Renderer::segmentsDrawn() const {
@@ -215,29 +217,8 @@ void Renderer::drawChamfer(Object& o, const Camera& camera, const ObjectStyle& s
   o.chamfer_drawn = o.chamfer.edgesDrawn();
 }
 
-void Renderer::drawLines(Object& o, const Camera& camera, const ObjectStyle& style, float aspect) {
-  glUseProgram(line_.id());
-  setMatrices(line_.id(), camera, aspect);
-  glBindVertexArray(o.line_vao.id());
-  o.segments_drawn = 0;
-  GLfloat width_range[2] = {1.0f, 1.0f};
-  glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, width_range);
-  const GLint color_loc = glGetUniformLocation(line_.id(), "u_color");
-  for (int k = 0; k < kLineKindCount; ++k) {
-    const LineStyle& s = style.lines.kinds[k];
-    if (!s.enabled || o.count[k] == 0) continue;
-    // Highlighted sharp edges replace the crease lines drawn on them.
-    if (k == static_cast<int>(LineKind::kCrease) && o.chamfer_drawn > 0 && style.chamfer.replace_creases) continue;
-    glLineWidth(std::clamp(s.width_px, width_range[0], width_range[1]));
-    glUniform4fv(color_loc, 1, glm::value_ptr(s.color));
-    glDrawArrays(GL_LINES, static_cast<GLint>(o.first[k]), static_cast<GLsizei>(o.count[k]));
-    o.segments_drawn += o.count[k] / 2;
-  }
-}
-
-void Renderer::draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
+void Renderer::drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
   LODLINE_ASSERT(styles.size() == objects_.size());
-  const float aspect = frame.aspect();
   glViewport(0, 0, frame.width, frame.height);
   glClearColor(frame.background.r, frame.background.g, frame.background.b, frame.background.a);
   glClearDepth(1.0);
@@ -249,8 +230,8 @@ void Renderer::draw(const Camera& camera, const FrameParams& frame, std::span<co
   glDisable(GL_CULL_FACE);  // open meshes show their inside; both sides are drawn
   glDisable(GL_BLEND);
 
-  // 1. Faces of every object, pushed back slightly so visible lines on them pass the depth
-  //    test. A lines-style object's faces take the frame's background colour.
+  // 1. Faces of every object, pushed back slightly so the chamfer highlights on their edges
+  //    pass the depth test. A lines-style object's faces take the frame's background colour.
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.0f, 2.0f);
   for (size_t i = 0; i < objects_.size(); ++i) drawFaces(objects_[i], camera, styles[i], frame);
@@ -258,13 +239,47 @@ void Renderer::draw(const Camera& camera, const FrameParams& frame, std::span<co
 
   // 2. Chamfer highlights on sharp edges, blended over the faces (depth-tested against them).
   for (size_t i = 0; i < objects_.size(); ++i) drawChamfer(objects_[i], camera, styles[i], frame);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glBindVertexArray(0);
+}
 
-  // 3. Lines: depth-tested against every object's faces, no depth writes, blended for faded lines.
-  glDepthFunc(GL_LEQUAL);
+void Renderer::drawObjectLines(Object& o, const ObjectStyle& style) {
+  glBindVertexArray(o.line_vao.id());
+  o.segments_drawn = 0;
+  GLfloat width_range[2] = {1.0f, 1.0f};
+  glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, width_range);
+  const GLint color_loc = glGetUniformLocation(line_.id(), "u_color");
+  auto draw = [&](const glm::vec4& colour, float width, uint32_t first, uint32_t count) {
+    glLineWidth(std::clamp(width, width_range[0], width_range[1]));
+    glUniform4fv(color_loc, 1, glm::value_ptr(colour));
+    glDrawArrays(GL_LINES, static_cast<GLint>(first), static_cast<GLsizei>(count));
+    o.segments_drawn += count / 2;
+  };
+  // Hidden lines first, under the visible ones.
+  if (style.hidden.enabled && o.hidden_count > 0)
+    draw(style.hidden.color, style.hidden.width_px, o.hidden_first, o.hidden_count);
+  for (int k = 0; k < kLineKindCount; ++k) {
+    const LineStyle& s = style.lines.kinds[k];
+    if (!s.enabled || o.count[k] == 0) continue;
+    // Highlighted sharp edges replace the crease lines drawn on them.
+    if (k == static_cast<int>(LineKind::kCrease) && o.chamfer_drawn > 0 && style.chamfer.replace_creases) continue;
+    draw(s.color, s.width_px, o.first[k], o.count[k]);
+  }
+}
+
+void Renderer::drawLines(const FrameParams& frame, std::span<const ObjectStyle> styles) {
+  LODLINE_ASSERT(styles.size() == objects_.size());
+  glViewport(0, 0, frame.width, frame.height);
+  glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   glEnable(GL_BLEND);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  for (size_t i = 0; i < objects_.size(); ++i) drawLines(objects_[i], camera, styles[i], aspect);
+  glUseProgram(line_.id());
+  glUniform2f(glGetUniformLocation(line_.id(), "u_viewport"), static_cast<float>(frame.width),
+              static_cast<float>(frame.height));
+  for (size_t i = 0; i < objects_.size(); ++i) drawObjectLines(objects_[i], styles[i]);
   glLineWidth(1.0f);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);

@@ -1,8 +1,9 @@
 // The OpenGL stage (docs/design.md §1: gl): toon-shaded, Blinn–Phong-shaded (or
 // background-coloured) faces drawn first with a polygon offset, then the chamfer highlights
-// of sharp edges (ChamferLayer, Wei, Shi, Yong 2014) blended over them, then lines with depth test LEQUAL and depth writes off
-// so hidden parts of lines are removed and visible ones never z-fight with their faces.
-// The renderer only consumes arrays; it never computes geometry.
+// of sharp edges (ChamferLayer, Wei, Shi, Yong 2014) blended over them (drawSurfaces()); then,
+// once the presenter has read the depth back and split the strokes into visible and hidden
+// runs, the lines in pixels with no depth test (drawLines()). The renderer only consumes
+// arrays; it never computes geometry.
 #pragma once
 
 #include <array>
@@ -40,22 +41,27 @@ class Renderer {
   /// needs them.
   void setMesh(size_t object, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                std::span<const std::array<uint32_t, 3>> faces, std::span<const EdgeKey> marked_edges = {});
-  /// Uploads the lines of `object`, grouped by kind.
-  void setLines(size_t object, const LineBuffer& lines);
+  /// Uploads the lines of `object` (pixels; visible per kind, then hidden).
+  void setLines(size_t object, const ScreenLines& lines);
 
-  /// Draws every object into the currently bound framebuffer of frame.width × frame.height
-  /// px (cleared first to `frame.background`), lit by frame.light_dir_eye: all faces, each
-  /// object in its own `styles[i]` (style, toon, chamfer; the array holds objectCount()
-  /// entries), then the chamfer highlights, then all lines, so an object hides the lines of
-  /// those behind it.
-  void draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles);
+  /// Draws every object's surface into the currently bound framebuffer of frame.width ×
+  /// frame.height px (cleared first to `frame.background`), lit by frame.light_dir_eye: all
+  /// faces, each object in its own `styles[i]` (style, toon, chamfer; the array holds
+  /// objectCount() entries), then the chamfer highlights. The depth buffer then holds every
+  /// object's faces.
+  void drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles);
+  /// Draws every object's lines over the bound framebuffer (after drawSurfaces()), blended,
+  /// no depth test: hidden lines in styles[i].hidden (when enabled), then visible lines in
+  /// their kind's style.
+  void drawLines(const FrameParams& frame, std::span<const ObjectStyle> styles);
 
   /// Faces uploaded of one object.
   size_t faceCount(size_t object) const { return objects_[object].face_count; }
-  /// Segments drawn by the last draw() (enabled kinds only), over all objects / of one.
+  /// Segments drawn by the last drawLines() (enabled kinds, hidden lines included), over
+  /// all objects / of one.
   size_t segmentsDrawn() const;
   size_t segmentsDrawn(size_t object) const { return objects_[object].segments_drawn; }
-  /// Sharp edges highlighted by the last draw() (0 when the chamfer layer was off).
+  /// Sharp edges highlighted by the last drawSurfaces() (0 when the chamfer layer was off).
   size_t chamferEdgesDrawn() const;
   /// The surface pass of the coherence measure: every object's faces into the bound
   /// framebuffer (a SurfaceTarget), each pixel the world position of the nearest surface and
@@ -72,12 +78,13 @@ class Renderer {
     ChamferLayer chamfer;
     size_t face_count = 0, segments_drawn = 0, chamfer_drawn = 0;
     std::array<uint32_t, kLineKindCount> first{}, count{};
+    uint32_t hidden_first = 0, hidden_count = 0;
   };
   Renderer() = default;
   Result<Object> makeObject() const;
   void drawFaces(Object& o, const Camera& camera, const ObjectStyle& style, const FrameParams& frame);
   void drawChamfer(Object& o, const Camera& camera, const ObjectStyle& style, const FrameParams& frame);
-  void drawLines(Object& o, const Camera& camera, const ObjectStyle& style, float aspect);
+  void drawObjectLines(Object& o, const ObjectStyle& style);
   GlProgram toon_, depth_only_, line_, surface_;
   GlTexture ramp_;
   std::vector<Object> objects_;

@@ -33,7 +33,8 @@ std::string lower(std::string s) {
 const std::map<std::string, std::string>& styleKeys() {
   static const std::map<std::string, std::string> keys = {
       {"style", "style"},         {"lines", "lines"},     {"line_style", "line-style"},
-      {"line_width", "line-width"}, {"chamfer", "chamfer"}, {"chamfer_radius", "chamfer-radius"}};
+      {"line_width", "line-width"}, {"chamfer", "chamfer"}, {"chamfer_radius", "chamfer-radius"},
+      {"hidden_lines", "hidden-lines"}};
   return keys;
 }
 

@@ -47,8 +47,8 @@ struct SceneObject {
   /// of nested includes. Default 1; > 1 draws the object coarser.
   float detail_factor = 1.0f;
   /// Style keys given for this object, by render option name ("style", "lines",
-  /// "line-style", "line-width", "chamfer", "chamfer-radius"), values as written; the
-  /// caller resolves them like the command-line options of the same name.
+  /// "line-style", "line-width", "chamfer", "chamfer-radius", "hidden-lines"), values as
+  /// written; the caller resolves them like the command-line options of the same name.
   nlohmann::json style = nlohmann::json::object();
   /// The object's entry as written in its scene file (for writing a scene back, e.g. the
   /// viewer's "save view"); empty for objects that come from a glTF file.

@@ -221,6 +221,27 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
   }
 }
 
+void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adj, std::span<const glm::vec3> face_normals,
+                           const ViewSpec& view, LineSet& out) {
+  out.clear();
+  // Facing of a face: the sign of n·(eye − p) at its first corner (perspective), or of
+  // n·toward_viewer (orthographic); 0 for degenerate faces.
+  auto facing = [&](uint32_t f) -> int {
+    const glm::vec3& n = face_normals[f];
+    if (glm::dot(n, n) == 0.0f) return 0;
+    const glm::vec3 to_eye = view.orthographic ? view.toward_viewer : view.eye - mesh.positions[mesh.faces[f][0]];
+    return glm::dot(n, to_eye) > 0.0f ? 1 : -1;
+  };
+  for (size_t e = 0; e < adj.edges.size(); ++e) {
+    if (adj.edge_face_count[e] != 2) continue;
+    const int a = facing(adj.edge_faces[e][0]), b = facing(adj.edge_faces[e][1]);
+    if (a == 0 || b == 0 || a == b) continue;
+    const uint32_t v0 = adj.edges[e][0], v1 = adj.edges[e][1];
+    pushSegment(out, LineKind::kContour, static_cast<uint32_t>(e), mesh.positions[v0], v0, 1.0f, mesh.positions[v1],
+                v1, 1.0f);
+  }
+}
+
 void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
                   std::span<const glm::vec3> face_normals, const ViewQuantities& view,
                   const LineParams& params, float feature_size, LineScratch& scratch,

@@ -53,6 +53,10 @@ struct LineParams {
   /// Also draw TriMesh::marked_edges (and non-manifold edges) as creases. Default on.
   bool marked_edges = true;
   bool boundaries = true;  ///< edges with one face. Default on
+  /// Also extract the mesh's own silhouette (edges between a front- and a back-facing face)
+  /// each frame, so the presenter can draw it where the interpolated contour leaves the
+  /// object's outline (coarse meshes; docs/visibility.md). Default on (`--outline complete`).
+  bool complete_outline = true;
 };
 
 /// Extracted segments, flat arrays (caller-owned, reused between frames).
@@ -114,6 +118,15 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adjacency,
                       std::span<const glm::vec3> face_normals, const LineParams& params,
                       LineScratch& scratch, LineSet& out,
                       std::span<const uint8_t> crease_vertices = {});
+
+/// Clears `out` and appends the mesh's own silhouette as seen from `view`: the manifold
+/// edges whose two valid faces face opposite ways (one front-, one back-facing), typed
+/// kContour with the vertex indices as point ids, so chainStrokes() joins them. On a coarse
+/// mesh this polygonal outline is where the faces as drawn end, while the interpolated
+/// contour (n·v = 0 on vertex normals) may run inside it (docs/visibility.md).
+/// `face_normals` holds faceCount unit normals (zero: degenerate, skipped).
+void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adjacency,
+                           std::span<const glm::vec3> face_normals, const ViewSpec& view, LineSet& out);
 
 /// Clears `out` and extracts every enabled line type from precomputed view quantities.
 /// `feature_size` (model units, > 0) scales the suggestive thresholds by 1/fs².

@@ -46,7 +46,7 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
   const Camera& camera = presenter.camera();
   const FrameParams& frame = presenter.frame();
   const DepthImage& depth = presenter.depth();
-  const std::vector<VisibleStrokes>& visible = presenter.visible();
+  const std::vector<StrokeRuns>& visible = presenter.visible();
   LineMask mask;
   ObjectReport& t = r.total;
   t.name = "total";
@@ -65,15 +65,22 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
     o.faces_drawn = presenter.facesDrawn(i);
     o.line_segments = presenter.segmentsDrawn(i);
     const auto vis_segments = countVisibleSegments(d.segments(), camera, depth);
+    const auto vis_intersections = countVisibleSegments(obj.intersections, camera, depth);
     for (int k = 0; k < kLineKindCount; ++k) {
-      o.lines[k] = obj.style.lines.kinds[k].enabled ? vis_segments[k] : 0;
-      o.lines_extracted[k] = d.lines().count[k] / 2;
+      o.lines[k] = obj.style.lines.kinds[k].enabled ? vis_segments[k] + vis_intersections[k] : 0;
+      o.lines_extracted[k] = d.segments().counts[k];
     }
+    const auto& ix = obj.intersections;
+    o.lines_extracted[static_cast<int>(LineKind::kIntersection)] =
+        ix.strokeCount() ? ix.points.size() - ix.strokeCount() : 0;
     o.strokes_extracted = d.strokes().strokeCount();
     o.strokes = visible[i].strokeCount();
     o.specks = countSpecks(visible[i].length_px);
     rasterizeStrokes(visible[i], frame.width, frame.height, mask);
     o.line_pixels = mask.count();
+    rasterizeStrokes(presenter.hidden()[i], frame.width, frame.height, mask);
+    o.hidden_line_pixels = mask.count();
+    o.outline_fill_px = presenter.outlineFill()[i];
     if (const AdaptiveMesh* lod = obj.drawing->lod()) {
       const LodStats& ls = lod->stats();
       LodReport l;
@@ -105,6 +112,7 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
     t.strokes_extracted += o.strokes_extracted;
     t.strokes += o.strokes;
     t.specks += o.specks;
+    t.outline_fill_px += o.outline_fill_px;
     r.objects.push_back(std::move(o));
   }
   if (any_lod) {
@@ -113,9 +121,12 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
   }
   if (scene.size() == 1) t.cluster = r.objects[0].cluster;
   // Line pixels of the whole image count a pixel two objects share once.
+  rasterizeStrokes(presenter.hiddenAll(), frame.width, frame.height, mask);
+  t.hidden_line_pixels = mask.count();
   LineMask& all = image_mask ? *image_mask : mask;
   rasterizeStrokes(presenter.visibleAll(), frame.width, frame.height, all);
   t.line_pixels = all.count();
+  r.outline = measureOutlineCoverage(depth, all);
 
   const CpuTimings cpu = scene.timings();
   r.ms.adapt = scene.adaptMs();
@@ -142,7 +153,14 @@ nlohmann::json frameStatsJson(const FrameReport& report) {
   j["strokes_extracted"] = t.strokes_extracted;
   j["specks"] = t.specks;
   j["line_pixels"] = t.line_pixels;
+  j["hidden_line_pixels"] = t.hidden_line_pixels;
+  j["outline_fill_px"] = t.outline_fill_px;
   j["active_faces"] = t.active_faces;
+  j["outline"] = {{"pixels", report.outline.outline_px},
+                  {"covered", report.outline.covered_px},
+                  {"coverage", report.outline.coverage()},
+                  {"gaps", report.outline.gaps},
+                  {"largest_gap_px", report.outline.largest_gap_px}};
   if (t.lod) j["lod"] = lodJson(*t.lod);
   if (t.cluster) j["cluster"] = clusterJson(*t.cluster);
   nlohmann::json objects = nlohmann::json::array();
@@ -160,6 +178,8 @@ nlohmann::json frameStatsJson(const FrameReport& report) {
                          {"strokes_extracted", o.strokes_extracted},
                          {"specks", o.specks},
                          {"line_pixels", o.line_pixels},
+                         {"hidden_line_pixels", o.hidden_line_pixels},
+                         {"outline_fill_px", o.outline_fill_px},
                          {"active_faces", o.active_faces}};
     if (o.lod) oj["lod"] = lodJson(*o.lod);
     if (o.cluster) oj["cluster"] = clusterJson(*o.cluster);

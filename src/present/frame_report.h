@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "export/coherence.h"
+#include "export/outline_coverage.h"
 #include "frame/scene_drawing.h"
 #include "lod/vertex_clustering.h"
 #include "present/presenter.h"
@@ -47,6 +48,10 @@ struct ObjectReport {
   uint64_t strokes = 0;            ///< visible strokes (runs after hidden-line removal)
   uint64_t specks = 0;             ///< visible strokes shorter than kSpeckLengthPx
   uint64_t line_pixels = 0;        ///< pixels under the visible strokes (centre lines)
+  uint64_t hidden_line_pixels = 0; ///< pixels under the hidden runs (drawn or not)
+  /// Length of the visible contour that completes the exterior outline (the mesh's own
+  /// silhouette where the interpolated contour leaves it), pixels.
+  double outline_fill_px = 0.0;
   std::optional<LodReport> lod;        ///< progressive mesh only
   std::optional<ClusterStats> cluster; ///< vertex clustering only
 };
@@ -59,6 +64,9 @@ struct StageTimes {
 
 struct FrameReport {
   std::vector<ObjectReport> objects;
+  /// How much of the exterior outline of the faces as drawn has a visible line on it
+  /// (export/outline_coverage.h).
+  OutlineCoverage outline;
   /// Sums over the objects (line_pixels: a pixel two objects' lines share counts once;
   /// lod.band_fraction: weighted by visible faces). name "total".
   ObjectReport total;

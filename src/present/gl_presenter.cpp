@@ -43,7 +43,7 @@ Status GlPresenter::ensureTarget(const FrameParams& frame) {
   return {};
 }
 
-Status GlPresenter::upload(const SceneDrawing& scene, bool all_meshes) {
+Status GlPresenter::uploadMeshes(const SceneDrawing& scene, bool all_meshes) {
   if (renderer_->objectCount() != scene.size()) {
     if (Status s = renderer_->setObjectCount(scene.size()); !s) return s;
     all_meshes = true;
@@ -53,20 +53,29 @@ Status GlPresenter::upload(const SceneDrawing& scene, bool all_meshes) {
     const LineDrawing& ld = d.drawing();
     if (all_meshes || d.meshChanged())
       renderer_->setMesh(i, ld.mesh().positions, ld.normals(), ld.mesh().faces, ld.mesh().marked_edges);
-    renderer_->setLines(i, ld.lines());
   }
   return {};
 }
 
-Status GlPresenter::draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
+Status GlPresenter::drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
   if (Status s = ensureTarget(frame); !s) return s;
   GLint previous = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
   target_->bind();
-  renderer_->draw(camera, frame, styles);
-  glFinish();
+  renderer_->drawSurfaces(camera, frame, styles);
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
   return {};
+}
+
+void GlPresenter::uploadLines(size_t object, const ScreenLines& lines) { renderer_->setLines(object, lines); }
+
+void GlPresenter::drawLines(const FrameParams& frame, std::span<const ObjectStyle> styles) {
+  GLint previous = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
+  target_->bind();
+  renderer_->drawLines(frame, styles);
+  glFinish();
+  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
 }
 
 void GlPresenter::blitToBound() const {

@@ -37,10 +37,12 @@ class GlPresenter final : public ScenePresenter {
   std::string description() const override { return description_; }
 
  protected:
-  Status upload(const SceneDrawing& scene, bool all_meshes) override;
-  Status draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) override;
-  Image readColour() override;
+  Status uploadMeshes(const SceneDrawing& scene, bool all_meshes) override;
+  Status drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) override;
   void readDepth(DepthImage& out) override;
+  void uploadLines(size_t object, const ScreenLines& lines) override;
+  void drawLines(const FrameParams& frame, std::span<const ObjectStyle> styles) override;
+  Image readColour() override;
 
  private:
   GlPresenter() = default;

@@ -2,6 +2,8 @@
 
 #include "core/timer.h"
 #include "present/gl_presenter.h"
+#include "present/outline.h"
+#include "present/screen_lines.h"
 #include "present/soft_presenter.h"
 
 namespace lodline {
@@ -16,18 +18,49 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
                                bool all_meshes) {
   if (Status s = check(scene); !s) return s;
   Stopwatch sw;
-  scene_ = &scene;
   camera_ = camera;
   frame_ = frame;
   styles_.clear();
   for (const auto& o : scene.objects()) styles_.push_back(o.style);
-  if (Status s = upload(scene, all_meshes); !s) return s;
+  if (Status s = uploadMeshes(scene, all_meshes); !s) return s;
   times_.upload = sw.lap();
-  if (Status s = draw(camera, frame, styles_); !s) return s;
+  if (Status s = drawSurfaces(camera, frame, styles_); !s) return s;
   times_.render = sw.lap();
-  times_.readback = times_.visibility = 0.0;
-  depth_valid_ = visible_valid_ = visible_all_valid_ = false;
+  readDepth(depth_);
+  splitObjectLines(scene);
+  times_.visibility = sw.lap();
+  for (size_t i = 0; i < scene.size(); ++i) {
+    buildScreenLines(visible_[i], hidden_[i], styles_[i].hidden, screen_lines_);
+    uploadLines(i, screen_lines_);
+  }
+  times_.upload += sw.lap();
+  drawLines(frame, styles_);
+  times_.render += sw.lap();
+  times_.readback = 0.0;
+  visible_all_valid_ = hidden_all_valid_ = false;
   return {};
+}
+
+void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
+  const VisibilityParams visibility;
+  visible_.resize(scene.size());
+  hidden_.resize(scene.size());
+  outline_fill_.assign(scene.size(), 0.0);
+  for (size_t i = 0; i < scene.size(); ++i) {
+    const SceneDrawing::Object& obj = scene[i];
+    const LineDrawing& d = obj.drawing->drawing();
+    splitStrokes(d.strokes(), camera_, depth_, visibility, &visible_[i], &hidden_[i]);
+    // Intersection lines (static, world space) through the same test.
+    if (obj.style.lines[LineKind::kIntersection].enabled && obj.intersections.strokeCount() > 0) {
+      splitStrokes(obj.intersections, camera_, depth_, visibility, &scratch_, &scratch2_);
+      appendStrokes(scratch_, visible_[i]);
+      appendStrokes(scratch2_, hidden_[i]);
+    }
+    // The exterior outline, completed where the interpolated contour leaves it.
+    if (d.silhouetteStrokes().strokeCount() > 0 && obj.style.lines[LineKind::kContour].enabled)
+      outline_fill_[i] = completeOutline(d.silhouetteStrokes(), camera_, depth_, visibility, OutlineParams{},
+                                         visible_[i], outline_scratch_);
+  }
 }
 
 Image ScenePresenter::readImage() {
@@ -37,36 +70,22 @@ Image ScenePresenter::readImage() {
   return image;
 }
 
-const DepthImage& ScenePresenter::depth() {
-  if (!depth_valid_) {
-    Stopwatch sw;
-    readDepth(depth_);
-    depth_valid_ = true;
-    times_.visibility += sw.lap();
-  }
-  return depth_;
-}
-
-const std::vector<VisibleStrokes>& ScenePresenter::visible() {
-  if (!visible_valid_ && scene_) {
-    const DepthImage& d = depth();
-    Stopwatch sw;
-    visible_.resize(scene_->size());
-    for (size_t i = 0; i < scene_->size(); ++i)
-      visibleStrokes((*scene_)[i].drawing->drawing().strokes(), camera_, d, {}, visible_[i]);
-    visible_valid_ = true;
-    times_.visibility += sw.lap();
-  }
-  return visible_;
-}
-
-const VisibleStrokes& ScenePresenter::visibleAll() {
+const StrokeRuns& ScenePresenter::visibleAll() {
   if (!visible_all_valid_) {
     visible_all_.clear();
-    for (const VisibleStrokes& v : visible()) appendStrokes(v, visible_all_);
+    for (const StrokeRuns& v : visible_) appendStrokes(v, visible_all_);
     visible_all_valid_ = true;
   }
   return visible_all_;
+}
+
+const StrokeRuns& ScenePresenter::hiddenAll() {
+  if (!hidden_all_valid_) {
+    hidden_all_.clear();
+    for (const StrokeRuns& v : hidden_) appendStrokes(v, hidden_all_);
+    hidden_all_valid_ = true;
+  }
+  return hidden_all_;
 }
 
 Result<std::unique_ptr<ScenePresenter>> createPresenter(PresenterBackend backend, ContextBackend context,

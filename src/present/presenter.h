@@ -1,12 +1,14 @@
 // The last stage of a frame, with one owner (docs/design.md §1): upload what changed of a
-// SceneDrawing, draw it (OpenGL or the software rasteriser), read back what was drawn and
-// split every object's strokes into visible runs. `render`, `capture`, the viewer and the
-// benchmarks all draw through a ScenePresenter, so they draw, read and count the same way.
+// SceneDrawing, draw its faces (OpenGL or the software rasteriser), read the depth back,
+// split every object's strokes into visible and hidden runs against it (per-sample
+// visibility, docs/visibility.md), complete the exterior outline, and draw the runs as the
+// frame's lines. `render`, `capture`, the viewer and the benchmarks all draw through a
+// ScenePresenter, so they draw, read and count the same way.
 //
 //   auto presenter = createPresenter(PresenterBackend::kGl, ContextBackend::kAuto, scene);
 //   (*presenter)->present(scene, camera, frame, /*all_meshes=*/true);
 //   Image image = (*presenter)->readImage();
-//   const auto& visible = (*presenter)->visible();   // per object, from the depth buffer
+//   const auto& visible = (*presenter)->visible();   // per object: the runs drawn
 #pragma once
 
 #include <array>
@@ -18,11 +20,14 @@
 
 #include "core/camera.h"
 #include "core/image.h"
+#include "core/line_buffer.h"
 #include "core/render_params.h"
 #include "core/result.h"
+#include "export/coherence.h"
 #include "export/visibility.h"
 #include "frame/scene_drawing.h"
 #include "gl/context.h"
+#include "present/outline.h"
 
 namespace lodline {
 
@@ -35,9 +40,11 @@ Result<PresenterBackend> parsePresenterBackend(const std::string& name);
 /// Milliseconds of the last present() and of what was read after it.
 struct PresentTimes {
   double upload = 0.0;      ///< meshes and lines to the renderer
-  double render = 0.0;      ///< drawing, until the image is complete (glFinish)
+  double render = 0.0;      ///< drawing faces and lines, until the image is complete (glFinish)
   double readback = 0.0;    ///< the colour image (readImage())
-  double visibility = 0.0;  ///< depth readback and the strokes' visible runs
+  /// Depth readback, the strokes' visible and hidden runs, the outline's completion and the
+  /// runs turned into line segments.
+  double visibility = 0.0;
 };
 
 class ScenePresenter {
@@ -50,9 +57,11 @@ class ScenePresenter {
 
   /// Draws `scene` from `camera` into the presenter's image: uploads every object's mesh
   /// when `all_meshes` (or when the object count changed), else only the meshes that
-  /// changed in the last frame (LodDrawing::meshChanged()), and every object's lines; then
-  /// draws each object in its own style on frame's page. Errors: shader compilation for new
-  /// objects, a style check() refuses.
+  /// changed in the last frame (LodDrawing::meshChanged()); draws every object's faces in
+  /// its own style on frame's page; reads the depth back; splits each object's strokes
+  /// (and intersection lines) into visible and hidden runs, completes its outline; draws
+  /// the visible runs in their kind's style and, where enabled, the hidden runs in the
+  /// hidden style. Errors: shader compilation for new objects, a style check() refuses.
   Status present(const SceneDrawing& scene, const Camera& camera, const FrameParams& frame, bool all_meshes);
 
   /// The colour image of the last present(), row 0 = top.
@@ -60,14 +69,19 @@ class ScenePresenter {
   /// The visible surface of the last present() (world position and object per pixel), for
   /// the motion-compensated coherence measure. Errors: framebuffer creation.
   virtual Status readSurface(SurfaceImage& out) = 0;
-  /// Window depth of the last present()'s faces (read back on first use after it).
-  const DepthImage& depth();
-  /// The visible runs of each object's strokes in the last present(), tested against the
-  /// depth of every object's faces (so one object hides another's lines); one entry per
-  /// object. Computed on first use after present().
-  const std::vector<VisibleStrokes>& visible();
-  /// Every object's visible strokes as one set (for the line mask of the whole image).
-  const VisibleStrokes& visibleAll();
+  /// Window depth of the last present()'s faces.
+  const DepthImage& depth() const { return depth_; }
+  /// The runs of each object's lines drawn by the last present(), one entry per object,
+  /// tested against the depth of every object's faces (so one object hides another's
+  /// lines): the visible ones (the outline's completion included, as contour runs) and the
+  /// hidden ones (computed whether or not they are drawn).
+  const std::vector<StrokeRuns>& visible() const { return visible_; }
+  const std::vector<StrokeRuns>& hidden() const { return hidden_; }
+  /// Of each object's visible contour runs, the length (pixels) that completes the outline.
+  const std::vector<double>& outlineFill() const { return outline_fill_; }
+  /// Every object's visible (hidden) runs as one set (for the line mask of the whole image).
+  const StrokeRuns& visibleAll();
+  const StrokeRuns& hiddenAll();
 
   /// Faces and line segments the backend drew for `object` in the last present().
   virtual size_t facesDrawn(size_t object) const = 0;
@@ -82,24 +96,29 @@ class ScenePresenter {
   const FrameParams& frame() const { return frame_; }
 
  protected:
-  /// Uploads meshes (all, or those that changed) and every object's lines.
-  virtual Status upload(const SceneDrawing& scene, bool all_meshes) = 0;
-  /// Draws the uploaded scene; returns when the image is complete. Errors: a target of the
-  /// frame's size cannot be made.
-  virtual Status draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) = 0;
-  virtual Image readColour() = 0;
+  /// Uploads meshes (all, or those that changed).
+  virtual Status uploadMeshes(const SceneDrawing& scene, bool all_meshes) = 0;
+  /// Draws every object's faces (a new image, cleared to the background).
+  virtual Status drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) = 0;
   virtual void readDepth(DepthImage& out) = 0;
+  virtual void uploadLines(size_t object, const ScreenLines& lines) = 0;
+  /// Draws the uploaded lines over the faces; returns when the image is complete.
+  virtual void drawLines(const FrameParams& frame, std::span<const ObjectStyle> styles) = 0;
+  virtual Image readColour() = 0;
 
  private:
-  const SceneDrawing* scene_ = nullptr;
+  void splitObjectLines(const SceneDrawing& scene);
   Camera camera_;
   FrameParams frame_;
   std::vector<ObjectStyle> styles_;
   PresentTimes times_;
   DepthImage depth_;
-  bool depth_valid_ = false, visible_valid_ = false, visible_all_valid_ = false;
-  std::vector<VisibleStrokes> visible_;
-  VisibleStrokes visible_all_;
+  std::vector<StrokeRuns> visible_, hidden_;
+  std::vector<double> outline_fill_;
+  StrokeRuns visible_all_, hidden_all_, scratch_, scratch2_;
+  bool visible_all_valid_ = false, hidden_all_valid_ = false;
+  OutlineScratch outline_scratch_;
+  ScreenLines screen_lines_;
 };
 
 /// A presenter for `scene` on `backend`: OpenGL through a headless context of kind

@@ -13,7 +13,7 @@ Status SoftPresenter::check(const SceneDrawing& scene) const {
   return {};
 }
 
-Status SoftPresenter::upload(const SceneDrawing& scene, bool all_meshes) {
+Status SoftPresenter::uploadMeshes(const SceneDrawing& scene, bool all_meshes) {
   if (renderer_.objectCount() != scene.size()) {
     renderer_.setObjectCount(scene.size());
     all_meshes = true;
@@ -22,13 +22,13 @@ Status SoftPresenter::upload(const SceneDrawing& scene, bool all_meshes) {
     const LodDrawing& d = *scene[i].drawing;
     const LineDrawing& ld = d.drawing();
     if (all_meshes || d.meshChanged()) renderer_.setMesh(i, ld.mesh().positions, ld.normals(), ld.mesh().faces);
-    renderer_.setLines(i, ld.lines());
   }
   return {};
 }
 
-Status SoftPresenter::draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
-  renderer_.draw(camera, frame, styles);
+Status SoftPresenter::drawSurfaces(const Camera& camera, const FrameParams& frame,
+                                   std::span<const ObjectStyle> styles) {
+  renderer_.drawSurfaces(camera, frame, styles);
   return {};
 }
 

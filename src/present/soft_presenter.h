@@ -25,10 +25,14 @@ class SoftPresenter final : public ScenePresenter {
   const SoftTimes& softTimes() const { return renderer_.times(); }
 
  protected:
-  Status upload(const SceneDrawing& scene, bool all_meshes) override;
-  Status draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) override;
-  Image readColour() override { return renderer_.image(); }
+  Status uploadMeshes(const SceneDrawing& scene, bool all_meshes) override;
+  Status drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) override;
   void readDepth(DepthImage& out) override { out = renderer_.depth(); }
+  void uploadLines(size_t object, const ScreenLines& lines) override { renderer_.setLines(object, lines); }
+  void drawLines(const FrameParams& frame, std::span<const ObjectStyle> styles) override {
+    renderer_.drawLines(frame, styles);
+  }
+  Image readColour() override { return renderer_.image(); }
 
  private:
   SoftRenderer renderer_;

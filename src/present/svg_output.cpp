@@ -25,16 +25,23 @@ SvgStyle svgStyleOf(const ObjectStyle& style, const FrameParams& frame) {
     const LineStyle& ls = style.lines.kinds[k];
     s.lines[k] = {colourToHex(ls.color), ls.width_px, ls.color.a};
   }
+  const HiddenLineStyle& h = style.hidden;
+  s.hidden_enabled = h.enabled;
+  s.hidden = {colourToHex(h.color), h.width_px, h.color.a};
+  s.hidden_dash = {h.dash_on, h.dash_off};
   return s;
 }
 
 Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scene, ScenePresenter& presenter) {
   const FrameParams& frame = presenter.frame();
-  const std::vector<VisibleStrokes>& visible = presenter.visible();
+  const std::vector<StrokeRuns>& visible = presenter.visible();
+  const std::vector<StrokeRuns>& hidden = presenter.hidden();
   std::vector<SvgLayer> layers;
   for (size_t i = 0; i < scene.size(); ++i) {
-    const VisibleStrokes& v = visible[i];
-    layers.push_back({scene[i].name, SvgStrokes{v.points, v.offsets, v.kinds, v.opacity}, svgStyleOf(scene[i].style, frame)});
+    const StrokeRuns& v = visible[i];
+    const StrokeRuns& h = hidden[i];
+    layers.push_back({scene[i].name, SvgStrokes{v.points, v.offsets, v.kinds, v.opacity},
+                      svgStyleOf(scene[i].style, frame), SvgStrokes{h.points, h.offsets, h.kinds, h.opacity}});
   }
   ObjectStyle page_style;
   return writeSvgLayers(path, frame.width, frame.height, layers, svgStyleOf(page_style, frame));

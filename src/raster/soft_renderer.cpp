@@ -48,53 +48,25 @@ glm::vec4 sampleTexture(const Image& image, float u, float v, TextureFilter filt
   return top * (1.0f - ay) + bottom * ay;
 }
 
-size_t drawWideLines(std::span<const LineVertex> vertices, const glm::mat4& view_projection,
-                     const LineStyle& style, const DepthImage& depth, Image& image, WorkerPool& pool) {
-  const int W = depth.width, H = depth.height;
+size_t drawScreenLines(std::span<const ScreenLineVertex> vertices, const glm::vec4& colour, float width_px,
+                       Image& image, WorkerPool& pool) {
+  const int W = image.width, H = image.height;
   // OpenGL rounds the width of aliased wide lines to an integer.
-  const int width = std::max(1, static_cast<int>(std::lround(style.width_px)));
+  const int width = std::max(1, static_cast<int>(std::lround(width_px)));
   const float half = 0.5f * static_cast<float>(width);
   const size_t segments = vertices.size() / 2;
-  struct Screen {
-    float x, y, z, alpha;
-  };
   auto draw_band = [&](int row_begin, int row_end) {
     for (size_t s = 0; s < segments; ++s) {
-      glm::vec4 c0 = view_projection * glm::vec4(vertices[2 * s].position, 1.0f);
-      glm::vec4 c1 = view_projection * glm::vec4(vertices[2 * s + 1].position, 1.0f);
-      float a0 = vertices[2 * s].alpha, a1 = vertices[2 * s + 1].alpha;
-      // Clip to the near (z ≥ −w) and far (z ≤ w) planes.
-      bool visible = true;
-      for (int p = 0; p < 2 && visible; ++p) {
-        const float d0 = p == 0 ? c0.z + c0.w : c0.w - c0.z, d1 = p == 0 ? c1.z + c1.w : c1.w - c1.z;
-        if (!(d0 >= 0.0f) && !(d1 >= 0.0f)) {
-          visible = false;
-        } else if (!(d0 >= 0.0f) || !(d1 >= 0.0f)) {
-          const float t = d0 / (d0 - d1);
-          const glm::vec4 c = c0 + t * (c1 - c0);
-          const float a = a0 + t * (a1 - a0);
-          if (d0 < 0.0f) {
-            c0 = c;
-            a0 = a;
-          } else {
-            c1 = c;
-            a1 = a;
-          }
-        }
-      }
-      if (!visible) continue;
-      auto to_screen = [&](const glm::vec4& c, float a) {
-        const glm::vec3 n = glm::vec3(c) / c.w;
-        return Screen{(n.x * 0.5f + 0.5f) * W, (0.5f - n.y * 0.5f) * H, n.z * 0.5f + 0.5f, a};
-      };
-      const Screen p0 = to_screen(c0, a0), p1 = to_screen(c1, a1);
+      const ScreenLineVertex& p0 = vertices[2 * s];
+      const ScreenLineVertex& p1 = vertices[2 * s + 1];
       // Non-finite or absurdly far endpoints (bad input) are skipped, not converted to int.
       constexpr float kFar = 1e7f;
-      if (!(std::abs(p0.x) < kFar && std::abs(p0.y) < kFar && std::abs(p1.x) < kFar && std::abs(p1.y) < kFar))
+      if (!(std::abs(p0.px.x) < kFar && std::abs(p0.px.y) < kFar && std::abs(p1.px.x) < kFar &&
+            std::abs(p1.px.y) < kFar))
         continue;
-      const float dx = p1.x - p0.x, dy = p1.y - p0.y;
+      const float dx = p1.px.x - p0.px.x, dy = p1.px.y - p0.px.y;
       const bool x_major = std::abs(dx) >= std::abs(dy);
-      const float major0 = x_major ? p0.x : p0.y, major1 = x_major ? p1.x : p1.y;
+      const float major0 = x_major ? p0.px.x : p0.px.y, major1 = x_major ? p1.px.x : p1.px.y;
       const float len = major1 - major0;
       if (!(std::abs(len) > 0.0f)) continue;
       // Pixel centres c + 0.5 in [min, max) along the major axis.
@@ -106,27 +78,22 @@ size_t drawWideLines(std::span<const LineVertex> vertices, const glm::mat4& view
       if (x_major) {
         // Columns: only rows in this band.
         for (int x = m_lo; x <= m_hi; ++x) {
-          const float t = ((x + 0.5f) - p0.x) / len;
-          const float yc = p0.y + t * dy;
+          const float t = ((x + 0.5f) - p0.px.x) / len;
+          const float yc = p0.px.y + t * dy;
           const int y_lo = std::max(static_cast<int>(std::ceil(yc - half - 0.5f)), row_begin);
           const int y_hi = std::min(static_cast<int>(std::ceil(yc + half - 0.5f)) - 1, row_end - 1);
-          if (y_lo > y_hi) continue;
-          const float z = p0.z + t * (p1.z - p0.z);
-          const glm::vec4 col(glm::vec3(style.color), style.color.a * (p0.alpha + t * (p1.alpha - p0.alpha)));
-          for (int y = y_lo; y <= y_hi; ++y)
-            if (z <= depth.at(x, y)) blend(image.pixel(x, y), col);
+          const glm::vec4 col(glm::vec3(colour), colour.a * (p0.alpha + t * (p1.alpha - p0.alpha)));
+          for (int y = y_lo; y <= y_hi; ++y) blend(image.pixel(x, y), col);
         }
       } else {
         const int y_lo = std::max(m_lo, row_begin), y_hi = std::min(m_hi, row_end - 1);
         for (int y = y_lo; y <= y_hi; ++y) {
-          const float t = ((y + 0.5f) - p0.y) / len;
-          const float xc = p0.x + t * dx;
+          const float t = ((y + 0.5f) - p0.px.y) / len;
+          const float xc = p0.px.x + t * dx;
           const int x_lo = std::max(static_cast<int>(std::ceil(xc - half - 0.5f)), 0);
           const int x_hi = std::min(static_cast<int>(std::ceil(xc + half - 0.5f)) - 1, W - 1);
-          const float z = p0.z + t * (p1.z - p0.z);
-          const glm::vec4 col(glm::vec3(style.color), style.color.a * (p0.alpha + t * (p1.alpha - p0.alpha)));
-          for (int x = x_lo; x <= x_hi; ++x)
-            if (z <= depth.at(x, y)) blend(image.pixel(x, y), col);
+          const glm::vec4 col(glm::vec3(colour), colour.a * (p0.alpha + t * (p1.alpha - p0.alpha)));
+          for (int x = x_lo; x <= x_hi; ++x) blend(image.pixel(x, y), col);
         }
       }
     }
@@ -156,7 +123,7 @@ void SoftRenderer::setTexture(size_t object, Image texture, std::span<const glm:
   objects_[object].uvs.assign(uvs.begin(), uvs.end());
 }
 
-void SoftRenderer::setLines(size_t object, const LineBuffer& lines) { objects_[object].lines = lines; }
+void SoftRenderer::setLines(size_t object, const ScreenLines& lines) { objects_[object].lines = lines; }
 
 Status SoftRenderer::supports(const ObjectStyle& style) {
   if (style.style == Style::kShaded)
@@ -204,7 +171,7 @@ void SoftRenderer::gather(const glm::mat4& view, const glm::mat4& view_proj, int
   }
 }
 
-void SoftRenderer::draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
+void SoftRenderer::drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
   LODLINE_ASSERT(styles.size() == objects_.size());
   Stopwatch sw;
   const int W = frame.width, H = frame.height;
@@ -217,8 +184,8 @@ void SoftRenderer::draw(const Camera& camera, const FrameParams& frame, std::spa
   gather(view, view_proj, N);
   times_.transform = sw.lap();
 
-  // 1. Faces of every object, pushed back like glPolygonOffset(1, 2) so visible lines pass
-  //    the depth test.
+  // 1. Faces of every object, pushed back like glPolygonOffset(1, 2) (as the GL renderer's,
+  //    so both give the same depth image for the visibility of lines).
   if (target_.width != W || target_.height != H || target_.attribute_count != N)
     target_.resize(W, H, N);
   else
@@ -279,15 +246,28 @@ void SoftRenderer::draw(const Camera& camera, const FrameParams& frame, std::spa
   });
   times_.shade = sw.lap();
 
-  // 3. Lines of every object: depth LEQUAL against all faces, no depth writes, blended.
+  times_.lines = 0.0;
+}
+
+void SoftRenderer::drawLines(const FrameParams& frame, std::span<const ObjectStyle> styles) {
+  LODLINE_ASSERT(styles.size() == objects_.size());
+  LODLINE_ASSERT(image_.width == frame.width && image_.height == frame.height);
+  (void)frame;
+  Stopwatch sw;
+  // Every object's lines, blended, no depth test: hidden lines first, then visible ones.
   for (size_t i = 0; i < objects_.size(); ++i) {
     Object& o = objects_[i];
+    const ObjectStyle& style = styles[i];
     o.segments_drawn = 0;
+    const ScreenLines& l = o.lines;
+    if (style.hidden.enabled && l.hidden_count > 0)
+      o.segments_drawn += drawScreenLines(std::span(l.vertices).subspan(l.hidden_first, l.hidden_count),
+                                          style.hidden.color, style.hidden.width_px, image_, pool());
     for (int k = 0; k < kLineKindCount; ++k) {
-      const LineStyle& s = styles[i].lines.kinds[k];
-      if (!s.enabled || o.lines.count[k] == 0) continue;
-      const std::span<const LineVertex> v(o.lines.vertices.data() + o.lines.first[k], o.lines.count[k]);
-      o.segments_drawn += drawWideLines(v, view_proj, s, target_.depth, image_, pool());
+      const LineStyle& s = style.lines.kinds[k];
+      if (!s.enabled || l.count[k] == 0) continue;
+      o.segments_drawn += drawScreenLines(std::span(l.vertices).subspan(l.first[k], l.count[k]), s.color, s.width_px,
+                                          image_, pool());
     }
   }
   times_.lines = sw.lap();

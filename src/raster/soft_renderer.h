@@ -2,8 +2,8 @@
 // --backend soft`): the same picture as src/gl/renderer.cpp + shaders/toon.frag — faces
 // shaded by a ramp of flat tones indexed by max(n·l, 0) (Lake et al. 2000) with the frame's
 // light in eye space (or in the background colour for the lines style), drawn with a polygon
-// offset, then lines depth-tested (LEQUAL, no depth writes) and blended. The shaded style
-// and chamfer highlights need OpenGL (supports() says so).
+// offset, then lines in pixels (visible and hidden runs the presenter found) blended over
+// them. The shaded style and chamfer highlights need OpenGL (supports() says so).
 // Faces go through the constant-depth-scanline rasteriser (raster.h; Han & Wang 2011,
 // J. CAD & CG 23(6)), which interpolates the eye-space normal and, when a texture is set,
 // its coordinates; the texture (e.g. a detail map or a checker) modulates the base colour.
@@ -38,23 +38,21 @@ enum class TextureFilter { kNearest, kBilinear };
 /// not be empty.
 glm::vec4 sampleTexture(const Image& image, float u, float v, TextureFilter filter);
 
-/// Draws `vertices` (pairs = segments, model space) as aliased wide lines like OpenGL's
+/// Draws `vertices` (pairs = segments, in pixels) as aliased wide lines like OpenGL's
 /// GL_LINES with glLineWidth: per column (x-major) or row (y-major) a run of
-/// round(width) pixels centred on the segment, half-open along the major axis so chained
-/// segments neither overlap nor leave gaps. A fragment is kept when its window depth is ≤
-/// `depth` (depth LEQUAL, no writes) and blended (src alpha = style alpha × vertex alpha)
-/// into `image`, which must be depth.width × depth.height. Segments are clipped to the
-/// near and far planes. Bands of rows run on `pool`. Returns segments drawn.
-size_t drawWideLines(std::span<const LineVertex> vertices, const glm::mat4& view_projection,
-                     const LineStyle& style, const DepthImage& depth, Image& image, WorkerPool& pool);
+/// round(width_px) pixels centred on the segment, half-open along the major axis so chained
+/// segments neither overlap nor leave gaps, blended (src alpha = colour alpha × vertex alpha)
+/// into `image` with no depth test. Bands of rows run on `pool`. Returns segments drawn.
+size_t drawScreenLines(std::span<const ScreenLineVertex> vertices, const glm::vec4& colour, float width_px,
+                       Image& image, WorkerPool& pool);
 
-/// Milliseconds per stage of the last SoftRenderer::draw().
+/// Milliseconds per stage of the last drawSurfaces() and drawLines().
 struct SoftTimes {
   double transform = 0.0;  ///< vertices to clip space, normals to eye space
   double setup = 0.0;      ///< triangle setup + binning (raster.h)
   double raster = 0.0;     ///< tile traversal with attribute interpolation
   double shade = 0.0;      ///< toon ramp (+ texture) per pixel
-  double lines = 0.0;      ///< wide lines
+  double lines = 0.0;      ///< wide lines (drawLines)
 };
 
 /// The scene drawn in software, like gl/renderer.h: every object's faces (each in its own
@@ -77,16 +75,19 @@ class SoftRenderer {
   /// A texture modulating the toon colour of `object`, sampled bilinearly at `uvs` (one per
   /// vertex, perspective-correctly interpolated). An empty texture removes it.
   void setTexture(size_t object, Image texture, std::span<const glm::vec2> uvs);
-  /// Copies the lines of `object`, grouped by kind.
-  void setLines(size_t object, const LineBuffer& lines);
+  /// Copies the lines of `object` (pixels; visible per kind, then hidden).
+  void setLines(size_t object, const ScreenLines& lines);
 
   /// Whether this renderer draws `style`: the lines and toon styles, without chamfer
   /// highlights. Errors are usage errors naming what is missing.
   static Status supports(const ObjectStyle& style);
 
-  /// Draws a frame.width × frame.height frame from `camera` into image() and depth():
-  /// object i in styles[i] (objectCount() entries, each supported).
-  void draw(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles);
+  /// Draws the faces of a frame.width × frame.height frame from `camera` into image() and
+  /// depth(): object i in styles[i] (objectCount() entries, each supported).
+  void drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles);
+  /// Draws every object's lines over image() (after drawSurfaces() of the same frame), no
+  /// depth test: hidden lines in styles[i].hidden when enabled, then visible ones.
+  void drawLines(const FrameParams& frame, std::span<const ObjectStyle> styles);
   /// The surface pass of the coherence measure (as the GL renderer's): each pixel's nearest
   /// world position and object index + 1, into `out` (resized to the last draw's size).
   void drawSurface(const Camera& camera, SurfaceImage& out);
@@ -104,7 +105,7 @@ class SoftRenderer {
     std::vector<std::array<uint32_t, 3>> faces;
     Image texture;
     std::vector<glm::vec2> uvs;
-    LineBuffer lines;
+    ScreenLines lines;
     size_t segments_drawn = 0;
   };
   bool textured(const Object& o) const { return !o.texture.rgba.empty() && o.uvs.size() == o.positions.size(); }

@@ -99,7 +99,7 @@ Image renderOnce(const TriMesh& mesh, const Camera& cam, const test::Look& look)
   std::vector<glm::vec3> normals(mesh.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
   renderer->setMesh(0, mesh.positions, normals, mesh.faces);
   target->bind();
-  renderer->draw(cam, rp, std::span<const ObjectStyle>(&look.style, 1));
+  renderer->drawSurfaces(cam, rp, std::span<const ObjectStyle>(&look.style, 1));
   glFinish();
   return target->readback();
 }
@@ -260,7 +260,8 @@ int groundTruth(const std::filesystem::path& dir) {
   return 0;
 }
 
-// Shaded frames with and without highlights, alternating, along a slow orbit.
+// Shaded surfaces (faces + highlights, the lines left out: they cost the same with or
+// without highlights) with and without highlights, alternating, along a slow orbit.
 void chamferFrameBenchmark(benchmark::State& state, const std::string& name) {
   auto setup = bench::setUpGlBenchmark(state, name);
   if (!setup) return;
@@ -277,27 +278,23 @@ void chamferFrameBenchmark(benchmark::State& state, const std::string& name) {
   }
   renderer->setMesh(0, drawing.mesh().positions, drawing.normals(), drawing.mesh().faces,
                     drawing.mesh().marked_edges);
-  std::array<bool, kLineKindCount> enabled{};
-  enabled.fill(true);
   std::vector<double> on_ms, alpha_ms, off_ms;
   size_t edges = 0;
   float az = 0.0f;
   // Warm-up: edge finding and corner normals happen at the first draw.
   target->bind();
-  renderer->draw(orbitCamera(drawing.bounds(), {az, 15.0f, 0.0f}, 35.0f, 1280.0f / 720.0f), rp,
-                 std::span<const ObjectStyle>(&style, 1));
+  renderer->drawSurfaces(orbitCamera(drawing.bounds(), {az, 15.0f, 0.0f}, 35.0f, 1280.0f / 720.0f), rp,
+                         std::span<const ObjectStyle>(&style, 1));
   glFinish();
   for (auto _ : state) {
     const Camera cam = orbitCamera(drawing.bounds(), {az, 15.0f, 0.0f}, 35.0f, 1280.0f / 720.0f);
     az += 1.0f;
-    drawing.update(cam, enabled);
-    renderer->setLines(0, drawing.lines());
     for (int mode = 0; mode < 3; ++mode) {  // replace (default), alpha (the paper's), off
       style.chamfer.enabled = mode < 2;
       style.chamfer.compose = mode == 0 ? ChamferCompose::kReplace : ChamferCompose::kAlpha;
       target->bind();
       Stopwatch sw;
-      renderer->draw(cam, rp, std::span<const ObjectStyle>(&style, 1));
+      renderer->drawSurfaces(cam, rp, std::span<const ObjectStyle>(&style, 1));
       glFinish();
       (mode == 0 ? on_ms : mode == 1 ? alpha_ms : off_ms).push_back(sw.lap());
       if (mode == 0) edges = renderer->chamferEdgesDrawn();

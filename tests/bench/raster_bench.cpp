@@ -338,7 +338,7 @@ void writeImages(const std::string& dir, const std::vector<Scene>& all, int thre
     r.setTexture(0, checker(512, 8), uv);
     const FrameParams frame;
     const ObjectStyle style;
-    r.draw(s.camera, frame, std::span<const ObjectStyle>(&style, 1));
+    r.drawSurfaces(s.camera, frame, std::span<const ObjectStyle>(&style, 1));
     (void)writePng(dir + "/softraster-armadillo-checker.png", r.image());
     break;
   }

@@ -59,7 +59,7 @@ TEST(Coherence, KnownAppearAndVanish) {
 }
 
 TEST(Coherence, RasterizeStrokesIsContinuous) {
-  VisibleStrokes s;
+  StrokeRuns s;
   s.points = {{2.5f, 2.5f}, {12.5f, 2.5f}, {12.5f, 9.5f}};
   s.offsets = {0, 3};
   s.kinds = {LineKind::kContour};

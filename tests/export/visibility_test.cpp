@@ -66,7 +66,7 @@ TEST(Visibility, StrokesSplitIntoVisibleRuns) {
   s.offsets = {0, 3, 5};
   s.kinds = {LineKind::kContour, LineKind::kSuggestive};
   s.closed = {0, 0};
-  VisibleStrokes out;
+  StrokeRuns out;
   visibleStrokes(s, cam, d, {}, out);
   ASSERT_EQ(out.strokeCount(), 2u);
   EXPECT_EQ(out.kinds[0], LineKind::kContour);

@@ -268,9 +268,8 @@ Image renderShaded(const TriMesh& mesh, const Camera& cam, const FrameParams& rp
   EXPECT_TRUE(target.ok());
   if (!target) return {};
   renderer->setMesh(0, drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
-  renderer->setLines(0, drawing.lines());
   target->bind();
-  renderer->draw(cam, rp, std::span<const ObjectStyle>(&style, 1));
+  renderer->drawSurfaces(cam, rp, std::span<const ObjectStyle>(&style, 1));
   if (style.chamfer.enabled) {
     EXPECT_EQ(renderer->chamferEdgesDrawn(), 12u);
   } else {

@@ -66,7 +66,7 @@ struct GlFixture : ::testing::Test {
   std::unique_ptr<GlPresenter> gl;
 };
 
-double visibleLength(const VisibleStrokes& v) {
+double visibleLength(const StrokeRuns& v) {
   double len = 0.0;
   for (float l : v.length_px) len += l;
   return len;

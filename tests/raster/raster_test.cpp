@@ -413,7 +413,7 @@ TEST(SoftRenderer, ToonCentreHasTheRampTone) {
   Camera cam = orbitCamera(computeBounds(sphere.positions), {0, 0, 4}, 35.0f, 160.0f / 120.0f);
   SoftRenderer r;
   r.setMesh(0, sphere.positions, normals, sphere.faces);
-  r.draw(cam, rp, std::span<const ObjectStyle>(&style, 1));
+  r.drawSurfaces(cam, rp, std::span<const ObjectStyle>(&style, 1));
   // At the centre n ≈ (0, 0, 1) in eye space: n·l = l.z of the normalised light.
   const glm::vec3 l = glm::normalize(rp.light_dir_eye);
   const ToonParams& toon = style.toon;
@@ -427,36 +427,27 @@ TEST(SoftRenderer, ToonCentreHasTheRampTone) {
   EXPECT_EQ(r.depth().at(0, 0), 1.0f);
 }
 
-TEST(SoftRenderer, WideLinesHaveTheirWidthAndAreDepthTested) {
+// Lines in pixels have the width GL gives wide lines and are blended with their opacity;
+// nothing is drawn off the segment (visibility is decided before drawing, by the presenter).
+TEST(SoftRenderer, ScreenLinesHaveTheirWidthAndOpacity) {
   const int W = 64, H = 32;
-  Camera cam;
-  cam.orthographic = true;
-  cam.ortho_height = 2.0f;
-  cam.eye = {0, 0, 1};
-  cam.near_plane = 0.1f;
-  cam.far_plane = 10.0f;
-  const glm::mat4 vp = cam.projection(2.0f) * cam.view();
-  std::vector<LineVertex> v = {{{-1.5f, 0.0f, 0.0f}, 1.0f}, {{1.5f, 0.0f, 0.0f}, 1.0f}};
-  LineStyle style;
-  style.width_px = 3.0f;
-  DepthImage depth;
-  depth.width = W;
-  depth.height = H;
-  depth.depth.assign(W * H, 1.0f);
+  std::vector<ScreenLineVertex> v = {{{8.0f, 16.0f}, 1.0f}, {{56.0f, 16.0f}, 1.0f}};
   Image img(W, H);
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
   WorkerPool pool(2);
-  drawWideLines(v, vp, style, depth, img, pool);
+  EXPECT_EQ(drawScreenLines(v, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), 3.0f, img, pool), 1u);
   for (int x = 10; x < W - 10; ++x) {  // the line spans x ∈ [8, 56) px
     int dark = 0;
     for (int y = 0; y < H; ++y) dark += img.pixel(x, y)[0] == 0;
     EXPECT_EQ(dark, 3) << x;
   }
-  // Behind a surface nearer than the line: nothing drawn.
+  for (int x : {0, 4, 60, 63})
+    for (int y = 0; y < H; ++y) ASSERT_EQ(img.pixel(x, y)[0], 255) << x << "," << y;
+  // Half opacity (colour alpha × vertex alpha) blends halfway to the page.
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
-  depth.depth.assign(W * H, 0.01f);
-  drawWideLines(v, vp, style, depth, img, pool);
-  for (size_t i = 0; i < img.rgba.size(); ++i) ASSERT_EQ(img.rgba[i], 255);
+  v[0].alpha = v[1].alpha = 0.5f;
+  drawScreenLines(v, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), 1.0f, img, pool);
+  EXPECT_NEAR(img.pixel(32, 15)[0], 128, 1);  // a 1-px line at y = 16 covers row 15 (centre 15.5)
 }
 
 TEST(SoftRenderer, TextureSampling) {

@@ -1,4 +1,5 @@
-// Headless rendering: EGL surfaceless (and OSMesa) on Mesa, no display, no GPU.
+// Headless rendering through the GL presenter: EGL surfaceless (and OSMesa) on Mesa, no
+// display, no GPU.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,12 +10,10 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "frame/line_drawing.h"
 #include "gl/context.h"
-#include "gl/renderer.h"
 #include "io/generate.h"
 #include "io/load_mesh.h"
-#include "test_util.h"
+#include "present_test_util.h"
 
 namespace lodline {
 namespace {
@@ -30,27 +29,16 @@ using test::Look;
 // Renders `mesh` with the given look through `backend`; empty image if no context.
 Rendered renderMesh(TriMesh mesh, ContextBackend backend, const Look& look, OrbitView orbit,
                     std::string* error = nullptr) {
-  const FrameParams& rp = look.frame;
   Rendered out;
-  auto ctx = createHeadlessContext(backend);
-  if (!ctx) {
-    if (error) *error = ctx.error().message;
+  SceneDrawing scene = test::sceneOf(std::move(mesh), look.style);
+  out.camera = orbitCamera(scene.bounds(), orbit, 35.0f, look.frame.aspect());
+  test::Presented p = test::presentScene(scene, out.camera, look.frame, PresenterBackend::kGl, backend);
+  if (!p) {
+    if (error) *error = p.error;
     return out;
   }
-  LineDrawing drawing(std::move(mesh));
-  out.camera = orbitCamera(drawing.bounds(), orbit, 35.0f,
-                           static_cast<float>(rp.width) / static_cast<float>(rp.height));
-  drawing.update(out.camera, look.style.enabledKinds());
-  auto renderer = Renderer::create();
-  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
-  auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
-  EXPECT_TRUE(target.ok()) << target.error().message;
-  renderer->setMesh(0, drawing.mesh().positions, drawing.normals(), drawing.mesh().faces);
-  renderer->setLines(0, drawing.lines());
-  target->bind();
-  renderer->draw(out.camera, rp, std::span<const ObjectStyle>(&look.style, 1));
-  out.image = target->readback();
-  out.segments = renderer->segmentsDrawn();
+  out.image = std::move(p.image);
+  out.segments = p.presenter->segmentsDrawn(0);
   return out;
 }
 

@@ -1,6 +1,6 @@
-// The software rasteriser (raster/, Han & Wang 2011 constant-depth scanlines) against the
-// OpenGL renderer: the toon image agrees within a tolerance, and hidden-line removal for
-// SVG from the soft depth buffer agrees with the GL depth buffer.
+// The software presenter (raster/, Han & Wang 2011 constant-depth scanlines) against the
+// OpenGL one: the toon image agrees within a tolerance, and the visibility of lines from the
+// soft depth buffer agrees with the GL depth buffer.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,14 +10,10 @@
 #include <glm/geometric.hpp>
 
 #include "export/visibility.h"
-#include "frame/line_drawing.h"
-#include "gl/context.h"
-#include "gl/renderer.h"
-#include "io/image.h"
 #include "io/generate.h"
+#include "io/image.h"
 #include "io/load_mesh.h"
-#include "raster/soft_renderer.h"
-#include "test_util.h"
+#include "present_test_util.h"
 
 namespace lodline {
 namespace {
@@ -27,44 +23,20 @@ struct Frame {
   DepthImage depth;
 };
 
-struct Scene {
-  std::unique_ptr<LineDrawing> drawing;
-  Camera camera;
-};
-
 using test::Look;
 
-Scene makeScene(TriMesh mesh, const Look& look, OrbitView orbit) {
-  Scene s;
-  s.drawing = std::make_unique<LineDrawing>(std::move(mesh));
-  s.camera = orbitCamera(s.drawing->bounds(), orbit, 35.0f, look.frame.aspect());
-  s.drawing->update(s.camera, look.style.enabledKinds());
-  return s;
-}
-
-Frame renderGl(const Scene& s, const Look& look) {
+Frame render(TriMesh mesh, const Look& look, OrbitView orbit, PresenterBackend backend, Camera* camera = nullptr,
+             StrokeSet* strokes = nullptr) {
   Frame f;
-  auto ctx = createHeadlessContext(ContextBackend::kEgl);
-  if (!ctx) return f;
-  auto renderer = Renderer::create();
-  const FrameParams& rp = look.frame;
-  auto target = OffscreenTarget::create(rp.width, rp.height, rp.msaa);
-  if (!renderer || !target) return f;
-  renderer->setMesh(0, s.drawing->mesh().positions, s.drawing->normals(), s.drawing->mesh().faces);
-  renderer->setLines(0, s.drawing->lines());
-  target->bind();
-  renderer->draw(s.camera, rp, std::span<const ObjectStyle>(&look.style, 1));
-  f.image = target->readback();
-  target->readDepth(f.depth);
+  SceneDrawing scene = test::sceneOf(std::move(mesh), look.style);
+  const Camera cam = orbitCamera(scene.bounds(), orbit, 35.0f, look.frame.aspect());
+  test::Presented p = test::presentScene(scene, cam, look.frame, backend);
+  if (!p) return f;
+  f.image = std::move(p.image);
+  f.depth = p.presenter->depth();
+  if (camera) *camera = cam;
+  if (strokes) *strokes = scene[0].drawing->drawing().strokes();
   return f;
-}
-
-Frame renderSoft(const Scene& s, const Look& look) {
-  SoftRenderer r;
-  r.setMesh(0, s.drawing->mesh().positions, s.drawing->normals(), s.drawing->mesh().faces);
-  r.setLines(0, s.drawing->lines());
-  r.draw(s.camera, look.frame, std::span<const ObjectStyle>(&look.style, 1));
-  return {r.image(), r.depth()};
 }
 
 // Fraction of pixels whose colours differ by more than `tol` in some channel.
@@ -109,10 +81,9 @@ Look params(int w, int h) {
 
 void checkToonAgrees(TriMesh mesh, OrbitView view, const char* name) {
   const Look rp = params(400, 300);
-  const Scene s = makeScene(std::move(mesh), rp, view);
-  const Frame gl = renderGl(s, rp);
+  const Frame gl = render(mesh, rp, view, PresenterBackend::kGl);
   if (gl.image.rgba.empty()) GTEST_SKIP() << "no EGL context";
-  const Frame soft = renderSoft(s, rp);
+  const Frame soft = render(std::move(mesh), rp, view, PresenterBackend::kSoft);
   const double diff = differingFraction(gl.image, soft.image, 8);
   const double unmatched = unmatchedFraction(gl.image, soft.image, 8);
   std::printf("%s: %.2f%% of pixels differ, %.3f%% without a match within 1 px\n", name, 100 * diff, 100 * unmatched);
@@ -162,23 +133,23 @@ TEST(SoftVsGl, ToonArmadilloAgrees) {
 void checkVisibilityAgrees(TriMesh mesh, OrbitView view, const char* name) {
   Look rp = params(400, 300);
   rp.style.style = Style::kLines;
-  const Scene s = makeScene(std::move(mesh), rp, view);
-  const Frame gl = renderGl(s, rp);
+  Camera camera;
+  StrokeSet strokes;
+  const Frame gl = render(mesh, rp, view, PresenterBackend::kGl, &camera, &strokes);
   if (gl.image.rgba.empty()) GTEST_SKIP() << "no EGL context";
-  const Frame soft = renderSoft(s, rp);
-  const StrokeSet& strokes = s.drawing->strokes();
+  const Frame soft = render(std::move(mesh), rp, view, PresenterBackend::kSoft);
   size_t total = 0, agree = 0, visible_gl = 0, visible_soft = 0;
   for (size_t k = 0; k < strokes.points.size(); ++k) {
-    const bool a = isPointVisible(s.camera, gl.depth, strokes.points[k]);
-    const bool b = isPointVisible(s.camera, soft.depth, strokes.points[k]);
+    const bool a = isPointVisible(camera, gl.depth, strokes.points[k]);
+    const bool b = isPointVisible(camera, soft.depth, strokes.points[k]);
     ++total;
     agree += a == b;
     visible_gl += a;
     visible_soft += b;
   }
-  VisibleStrokes vg, vs;
-  visibleStrokes(strokes, s.camera, gl.depth, {}, vg);
-  visibleStrokes(strokes, s.camera, soft.depth, {}, vs);
+  StrokeRuns vg, vs;
+  visibleStrokes(strokes, camera, gl.depth, {}, vg);
+  visibleStrokes(strokes, camera, soft.depth, {}, vs);
   double len_gl = 0, len_soft = 0;
   for (float l : vg.length_px) len_gl += l;
   for (float l : vs.length_px) len_soft += l;

@@ -1,0 +1,206 @@
+#include "present/outline.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace lodline {
+namespace {
+
+struct Sample {
+  glm::vec2 px;
+  glm::vec3 p;
+  float alpha;
+  float eye_depth;
+};
+
+// Samples of run r's polyline at most 1 px apart, positions interpolated
+// perspective-correctly (1/depth is linear in screen space).
+void sampleRun(const StrokeRuns& runs, size_t r, const PixelProjector& proj, std::vector<Sample>& out) {
+  out.clear();
+  const uint32_t begin = runs.offsets[r], end = runs.offsets[r + 1];
+  for (uint32_t i = begin; i + 1 < end; ++i) {
+    const glm::vec2 a = runs.points[i], b = runs.points[i + 1];
+    const glm::vec3 pa = runs.positions[i], pb = runs.positions[i + 1];
+    const float za = std::max(proj.eyeDepth(pa), 1e-9f), zb = std::max(proj.eyeDepth(pb), 1e-9f);
+    const int steps = std::clamp(static_cast<int>(std::ceil(glm::length(b - a))), 1, 4096);
+    for (int k = 0; k < steps; ++k) {
+      const float s = static_cast<float>(k) / static_cast<float>(steps);
+      const float inv = (1.0f - s) / za + s / zb;
+      const float t = (s / zb) / inv;
+      out.push_back({a + s * (b - a), pa + t * (pb - pa), runs.alpha[i] + s * (runs.alpha[i + 1] - runs.alpha[i]),
+                     1.0f / inv});
+    }
+  }
+  if (end > begin)
+    out.push_back({runs.points[end - 1], runs.positions[end - 1], runs.alpha[end - 1],
+                   proj.eyeDepth(runs.positions[end - 1])});
+}
+
+void clearMask(LineMask& m, int width, int height) {
+  m.width = width;
+  m.height = height;
+  m.on.assign(static_cast<size_t>(width) * height, 0);
+}
+
+void mark(LineMask& m, glm::vec2 px) {
+  const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
+  if (x >= 0 && y >= 0 && x < m.width && y < m.height) m.on[static_cast<size_t>(y) * m.width + x] = 1;
+}
+
+bool near(const LineMask& m, glm::vec2 px, int r) {
+  const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
+  for (int yy = std::max(0, y - r); yy <= std::min(m.height - 1, y + r); ++yy)
+    for (int xx = std::max(0, x - r); xx <= std::min(m.width - 1, x + r); ++xx)
+      if (m.at(xx, yy)) return true;
+  return false;
+}
+
+bool onDiscontinuity(const DepthImage& depth, const PixelProjector& proj, glm::vec2 px, float eye_depth,
+                     const OutlineParams& params) {
+  const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
+  const int r = params.discontinuity_radius_px;
+  const float limit = eye_depth * (1.0f + params.depth_jump);
+  for (int yy = std::max(0, y - r); yy <= std::min(depth.height - 1, y + r); ++yy)
+    for (int xx = std::max(0, x - r); xx <= std::min(depth.width - 1, x + r); ++xx) {
+      const float d = depth.at(xx, yy);
+      if (d >= 1.0f || proj.eyeDepthOfWindow(d) > limit) return true;
+    }
+  return false;
+}
+
+// Appends the samples [i, j) of one run as a run of `out`.
+void emitRun(const std::vector<Sample>& samples, size_t i, size_t j, LineKind kind, uint32_t stroke, StrokeRuns& out) {
+  if (out.offsets.empty()) out.offsets.push_back(0);
+  float length = 0.0f, alpha = 0.0f;
+  for (size_t k = i; k < j; ++k) {
+    out.points.push_back(samples[k].px);
+    out.positions.push_back(samples[k].p);
+    out.alpha.push_back(samples[k].alpha);
+    alpha += samples[k].alpha;
+    if (k > i) length += glm::length(samples[k].px - samples[k - 1].px);
+  }
+  out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
+  out.kinds.push_back(kind);
+  out.strokes.push_back(stroke);
+  out.opacity.push_back(alpha / static_cast<float>(j - i));
+  out.length_px.push_back(length);
+}
+
+// Appends run r of `from` to `to` unchanged.
+void copyRun(const StrokeRuns& from, size_t r, StrokeRuns& to) {
+  if (to.offsets.empty()) to.offsets.push_back(0);
+  const uint32_t b = from.offsets[r], e = from.offsets[r + 1];
+  to.points.insert(to.points.end(), from.points.begin() + b, from.points.begin() + e);
+  to.positions.insert(to.positions.end(), from.positions.begin() + b, from.positions.begin() + e);
+  to.alpha.insert(to.alpha.end(), from.alpha.begin() + b, from.alpha.begin() + e);
+  to.offsets.push_back(static_cast<uint32_t>(to.points.size()));
+  to.kinds.push_back(from.kinds[r]);
+  to.strokes.push_back(from.strokes[r]);
+  to.opacity.push_back(from.opacity[r]);
+  to.length_px.push_back(from.length_px[r]);
+}
+
+}  // namespace
+
+double completeOutline(const StrokeSet& silhouette, const Camera& camera, const DepthImage& depth,
+                       const VisibilityParams& visibility, const OutlineParams& params, StrokeRuns& visible,
+                       OutlineScratch& scratch) {
+  if (visible.offsets.empty()) visible.offsets.push_back(0);
+  if (silhouette.strokeCount() == 0) return 0.0;
+  const int W = depth.width, H = depth.height;
+  const PixelProjector proj(camera, W, H);
+  StrokeRuns& sil = scratch.silhouette;
+  splitStrokes(silhouette, camera, depth, visibility, &sil, nullptr);
+  std::vector<Sample> samples;
+
+  // 1. The outline: visible silhouette samples on a depth discontinuity.
+  clearMask(scratch.outline, W, H);
+  for (size_t r = 0; r < sil.strokeCount(); ++r) {
+    sampleRun(sil, r, proj, samples);
+    for (const Sample& s : samples)
+      if (onDiscontinuity(depth, proj, s.px, s.eye_depth, params)) mark(scratch.outline, s.px);
+  }
+  // 2. Where the visible contour is.
+  clearMask(scratch.contours, W, H);
+  for (size_t r = 0; r < visible.strokeCount(); ++r) {
+    if (visible.kinds[r] != LineKind::kContour) continue;
+    sampleRun(visible, r, proj, samples);
+    for (const Sample& s : samples) mark(scratch.contours, s.px);
+  }
+  // 3. Outline samples with no contour near: the completing pieces, grown along the
+  //    silhouette so they meet the contour's ends.
+  StrokeRuns fill;
+  fill.offsets.push_back(0);
+  clearMask(scratch.fill, W, H);
+  const int extend = std::max(0, static_cast<int>(std::lround(params.extend_px)));
+  for (size_t r = 0; r < sil.strokeCount(); ++r) {
+    sampleRun(sil, r, proj, samples);
+    scratch.flags.assign(samples.size(), 0);
+    for (size_t i = 0; i < samples.size(); ++i)
+      scratch.flags[i] = near(scratch.outline, samples[i].px, 0) && !near(scratch.contours, samples[i].px, params.contour_radius_px);
+    scratch.grown.assign(samples.size(), 0);
+    for (size_t i = 0; i < samples.size(); ++i) {
+      if (!scratch.flags[i]) continue;
+      const size_t lo = i >= static_cast<size_t>(extend) ? i - extend : 0;
+      const size_t hi = std::min(samples.size() - 1, i + extend);
+      for (size_t j = lo; j <= hi; ++j) scratch.grown[j] = 1;
+    }
+    for (size_t i = 0; i < samples.size();) {
+      if (!scratch.grown[i]) {
+        ++i;
+        continue;
+      }
+      size_t j = i;
+      while (j < samples.size() && scratch.grown[j]) ++j;
+      if (j - i >= 2) {
+        for (size_t k = i; k < j; ++k) {
+          mark(scratch.fill, samples[k].px);
+          samples[k].alpha = 1.0f;
+        }
+        emitRun(samples, i, j, LineKind::kContour, sil.strokes[r], fill);
+      }
+      i = j;
+    }
+  }
+  if (fill.strokeCount() == 0) return 0.0;
+  // 4. Contour pieces beside a completing piece but off the outline would draw it twice.
+  StrokeRuns& out = scratch.rebuilt;
+  out.clear();
+  out.offsets.push_back(0);
+  for (size_t r = 0; r < visible.strokeCount(); ++r) {
+    if (visible.kinds[r] != LineKind::kContour) {
+      copyRun(visible, r, out);
+      continue;
+    }
+    sampleRun(visible, r, proj, samples);
+    scratch.flags.assign(samples.size(), 1);
+    bool dropped = false;
+    for (size_t i = 0; i < samples.size(); ++i)
+      if (near(scratch.fill, samples[i].px, params.double_radius_px) &&
+          !near(scratch.outline, samples[i].px, params.contour_radius_px)) {
+        scratch.flags[i] = 0;
+        dropped = true;
+      }
+    if (!dropped) {
+      copyRun(visible, r, out);
+      continue;
+    }
+    for (size_t i = 0; i < samples.size();) {
+      if (!scratch.flags[i]) {
+        ++i;
+        continue;
+      }
+      size_t j = i;
+      while (j < samples.size() && scratch.flags[j]) ++j;
+      if (j - i >= 2) emitRun(samples, i, j, LineKind::kContour, visible.strokes[r], out);
+      i = j;
+    }
+  }
+  appendStrokes(fill, out);
+  std::swap(visible, out);
+  return fill.totalLength();
+}
+
+}  // namespace lodline

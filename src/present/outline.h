@@ -1,0 +1,55 @@
+// The exterior outline made complete (docs/visibility.md). On a coarse mesh the interpolated
+// contour (n·v = 0 on vertex normals) runs inside the polygonal outline of the faces as
+// drawn, partly over back-facing faces that the front ones hide, so the drawn outline
+// breaks. Where that happens, the mesh's own silhouette (edges between front- and
+// back-facing faces) is drawn instead: its visible samples that lie on a depth discontinuity
+// (the object ends there: background or a farther surface next to them) and have no visible
+// contour within a few pixels, extended a little along the silhouette so the pieces meet
+// the contour's ends. Contour pieces running beside such a piece, off the outline, would
+// double it: they are dropped. The interpolated contour stays wherever it draws the outline
+// (and inside the object): it is smoother.
+#pragma once
+
+#include <vector>
+
+#include "core/camera.h"
+#include "core/image.h"
+#include "export/coherence.h"
+#include "export/visibility.h"
+#include "lines/strokes.h"
+
+namespace lodline {
+
+struct OutlineParams {
+  /// An outline sample is drawn by the contour when a visible contour pixel lies within this
+  /// many pixels (Chebyshev); a contour sample is on the outline when an outline sample lies
+  /// this close. Default 2.
+  int contour_radius_px = 2;
+  /// The depth discontinuity is looked for within this many pixels of a sample. Default 2.
+  int discontinuity_radius_px = 2;
+  /// A neighbour at least this fraction of the sample's eye depth farther than the sample
+  /// (or the background) makes a discontinuity. Default 0.05.
+  float depth_jump = 0.05f;
+  /// Kept pieces grow by this many pixels along the silhouette at both ends. Default 2.
+  float extend_px = 2.0f;
+  /// Contour samples off the outline within this many pixels of a completing piece are
+  /// dropped (they would draw a second line beside it). Default 6.
+  int double_radius_px = 6;
+};
+
+/// Scratch of completeOutline(); reuse between calls.
+struct OutlineScratch {
+  StrokeRuns silhouette, rebuilt;
+  LineMask outline, contours, fill;
+  std::vector<uint8_t> flags, grown;
+};
+
+/// Completes the exterior outline of one object in `visible` (its visible runs): appends
+/// the pieces of `silhouette` (the mesh's own silhouette) that draw it where the contour
+/// does not (runs of kind contour) and drops the contour pieces they would double. `camera`
+/// and `depth` are the frame's. Returns the length of the appended pieces, pixels.
+double completeOutline(const StrokeSet& silhouette, const Camera& camera, const DepthImage& depth,
+                       const VisibilityParams& visibility, const OutlineParams& params, StrokeRuns& visible,
+                       OutlineScratch& scratch);
+
+}  // namespace lodline
