@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include "cgal/intersections.h"
 #include "core/timer.h"
 #include "io/image.h"
 
@@ -260,6 +261,10 @@ Result<SceneInput> readInput(CLI::App& cmd, ViewOptions& view, DetailOptions& de
   auto styles = resolveObjectStyles(in.scene, view);
   if (!styles) return styles.error();
   in.styles = std::move(styles.value());
+  const std::filesystem::path cache_dir = detail.cache_dir.empty() ? defaultCacheDir() : std::filesystem::path(detail.cache_dir);
+  in.intersections = [cache_dir](std::span<const TriMesh* const> meshes) {
+    return findIntersectionSegmentsCached(meshes, cache_dir);
+  };
   return in;
 }
 

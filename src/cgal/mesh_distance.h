@@ -7,7 +7,7 @@
 //   point-to-surface distance, reported relative to the bounding-box diagonal of M_o.
 //
 // The distances come from CGAL's AABB_tree (Simple_cartesian<double> kernel). CGAL stays in
-// one translation unit (mesh_distance.cpp) of the optional target lodline_cgal; this header
+// one translation unit (cgal_algorithms.cpp) of the optional target lodline_cgal; this header
 // has no CGAL in it.
 #pragma once
 

@@ -70,9 +70,15 @@ struct ResolvedDetail {
 /// What building a scene cost and did.
 struct SceneBuildInfo {
   double load_ms = 0.0;    ///< reading and checking mesh files
+  double intersect_ms = 0.0;  ///< finding where the surfaces cross
   double pm_ms = 0.0;      ///< progressive meshes from the cache or built
   std::string cache_note;  ///< what happened to the progressive-mesh caches
 };
+
+/// Where the objects' surfaces cross: for `meshes` (world space, full detail), segment
+/// endpoints in pairs per mesh (cgal/intersections.h gives one).
+using IntersectionFinder =
+    std::function<std::vector<std::vector<glm::vec3>>(std::span<const TriMesh* const> meshes)>;
 
 /// A step between loading an object's mesh and building its level of detail (the hybrid
 /// benchmark's static pre-simplification). Errors name the object.
@@ -82,10 +88,17 @@ using PmProgressFor = std::function<PmProgress(const SceneObject& object)>;
 
 /// Builds the drawing of `scene`: object i is loaded (loadObjectMesh), passed through
 /// `prepare` if given, and drawn in styles[i] (styles.size() == scene.objects.size()) with
-/// the level of detail `lod`. Errors name the object's file.
+/// the level of detail `lod`. When `intersections` is given and some object draws the
+/// intersection kind, the crossings of the loaded meshes become the objects' intersection
+/// strokes (SceneDrawing::Object::intersections). Errors name the object's file.
 Result<SceneDrawing> buildSceneDrawing(const Scene& scene, std::span<const ObjectStyle> styles, const LodChoice& lod,
                                        const LineParams& lines, SceneBuildInfo& info, const MeshPrepare& prepare = {},
-                                       const PmProgressFor& progress = {});
+                                       const PmProgressFor& progress = {},
+                                       const IntersectionFinder& intersections = {});
+
+/// Chains intersection segments (endpoint pairs) into strokes of kind kIntersection:
+/// endpoints closer than `weld` (world units) are one point.
+void chainIntersections(std::span<const glm::vec3> segments, float weld, StrokeSet& out);
 
 /// A scene described and resolved, not yet loaded: what the app makes of its input file,
 /// the command line and the scene's settings.
@@ -94,6 +107,7 @@ struct SceneInput {
   std::vector<ObjectStyle> styles;  ///< one per scene object
   ResolvedView view;                ///< the scene's light already in view.frame
   ResolvedDetail detail;
+  IntersectionFinder intersections;  ///< how crossings are found (empty: none)
 };
 
 /// What a command needs to draw its input.

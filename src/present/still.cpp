@@ -81,6 +81,7 @@ Status renderStill(LoadedScene& loaded, const StillRequest& request) {
   }
   const StageTimes& ms = report.ms;
   j["ms"] = {{"load", loaded.build.load_ms},
+             {"intersect", loaded.build.intersect_ms},
              {"pm", loaded.build.pm_ms},
              {"adapt", ms_adapt},
              {"shape", ms.shape},

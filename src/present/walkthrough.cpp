@@ -49,7 +49,8 @@ Result<std::vector<WalkthroughResult>> runWalkthrough(const SceneInput& input, c
       };
     }
     SceneBuildInfo info;
-    auto scene = buildSceneDrawing(input.scene, input.styles, lod, input.view.line_params, info, prepare);
+    auto scene = buildSceneDrawing(input.scene, input.styles, lod, input.view.line_params, info, prepare, {},
+                                   input.intersections);
     if (!scene) return scene.error();
     input_faces = scene->inputFaceCount();
     if (mode != "hybrid") r.model_faces = scene->inputFaceCount();

@@ -63,10 +63,16 @@ TEST(Concurrency, SimultaneousBuildsAndRendersShareOneCache) {
     }
   }
   EXPECT_EQ(renders, 9);
-  // One cache file, complete, and no temporary left.
-  std::vector<std::string> files;
-  for (const auto& e : fs::directory_iterator(cache)) files.push_back(e.path().filename().string());
+  // One progressive-mesh cache file, complete, at most one intersection-line cache (renders
+  // write it), and no temporary left.
+  std::vector<std::string> files, others;
+  for (const auto& e : fs::directory_iterator(cache)) {
+    const std::string name = e.path().filename().string();
+    (e.path().extension() == ".lpm" ? files : others).push_back(name);
+  }
   ASSERT_EQ(files.size(), 1u) << ::testing::PrintToString(files);
+  ASSERT_LE(others.size(), 1u) << ::testing::PrintToString(others);
+  for (const std::string& o : others) EXPECT_EQ(fs::path(o).extension(), ".lix") << o;
   auto pm = loadPm(cache / files[0]);
   EXPECT_TRUE(pm.ok()) << pm.error().message;
 }

@@ -337,7 +337,11 @@ TEST_F(OutputFaults, DamagedCacheAndStaleTemporariesAreHealed) {
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("cache unreadable"), std::string::npos) << text;
   EXPECT_NE(text.find("truncated"), std::string::npos) << text;
-  EXPECT_EQ(filesIn(cache_), files);
+  // The progressive mesh is rebuilt in place, the temporary is gone; the render also cached
+  // its intersection lines (a .lix file beside it).
+  auto after = filesIn(cache_);
+  std::erase_if(after, [](const std::string& f) { return f.size() > 4 && f.substr(f.size() - 4) == ".lix"; });
+  EXPECT_EQ(after, files);
   EXPECT_EQ(fs::file_size(cached), size);
   EXPECT_TRUE(loadPm(cached).ok());
 }
