@@ -87,6 +87,10 @@ void objectsSection(ViewerSession& s) {
       if (i < objects.size()) objects[i].style["style"] = kStyles[style];
       s.touch();
     }
+    if (ImGui::Checkbox("hidden lines", &o.style.hidden.enabled)) {
+      if (i < objects.size()) objects[i].style["hidden-lines"] = formatHiddenLines(o.style.hidden);
+      s.touch();
+    }
     ImGui::PopID();
   }
 }
@@ -117,8 +121,25 @@ void linesSection(ViewerSession& s) {
       editAllStyles(s, {"lines", "line-style", "line-width"}, [&](ObjectStyle& p) { p.lines.kinds[k] = ls; });
     ImGui::PopID();
   }
+  if (s.defaultStyle().lines[LineKind::kIntersection].enabled && !s.hasIntersectionLines())
+    ImGui::TextDisabled("(no intersection lines: found when loading with the kind enabled)");
+  // Hidden lines: every kind's hidden parts in one style.
+  HiddenLineStyle h = s.defaultStyle().hidden;
+  bool hidden_changed = ImGui::Checkbox("hidden lines", &h.enabled);
+  ImGui::SameLine(140.0f);
+  if (ImGui::ColorEdit4("hidden colour", &h.color.r, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel)) {
+    quantize(h.color);
+    hidden_changed = true;
+  }
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(110.0f);
+  hidden_changed |= ImGui::SliderFloat("hidden width", &h.width_px, 0.5f, 8.0f, "%.2f px");
+  hidden_changed |= ImGui::SliderFloat("Dash on (px)", &h.dash_on, 0.5f, 32.0f, "%.1f");
+  hidden_changed |= ImGui::SliderFloat("Dash off (px, 0 = solid)", &h.dash_off, 0.0f, 32.0f, "%.1f");
+  if (hidden_changed) editAllStyles(s, {"hidden-lines"}, [&](ObjectStyle& p) { p.hidden = h; });
   LineParams lp = s.lineParams();
-  bool changed = ImGui::SliderFloat("Suggestive threshold", &lp.suggestive_threshold, 0.0f, 0.2f, "%.4f");
+  bool changed = ImGui::Checkbox("Complete the outline (mesh silhouette where the contour leaves it)", &lp.complete_outline);
+  changed |= ImGui::SliderFloat("Suggestive threshold", &lp.suggestive_threshold, 0.0f, 0.2f, "%.4f");
   changed |= ImGui::SliderFloat("Suggestive fade", &lp.suggestive_fade, 0.0f, 0.2f, "%.4f");
   changed |= ImGui::SliderFloat("Crease angle (deg)", &lp.crease_angle_deg, 1.0f, 179.0f, "%.1f");
   if (changed) s.setLineParams(lp);

@@ -152,6 +152,12 @@ Status ViewerSession::setDetailMap(const std::string& path, float scale) {
   return {};
 }
 
+bool ViewerSession::hasIntersectionLines() const {
+  for (const auto& o : loaded_->drawing.objects())
+    if (o.intersections.strokeCount() > 0) return true;
+  return false;
+}
+
 void ViewerSession::setStyleAll(Style style) {
   loaded_->view.style.style = style;
   for (auto& o : loaded_->drawing.objects()) o.style.style = style;

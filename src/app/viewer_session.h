@@ -65,6 +65,8 @@ class ViewerSession {
   float detailMapScale() const { return loaded_->detail.detail_map_scale; }
   /// Every object's style (the panel's global style control).
   void setStyleAll(Style style);
+  /// True when some object has intersection lines (found when the scene was loaded).
+  bool hasIntersectionLines() const;
   SceneDrawing& scene() { return loaded_->drawing; }
   const SceneDrawing& scene() const { return loaded_->drawing; }
   const LoadedScene& loaded() const { return *loaded_; }

@@ -23,8 +23,9 @@ namespace lodline {
 struct OutlineParams {
   /// An outline sample is drawn by the contour when a visible contour pixel lies within this
   /// many pixels (Chebyshev); a contour sample is on the outline when an outline sample lies
-  /// this close. Default 2.
-  int contour_radius_px = 2;
+  /// this close. Default 1 (the outline is measured to 2 px from line centres: a contour
+  /// 2 px inside is already too far).
+  int contour_radius_px = 1;
   /// The depth discontinuity is looked for within this many pixels of a sample. Default 2.
   int discontinuity_radius_px = 2;
   /// A neighbour at least this fraction of the sample's eye depth farther than the sample
