@@ -179,12 +179,10 @@ Status includeScene(Reader& r, const std::filesystem::path& path, const std::str
 Status readObject(Reader& r, const nlohmann::json& o, const std::string& where, const std::filesystem::path& dir,
                   const glm::mat4& parent, float parent_factor, const nlohmann::json& parent_style) {
   if (!o.is_object()) return bad(where, "expected an object");
-  static const std::set<std::string> known = {"name",  "mesh",       "scene",         "gltf_node", "translate", "matrix",
-                                              "rotate", "quaternion", "scale",         "detail_factor",
-                                              "style", "lines",      "line_style",    "line_width", "chamfer",
-                                              "chamfer_radius"};
+  static const std::set<std::string> known = {"name",   "mesh",       "scene", "gltf_node",    "translate",
+                                              "matrix", "rotate",     "quaternion", "scale", "detail_factor"};
   for (const auto& [k, v] : o.items())
-    if (!known.count(k)) return bad(where, "unknown key " + quoted(k));
+    if (!known.count(k) && !styleKeys().count(k)) return bad(where, "unknown key " + quoted(k));
   const bool has_mesh = o.contains("mesh"), has_scene = o.contains("scene");
   if (has_mesh == has_scene) return bad(where, "needs exactly one of \"mesh\" (a mesh file) or \"scene\" (a scene to include)");
   std::string name;

@@ -189,6 +189,73 @@ TEST_F(SceneCli, BuildAndBenchTakeScenes) {
   EXPECT_NE(out.find("| pm |"), std::string::npos) << out;
 }
 
+// --hidden-lines draws the hidden runs in their own style (dashed grey here) where the
+// visible ones are not: inside the front sphere's disc, the back sphere's contour shows as
+// grey dashes; the SVG has them as a layer of class "hidden"; the stats count them; an
+// object's own hidden_lines key turns them on for it alone.
+TEST_F(SceneCli, HiddenLinesInTheirOwnStyle) {
+  const nlohmann::json front = {{"name", "front"}, {"mesh", "sphere.off"}, {"translate", {0, 0, 2}}};
+  const nlohmann::json back = {{"name", "back"}, {"mesh", "sphere.off"}, {"translate", {0.9, 0.3, -1}}};
+  const nlohmann::json settings = {{"style", "lines"}, {"lines", "contour"}, {"size", "480x360"}, {"msaa", 1}};
+  write("both.json", {{"settings", settings}, {"camera", frontCamera()}, {"objects", {front, back}}});
+  const std::string in = (dir_ / "both.json").string();
+  ASSERT_EQ(run(in + " -o " + (dir_ / "plain.png").string() + " --stats " + (dir_ / "plain.json").string()), 0);
+  ASSERT_EQ(run(in + " --hidden-lines '#ff0000:1.5:dash=4,3' -o " + (dir_ / "h.png").string() + " --svg " +
+                (dir_ / "h.svg").string() + " --stats " + (dir_ / "h.json").string()),
+            0);
+  auto plain = readPng(dir_ / "plain.png"), hidden = readPng(dir_ / "h.png");
+  ASSERT_TRUE(plain && hidden);
+  Camera cam;
+  cam.eye = {0, 0, 9};
+  cam.fov_deg = 35.0f;
+  const glm::vec2 c = projectToPixels(cam, {0, 0, 2}, 480, 360);
+  const float r = glm::length(projectToPixels(cam, {0, 1, 2}, 480, 360) - c);
+  // Inside the front disc: nothing without hidden lines, red dashes with them.
+  EXPECT_EQ(darkInDisc(*plain, c, 0.85f * r), 0);
+  int red = 0, gaps = 0;
+  for (int y = 0; y < 360; ++y)
+    for (int x = 0; x < 480; ++x) {
+      if (glm::length(glm::vec2(x + 0.5f, y + 0.5f) - c) > 0.85f * r) continue;
+      const uint8_t* p = hidden->pixel(x, y);
+      red += p[0] > 200 && p[1] < 120 && p[2] < 120;
+    }
+  EXPECT_GT(red, 60);
+  // Dashed: along the hidden arc, drawn and skipped pieces alternate (some pixels of the
+  // arc stay white). Count white pixels next to red ones on the arc's rows.
+  for (int y = 0; y < 360; ++y)
+    for (int x = 1; x < 480; ++x) {
+      const uint8_t *p = hidden->pixel(x, y), *q = hidden->pixel(x - 1, y);
+      gaps += (p[0] > 200 && p[1] < 120) != (q[0] > 200 && q[1] < 120);
+    }
+  EXPECT_GT(gaps, 2 * 10);
+  // Stats: hidden pixels counted (with or without drawing them), the visible ones unchanged.
+  const auto ps = stats(dir_ / "plain.json"), hs = stats(dir_ / "h.json");
+  EXPECT_GT(hs["hidden_line_pixels"].get<int>(), 100);
+  EXPECT_EQ(hs["hidden_line_pixels"], ps["hidden_line_pixels"]);
+  EXPECT_EQ(hs["line_pixels"], ps["line_pixels"]);
+  // SVG: a layer of class "hidden", dashed, in the hidden style.
+  std::ifstream svg_in(dir_ / "h.svg");
+  const std::string svg((std::istreambuf_iterator<char>(svg_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(svg.find("class=\"hidden\""), std::string::npos);
+  EXPECT_NE(svg.find("stroke-dasharray=\"4.000 3.000\""), std::string::npos);
+  EXPECT_NE(svg.find("#ff0000"), std::string::npos);
+  // Per object: only the back sphere's hidden lines drawn in the scene file.
+  nlohmann::json back_hidden = back;
+  back_hidden["hidden_lines"] = "#ff0000";
+  write("one.json", {{"settings", settings}, {"camera", frontCamera()}, {"objects", {front, back_hidden}}});
+  ASSERT_EQ(run((dir_ / "one.json").string() + " -o " + (dir_ / "one.png").string()), 0);
+  auto one = readPng(dir_ / "one.png");
+  ASSERT_TRUE(one);
+  int red_one = 0;
+  for (size_t i = 0; i < one->rgba.size(); i += 4) red_one += one->rgba[i] > 200 && one->rgba[i + 1] < 120;
+  EXPECT_GT(red_one, 60);
+  // Bad values are usage errors.
+  std::string out;
+  EXPECT_EQ(run(in + " --hidden-lines grey:0 -o " + (dir_ / "x.png").string(), &out), 2) << out;
+  EXPECT_EQ(run(in + " --hidden-lines grey:1:dash=4 -o " + (dir_ / "x.png").string(), &out), 2) << out;
+  EXPECT_EQ(run(in + " --hidden-lines nonsense -o " + (dir_ / "x.png").string(), &out), 2) << out;
+}
+
 // Pixels that differ between two images of one size (SIZE_MAX when the sizes differ).
 size_t differingPixels(const Image& a, const Image& b) {
   if (a.width != b.width || a.height != b.height) return SIZE_MAX;
