@@ -10,7 +10,7 @@ namespace lodline {
 namespace {
 
 bool visibleAt(const PixelProjector& proj, const DepthImage& depth, glm::vec2 px, float eye_depth,
-               const VisibilityParams& params) {
+               const VisibilityParams& params, float slack = 0.0f) {
   const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
   if (x < 0 || y < 0 || x >= depth.width || y >= depth.height) return false;
   float farthest = 0.0f;
@@ -20,7 +20,7 @@ bool visibleAt(const PixelProjector& proj, const DepthImage& depth, glm::vec2 px
       farthest = std::max(farthest, depth.at(xx, yy));
   if (farthest >= 1.0f) return true;  // background next to the sample: nothing in front
   const float surface = proj.eyeDepthOfWindow(farthest);
-  return eye_depth <= surface * (1.0f + params.relative_tolerance);
+  return eye_depth <= surface * (1.0f + params.relative_tolerance) + slack;
 }
 
 }  // namespace
@@ -148,6 +148,7 @@ void splitStrokes(const StrokeSet& strokes, const Camera& camera, const DepthIma
     const uint32_t begin = strokes.offsets[s], end = strokes.offsets[s + 1];
     RunBuilder vis(visible, strokes.kinds[s], static_cast<uint32_t>(s));
     RunBuilder hid(hidden, strokes.kinds[s], static_cast<uint32_t>(s));
+    float slack = 0.0f;  // of the current segment
     auto add_sample = [&](glm::vec3 p, float alpha, bool is_vertex) {
       glm::vec2 px;
       float z = 0.0f;
@@ -158,7 +159,7 @@ void splitStrokes(const StrokeSet& strokes, const Camera& camera, const DepthIma
         hid.close();
         return;
       }
-      if (visibleAt(proj, depth, px, z, params)) {
+      if (visibleAt(proj, depth, px, z, params, slack)) {
         hid.close();
         vis.add(px, p, alpha, is_vertex);
       } else {
@@ -173,6 +174,7 @@ void splitStrokes(const StrokeSet& strokes, const Camera& camera, const DepthIma
       int steps = 1;
       if (proj.project(a, pa, za) && proj.project(b, pb, zb))
         steps = std::clamp(static_cast<int>(std::ceil(glm::length(pb - pa) / spacing)), 1, 4096);
+      slack = params.segment_tolerance * glm::length(b - a);
       for (int k = 0; k < steps; ++k) {
         const float t = static_cast<float>(k) / static_cast<float>(steps);
         add_sample(a + t * (b - a), strokes.alpha[i] + t * (strokes.alpha[i + 1] - strokes.alpha[i]), k == 0);

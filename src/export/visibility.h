@@ -28,6 +28,11 @@ struct VisibilityParams {
   int neighbourhood = 1;
   /// Samples per stroke segment are spaced at most this many pixels apart. Default 1.
   float sample_spacing_px = 1.0f;
+  /// A stroke segment crosses one face, so its model-space length is the mesh's size there.
+  /// A surface nearer than a sample by less than this many segment lengths is the sample's
+  /// own neighbourhood (on a coarse mesh the interpolated contour runs over faces that turn
+  /// away, just behind the rim's front faces), not an occluder. Default 1.
+  float segment_tolerance = 1.0f;
 };
 
 /// Runs of strokes in pixels: the visible (or the hidden) parts of a StrokeSet. A run's

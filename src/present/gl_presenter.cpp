@@ -63,6 +63,7 @@ Status GlPresenter::drawSurfaces(const Camera& camera, const FrameParams& frame,
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
   target_->bind();
   renderer_->drawSurfaces(camera, frame, styles);
+  glFinish();  // the depth is read next; finishing here keeps the two timings apart
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
   return {};
 }

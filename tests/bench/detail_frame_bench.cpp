@@ -3,7 +3,8 @@
 // mesh). Every frame goes through the SceneDrawing and presenter `render` uses. Side by side
 // in one run, 1280x720, slow orbit (1 degree per frame), EGL surfaceless, median ms per
 // stage over the frames:
-//   controlled: adapt + shape update + lines (view, extract, chain) + upload + draw
+//   controlled: adapt + shape update + lines (view, extract, chain) + upload + draw +
+//               visibility (depth readback, visible/hidden runs, outline completion)
 //   static:     drawing the same adapted mesh and lines again (no CPU stages)
 //   full:       full-detail mesh: lines (view, extract, chain) + draw
 //   ./build/tests/bench/detail_frame_bench --benchmark_counters_tabular=true
@@ -123,7 +124,7 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   // Converge at the first camera, as captures do.
   (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width,
                             frame.height, detail, 1.0f / 30.0f, 300);
-  std::vector<double> adapt, shape, lines, upload, draw, static_draw, full_lines, full_draw, faces;
+  std::vector<double> adapt, shape, lines, upload, draw, visibility, static_draw, full_lines, full_draw, faces;
   float az = 0.0f;
   bool first = true;
   for (auto _ : state) {
@@ -137,6 +138,7 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
     (void)(*controlled_presenter)->present(controlled, cam, frame, first);
     upload.push_back((*controlled_presenter)->times().upload);
     draw.push_back((*controlled_presenter)->times().render);
+    visibility.push_back((*controlled_presenter)->times().visibility);
     faces.push_back(st.faces);
     // The same adapted mesh drawn again: the static cost of what controlled detail draws.
     (void)(*controlled_presenter)->present(controlled, cam, frame, false);
@@ -149,7 +151,8 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
     full_draw.push_back(sw.lap());
     first = false;
   }
-  const double controlled_total = bench::median(adapt) + bench::median(shape) + bench::median(lines) + bench::median(upload) + bench::median(draw);
+  const double controlled_total = bench::median(adapt) + bench::median(shape) + bench::median(lines) +
+                                  bench::median(upload) + bench::median(draw) + bench::median(visibility);
   state.counters["model_faces"] = static_cast<double>(model->mesh.faceCount());
   state.counters["active_faces"] = bench::median(faces);
   state.counters["adapt_ms"] = bench::median(adapt);
@@ -157,6 +160,7 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   state.counters["lines_ms"] = bench::median(lines);
   state.counters["upload_ms"] = bench::median(upload);
   state.counters["draw_ms"] = bench::median(draw);
+  state.counters["visibility_ms"] = bench::median(visibility);
   state.counters["controlled_ms"] = controlled_total;
   state.counters["static_ms"] = bench::median(static_draw);
   state.counters["full_lines_ms"] = bench::median(full_lines);
