@@ -21,6 +21,7 @@
 #include "io/generate.h"
 #include "io/image.h"
 #include "io/load_mesh.h"
+#include "io/intersection_cache.h"
 #include "pm/pm_file.h"
 #include "pm/progressive_mesh.h"
 #include "test_util.h"
@@ -147,6 +148,17 @@ void pmSeed(const std::string& name, const TriMesh& m) {
   put("pm_cache", name + "-consistent", std::string(1, '\1') + bytes);
 }
 
+// Intersection-line caches as lodline writes them (the key is the fuzz target's).
+void intersectionSeed(const std::string& name, const std::vector<std::vector<glm::vec3>>& segments) {
+  const fs::path tmp = g_out / ("." + name + ".lix");
+  if (!saveIntersectionCache(tmp, 0x1234567890abcdefull, segments).ok()) return;
+  const std::string bytes = readAll(tmp);
+  fs::remove(tmp);
+  const uint8_t mode = static_cast<uint8_t>(((segments.size() - 1) & 3) << 1);
+  put("intersection_cache", name + "-raw", std::string(1, static_cast<char>(mode)) + bytes);
+  put("intersection_cache", name + "-consistent", std::string(1, static_cast<char>(mode | 1)) + bytes);
+}
+
 void pngSeed(const std::string& name, int w, int h, png_uint_32 format) {
   png_image png;
   std::memset(&png, 0, sizeof(png));
@@ -182,6 +194,9 @@ int main(int argc, char** argv) {
     meshSeeds(name, m);
     pmSeed(name, m);
   }
+  intersectionSeed("empty", {{}});
+  intersectionSeed("circle", {{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {1, 1, 0}, {0, 0, 0}}, {}});
+  intersectionSeed("three", {{{0, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}}, {}});
   // Small CGAL demo meshes: the OFF file as it is, the others converted.
   if (argc == 3 && fs::is_directory(argv[2])) {
     for (const auto& e : fs::directory_iterator(argv[2])) {

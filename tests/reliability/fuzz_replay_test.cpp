@@ -26,7 +26,7 @@ TEST(FuzzReplay, EveryRegressionDirectoryHasATarget) {
   std::set<std::string> names;
   for (const auto& [name, fn] : fuzz::registeredTargets()) names.insert(name);
   for (const char* expected : {"mesh_off", "mesh_obj", "mesh_ply_ascii", "mesh_ply_binary", "mesh_stl_ascii",
-                               "mesh_stl_binary", "pm_cache", "camera_path", "detail_map_png"})
+                               "mesh_stl_binary", "pm_cache", "camera_path", "detail_map_png", "intersection_cache"})
     EXPECT_TRUE(names.count(expected)) << expected;
   for (const auto& dir : std::filesystem::directory_iterator(LODLINE_FUZZ_REGRESSIONS))
     EXPECT_TRUE(names.count(dir.path().filename().string())) << "no fuzz target for " << dir.path();
