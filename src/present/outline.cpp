@@ -154,7 +154,7 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
       }
       size_t j = i;
       while (j < samples.size() && scratch.grown[j]) ++j;
-      if (j - i >= 2) {
+      if (j - i >= 2 && static_cast<float>(j - i) >= params.min_length_px) {
         for (size_t k = i; k < j; ++k) {
           mark(scratch.fill, samples[k].px);
           samples[k].alpha = 1.0f;

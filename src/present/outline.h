@@ -5,9 +5,10 @@
 // back-facing faces) is drawn instead: its visible samples that lie on a depth discontinuity
 // (the object ends there: background or a farther surface next to them) and have no visible
 // contour within a few pixels, extended a little along the silhouette so the pieces meet
-// the contour's ends. Contour pieces running beside such a piece, off the outline, would
-// double it: they are dropped. The interpolated contour stays wherever it draws the outline
-// (and inside the object): it is smoother.
+// the contour's ends; pieces shorter than min_length_px are left out. Contour pieces
+// running beside such a piece, off the outline, would double it: they are dropped. The
+// interpolated contour stays wherever it draws the outline (and inside the object): it is
+// smoother.
 #pragma once
 
 #include <vector>
@@ -33,6 +34,11 @@ struct OutlineParams {
   float depth_jump = 0.05f;
   /// Kept pieces grow by this many pixels along the silhouette at both ends. Default 2.
   float extend_px = 2.0f;
+  /// Completing pieces shorter than this (pixels, after growing) are not drawn: under detail
+  /// control the mesh's silhouette changes from frame to frame, and the short pieces it would
+  /// add flicker more than the few pixels of outline they close. Default 12 (the gaps left
+  /// are under 5 px, below what the outline measure counts as a gap; docs/visibility.md).
+  float min_length_px = 12.0f;
   /// Contour samples off the outline within this many pixels of a completing piece are
   /// dropped (they would draw a second line beside it). Default 6.
   int double_radius_px = 6;

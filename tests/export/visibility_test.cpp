@@ -59,11 +59,17 @@ TEST(Visibility, StrokesSplitIntoVisibleRuns) {
   for (int y = 0; y < 100; ++y)
     for (int x = 0; x < 50; ++x) d.depth[static_cast<size_t>(y) * 100 + x] = wall;
   // A horizontal stroke at depth 8 across the image: hidden on the left, visible on the
-  // right; a second one at depth 3, visible everywhere.
+  // right (sampled every 0.25 units, as an extracted line is: a surface nearer than one
+  // segment's length counts as the line's own neighbourhood); a second one at depth 3,
+  // visible everywhere.
   StrokeSet s;
-  s.points = {{-3, 0, -8}, {0, 0, -8}, {3, 0, -8}, {-1, 0.5f, -3}, {1, 0.5f, -3}};
-  s.alpha = {1, 1, 1, 0.5f, 0.5f};
-  s.offsets = {0, 3, 5};
+  for (int i = 0; i <= 24; ++i) {
+    s.points.push_back({-3.0f + 0.25f * static_cast<float>(i), 0, -8});
+    s.alpha.push_back(1);
+  }
+  s.points.insert(s.points.end(), {{-1, 0.5f, -3}, {1, 0.5f, -3}});
+  s.alpha.insert(s.alpha.end(), {0.5f, 0.5f});
+  s.offsets = {0, 25, 27};
   s.kinds = {LineKind::kContour, LineKind::kSuggestive};
   s.closed = {0, 0};
   StrokeRuns out;
@@ -79,6 +85,34 @@ TEST(Visibility, StrokesSplitIntoVisibleRuns) {
   EXPECT_NEAR(out.opacity[1], 0.5f, 1e-5f);
   // Projected length of the near stroke: 2 units at depth 3 with f = 50/tan(30°) px.
   EXPECT_NEAR(out.length_px[1], 2.0f / 3.0f * 50.0f / std::tan(glm::radians(30.0f)), 1.5f);
+}
+
+TEST(Visibility, ASurfaceWithinOneSegmentIsTheLinesOwnNeighbourhood) {
+  const Camera cam = testCamera();
+  const DepthImage d = flat(100, 100, windowDepth(cam, 5.0f));
+  // Strokes 0.2 units behind a wall at depth 5: with segments 0.5 long the wall is within
+  // one segment (the line's own faces turning away); with segments 0.1 long it occludes.
+  auto stroke = [](float step) {
+    StrokeSet s;
+    for (float x = -1.0f; x <= 1.0f + 1e-4f; x += step) {
+      s.points.push_back({x, 0, -5.2f});
+      s.alpha.push_back(1);
+    }
+    s.offsets = {0, static_cast<uint32_t>(s.points.size())};
+    s.kinds = {LineKind::kContour};
+    s.closed = {0};
+    return s;
+  };
+  StrokeRuns coarse, fine;
+  visibleStrokes(stroke(0.5f), cam, d, {}, coarse);
+  visibleStrokes(stroke(0.1f), cam, d, {}, fine);
+  EXPECT_EQ(coarse.strokeCount(), 1u);
+  EXPECT_EQ(fine.strokeCount(), 0u);
+  VisibilityParams strict;
+  strict.segment_tolerance = 0.0f;
+  StrokeRuns none;
+  visibleStrokes(stroke(0.5f), cam, d, strict, none);
+  EXPECT_EQ(none.strokeCount(), 0u);
 }
 
 TEST(Visibility, CountsMidpointsPerType) {
