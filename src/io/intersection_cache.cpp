@@ -41,7 +41,7 @@ Status saveIntersectionCache(const std::filesystem::path& path, uint64_t key, co
   put(bytes, key);
   for (const auto& s : segments) {
     put(bytes, static_cast<uint64_t>(s.size()));
-    bytes.append(reinterpret_cast<const char*>(s.data()), s.size() * sizeof(glm::vec3));
+    if (!s.empty()) bytes.append(reinterpret_cast<const char*>(s.data()), s.size() * sizeof(glm::vec3));
   }
   put(bytes, hashBytes(bytes.data(), bytes.size()));
   return writeFileAtomically(path, [&](std::ostream& os) -> Status {
@@ -81,7 +81,7 @@ Result<IntersectionSegments> loadIntersectionCache(const std::filesystem::path& 
     if (n > kMaxPoints || n % 2 != 0 || n * 12 > end - at)
       return Error::runtime(name + ": impossible point count " + std::to_string(n));
     out[m].resize(static_cast<size_t>(n));
-    std::memcpy(out[m].data(), bytes.data() + at, static_cast<size_t>(n) * 12);
+    if (n > 0) std::memcpy(out[m].data(), bytes.data() + at, static_cast<size_t>(n) * 12);
     at += static_cast<size_t>(n) * 12;
   }
   if (at != end) return Error::runtime(name + ": trailing bytes");
