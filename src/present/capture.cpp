@@ -101,13 +101,14 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
     if (auto steps = scene.converge(cam0, frame.width, frame.height, detail.params, dt, detail.max_adapt_frames); !steps)
       return steps.error();
   }
-  // Frames before the range only advance the simulation; the one just before it also gives
-  // the previous frame of the coherence measure, so frame k's metrics are the same whichever
-  // range renders it.
+  // Frames before the range advance the simulation and are drawn (the outline's hysteresis
+  // builds on the frames drawn before); the one just before it also gives the previous frame
+  // of the coherence measure, so frame k and its metrics are the same whichever range
+  // renders it.
   for (int64_t k = 0; k < rq.range.first; ++k) {
     const Camera cam = simulate(k);
+    if (Status s = p.present(scene, cam, frame, k == 0); !s) return s.error();
     if (want_metrics && k == rq.range.first - 1) {
-      if (Status s = p.present(scene, cam, frame, true); !s) return s.error();
       (void)reportFrame(scene, p, &mask);
       if (Status s = p.readSurface(surface); !s) return s.error();
       (void)meter.measure(mask, surface, cam);
@@ -121,7 +122,7 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
   for (int64_t k = rq.range.first; k < rq.range.end && !(rq.interrupted && rq.interrupted->load()); ++k) {
     Stopwatch frame_clock;
     const Camera cam = simulate(k);
-    if (failure = p.present(scene, cam, frame, k == rq.range.first); !failure) break;
+    if (failure = p.present(scene, cam, frame, k == 0); !failure) break;
     const Image image = p.readImage();
     if (rq.png_sequence) {
       char name[32];

@@ -106,9 +106,16 @@ void copyRun(const StrokeRuns& from, size_t r, StrokeRuns& to) {
 
 double completeOutline(const StrokeSet& silhouette, const Camera& camera, const DepthImage& depth,
                        const VisibilityParams& visibility, const OutlineParams& params, StrokeRuns& visible,
-                       OutlineScratch& scratch) {
+                       OutlineScratch& scratch, OutlineHistory* history) {
   if (visible.offsets.empty()) visible.offsets.push_back(0);
-  if (silhouette.strokeCount() == 0) return 0.0;
+  if (silhouette.strokeCount() == 0) {
+    if (history) {
+      history->fill.clear();
+      history->view_proj = glm::mat4(0.0f);
+      ++history->frames;
+    }
+    return 0.0;
+  }
   const int W = depth.width, H = depth.height;
   const PixelProjector proj(camera, W, H);
   StrokeRuns& sil = scratch.silhouette;
@@ -130,7 +137,18 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     for (const Sample& s : samples) mark(scratch.contours, s.px);
   }
   // 3. Outline samples with no contour near: the completing pieces, grown along the
-  //    silhouette so they meet the contour's ends.
+  //    silhouette so they meet the contour's ends. A piece continuing one of the previous
+  //    frame's (projected by this camera) is kept whatever its length.
+  clearMask(scratch.previous, W, H);
+  const glm::mat4 view_proj = camera.projection(static_cast<float>(W) / static_cast<float>(H)) * camera.view();
+  // A sequence whose camera has not moved (a viewer at rest) is drawn like a still.
+  const bool in_sequence = history && history->frames > 0 && view_proj != history->view_proj;
+  if (in_sequence)
+    for (const glm::vec3& p : history->fill) {
+      glm::vec2 px;
+      float z;
+      if (proj.project(p, px, z)) mark(scratch.previous, px);
+    }
   StrokeRuns fill;
   fill.offsets.push_back(0);
   clearMask(scratch.fill, W, H);
@@ -139,7 +157,8 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     sampleRun(sil, r, proj, samples);
     scratch.flags.assign(samples.size(), 0);
     for (size_t i = 0; i < samples.size(); ++i)
-      scratch.flags[i] = near(scratch.outline, samples[i].px, 0) && !near(scratch.contours, samples[i].px, params.contour_radius_px);
+      scratch.flags[i] = near(scratch.outline, samples[i].px, 0) &&
+                         !near(scratch.contours, samples[i].px, params.contour_radius_px);
     scratch.grown.assign(samples.size(), 0);
     for (size_t i = 0; i < samples.size(); ++i) {
       if (!scratch.flags[i]) continue;
@@ -153,8 +172,10 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
         continue;
       }
       size_t j = i;
-      while (j < samples.size() && scratch.grown[j]) ++j;
-      if (j - i >= 2 && static_cast<float>(j - i) >= params.min_length_px) {
+      bool continues = false;
+      for (; j < samples.size() && scratch.grown[j]; ++j)
+        continues = continues || (in_sequence && near(scratch.previous, samples[j].px, params.follow_radius_px));
+      if (j - i >= 2 && (!in_sequence || continues || static_cast<float>(j - i) >= params.min_length_px)) {
         for (size_t k = i; k < j; ++k) {
           mark(scratch.fill, samples[k].px);
           samples[k].alpha = 1.0f;
@@ -163,6 +184,11 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
       }
       i = j;
     }
+  }
+  if (history) {
+    history->fill = fill.positions;
+    history->view_proj = view_proj;
+    ++history->frames;
   }
   if (fill.strokeCount() == 0) return 0.0;
   // 4. Contour pieces beside a completing piece but off the outline would draw it twice.

@@ -5,13 +5,17 @@
 // back-facing faces) is drawn instead: its visible samples that lie on a depth discontinuity
 // (the object ends there: background or a farther surface next to them) and have no visible
 // contour within a few pixels, extended a little along the silhouette so the pieces meet
-// the contour's ends; pieces shorter than min_length_px are left out. Contour pieces
+// the contour's ends (while the camera moves in a sequence of frames, new pieces shorter
+// than min_length_px wait until they are long enough, and pieces go on while they
+// continue). Contour pieces
 // running beside such a piece, off the outline, would double it: they are dropped. The
 // interpolated contour stays wherever it draws the outline (and inside the object): it is
 // smoother.
 #pragma once
 
 #include <vector>
+
+#include <glm/mat4x4.hpp>
 
 #include "core/camera.h"
 #include "core/image.h"
@@ -34,29 +38,46 @@ struct OutlineParams {
   float depth_jump = 0.05f;
   /// Kept pieces grow by this many pixels along the silhouette at both ends. Default 2.
   float extend_px = 2.0f;
-  /// Completing pieces shorter than this (pixels, after growing) are not drawn: under detail
-  /// control the mesh's silhouette changes from frame to frame, and the short pieces it would
-  /// add flicker more than the few pixels of outline they close. Default 12 (the gaps left
-  /// are under 5 px, below what the outline measure counts as a gap; docs/visibility.md).
-  float min_length_px = 12.0f;
+  /// In a sequence of frames (with an OutlineHistory, after its first frame), a new completing
+  /// piece shorter than this (pixels, after growing) is not drawn: under detail control the
+  /// mesh's silhouette changes from frame to frame, and the short pieces it would add
+  /// flicker more than the few pixels of outline they close. Pieces continuing the previous
+  /// frame's are kept whatever their length; stills, a sequence's first frame and frames
+  /// whose camera has not moved (a viewer at rest) draw every piece. Default 32 (measured on the held-out captures: docs/visibility.md).
+  float min_length_px = 32.0f;
   /// Contour samples off the outline within this many pixels of a completing piece are
   /// dropped (they would draw a second line beside it). Default 6.
   int double_radius_px = 6;
+  /// Hysteresis between frames (with an OutlineHistory): a piece with a sample within this
+  /// many pixels of the previous frame's pieces (projected by this frame's camera, so the
+  /// comparison follows the motion) continues one and is kept whatever its length, so a
+  /// piece near min_length_px does not blink. Default 2.
+  int follow_radius_px = 2;
+};
+
+/// What completeOutline() remembers of the previous frame of a sequence (one per object):
+/// the world positions of its completing pieces' samples and the camera they were seen by.
+struct OutlineHistory {
+  std::vector<glm::vec3> fill;
+  glm::mat4 view_proj{0.0f};  ///< projection · view of the previous frame
+  uint64_t frames = 0;  ///< frames completed so far in the sequence
 };
 
 /// Scratch of completeOutline(); reuse between calls.
 struct OutlineScratch {
   StrokeRuns silhouette, rebuilt;
-  LineMask outline, contours, fill;
+  LineMask outline, contours, fill, previous;
   std::vector<uint8_t> flags, grown;
 };
 
 /// Completes the exterior outline of one object in `visible` (its visible runs): appends
 /// the pieces of `silhouette` (the mesh's own silhouette) that draw it where the contour
 /// does not (runs of kind contour) and drops the contour pieces they would double. `camera`
-/// and `depth` are the frame's. Returns the length of the appended pieces, pixels.
+/// and `depth` are the frame's. With `history` (frames of a sequence), pieces of the previous
+/// frame continue with hysteresis and `history` becomes this frame's; without it (a still),
+/// every piece is decided afresh. Returns the length of the appended pieces, pixels.
 double completeOutline(const StrokeSet& silhouette, const Camera& camera, const DepthImage& depth,
                        const VisibilityParams& visibility, const OutlineParams& params, StrokeRuns& visible,
-                       OutlineScratch& scratch);
+                       OutlineScratch& scratch, OutlineHistory* history = nullptr);
 
 }  // namespace lodline

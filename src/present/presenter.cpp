@@ -46,6 +46,7 @@ void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
   visible_.resize(scene.size());
   hidden_.resize(scene.size());
   outline_fill_.assign(scene.size(), 0.0);
+  if (outline_history_.size() != scene.size()) outline_history_.assign(scene.size(), {});
   for (size_t i = 0; i < scene.size(); ++i) {
     const SceneDrawing::Object& obj = scene[i];
     const LineDrawing& d = obj.drawing->drawing();
@@ -59,7 +60,9 @@ void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
     // The exterior outline, completed where the interpolated contour leaves it.
     if (d.silhouetteStrokes().strokeCount() > 0 && obj.style.lines[LineKind::kContour].enabled)
       outline_fill_[i] = completeOutline(d.silhouetteStrokes(), camera_, depth_, visibility, OutlineParams{},
-                                         visible_[i], outline_scratch_);
+                                         visible_[i], outline_scratch_, &outline_history_[i]);
+    else
+      outline_history_[i].fill.clear();
   }
 }
 

@@ -61,8 +61,15 @@ class ScenePresenter {
   /// its own style on frame's page; reads the depth back; splits each object's strokes
   /// (and intersection lines) into visible and hidden runs, completes its outline; draws
   /// the visible runs in their kind's style and, where enabled, the hidden runs in the
-  /// hidden style. Errors: shader compilation for new objects, a style check() refuses.
+  /// hidden style. Successive calls are frames of one sequence: the outline's completing
+  /// pieces continue from the previous call's (hysteresis, docs/visibility.md), so a frame
+  /// drawn in a sequence can differ by a few short pieces from the same frame drawn alone
+  /// (resetSequence() starts afresh). Errors: shader compilation for new objects, a style
+  /// check() refuses.
   Status present(const SceneDrawing& scene, const Camera& camera, const FrameParams& frame, bool all_meshes);
+
+  /// The next present() starts a new sequence (no hysteresis from earlier frames).
+  void resetSequence() { outline_history_.clear(); }
 
   /// The colour image of the last present(), row 0 = top.
   Image readImage();
@@ -118,6 +125,7 @@ class ScenePresenter {
   StrokeRuns visible_all_, hidden_all_, scratch_, scratch2_;
   bool visible_all_valid_ = false, hidden_all_valid_ = false;
   OutlineScratch outline_scratch_;
+  std::vector<OutlineHistory> outline_history_;
   ScreenLines screen_lines_;
 };
 

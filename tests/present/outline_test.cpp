@@ -1,0 +1,103 @@
+// Outline completion on a known answer: a square facing an orthographic camera, with no
+// contour drawn, and a piece of the mesh's silhouette along its top edge. A still draws
+// every completing piece; in a sequence whose camera moves a new piece shorter than
+// min_length_px waits, one that continues the previous frame's goes on, and a long new one
+// is drawn at once; when the camera stops, every piece is drawn again.
+#include <gtest/gtest.h>
+
+#include "present/outline.h"
+
+namespace lodline {
+namespace {
+
+constexpr int kSize = 200;  // 200×200 px; the square [-1, 1]² covers pixels 50..150
+
+// `shift` moves the camera sideways (model units; 0.001 is 0.05 px): frames of a sequence
+// whose camera moves.
+Camera squareCamera(float shift = 0.0f) {
+  Camera c;
+  c.eye = {shift, 0.0f, 3.0f};
+  c.target = {shift, 0.0f, 0.0f};
+  c.orthographic = true;
+  c.ortho_height = 4.0f;  // 50 px per unit
+  c.near_plane = 1.0f;
+  c.far_plane = 5.0f;
+  return c;
+}
+
+// Window depth of the square (plane z = 0, eye depth 3) where it covers, 1 elsewhere.
+DepthImage squareDepth() {
+  const Camera c = squareCamera();
+  DepthImage d;
+  d.width = d.height = kSize;
+  const float window = (3.0f - c.near_plane) / (c.far_plane - c.near_plane);
+  d.depth.assign(static_cast<size_t>(kSize) * kSize, 1.0f);
+  for (int y = 50; y < 150; ++y)
+    for (int x = 50; x < 150; ++x) d.depth[static_cast<size_t>(y) * kSize + x] = window;
+  return d;
+}
+
+// One silhouette stroke along the square's top edge from x0 to x1 (model units).
+StrokeSet topEdge(float x0, float x1) {
+  StrokeSet s;
+  const int n = 8;
+  s.offsets = {0};
+  for (int i = 0; i <= n; ++i) {
+    s.points.push_back({x0 + (x1 - x0) * static_cast<float>(i) / n, 0.99f, 0.0f});
+    s.alpha.push_back(1.0f);
+  }
+  s.offsets.push_back(static_cast<uint32_t>(s.points.size()));
+  s.kinds.push_back(LineKind::kContour);
+  s.closed.push_back(0);
+  return s;
+}
+
+// One frame; with a history, each call moves the camera a little (a sequence in motion)
+// unless `at_rest` (the camera of the previous call).
+double complete(const StrokeSet& silhouette, OutlineHistory* history, bool at_rest = false) {
+  StrokeRuns visible;
+  OutlineScratch scratch;
+  uint64_t frame = history ? history->frames : 0;
+  if (at_rest && frame > 0) --frame;
+  const float shift = 0.001f * static_cast<float>(frame);
+  return completeOutline(silhouette, squareCamera(shift), squareDepth(), VisibilityParams{}, OutlineParams{},
+                         visible, scratch, history);
+}
+
+const StrokeSet kShort = topEdge(-0.2f, 0.2f);  // 20 px, under the default 32
+const StrokeSet kLong = topEdge(-0.8f, 0.8f);   // 80 px
+
+TEST(Outline, AStillDrawsEveryCompletingPiece) {
+  EXPECT_NEAR(complete(kShort, nullptr), 20.0, 3.0);
+  OutlineHistory first;  // the first frame of a sequence is drawn like a still
+  EXPECT_NEAR(complete(kShort, &first), 20.0, 3.0);
+  EXPECT_EQ(first.frames, 1u);
+  EXPECT_FALSE(first.fill.empty());
+}
+
+TEST(Outline, InASequenceANewShortPieceWaitsAndALongOneIsDrawn) {
+  OutlineHistory h;
+  EXPECT_EQ(complete(StrokeSet{}, &h), 0.0);  // frame 0: nothing to complete
+  EXPECT_EQ(complete(kShort, &h), 0.0);       // frame 1: a new 20-px piece waits
+  EXPECT_TRUE(h.fill.empty());
+  EXPECT_NEAR(complete(kLong, &h), 80.0, 3.0);  // frame 2: a new 80-px piece is drawn
+}
+
+TEST(Outline, WhenTheCameraStopsEveryPieceIsDrawn) {
+  OutlineHistory h;
+  EXPECT_EQ(complete(StrokeSet{}, &h), 0.0);
+  EXPECT_EQ(complete(kShort, &h), 0.0);  // moving: the new short piece waits
+  EXPECT_NEAR(complete(kShort, &h, true), 20.0, 3.0);  // at rest: drawn like a still
+  EXPECT_NEAR(complete(kShort, &h), 20.0, 3.0);        // moving again: it continues
+}
+
+TEST(Outline, APieceThatContinuesThePreviousFramesGoesOnWhateverItsLength) {
+  OutlineHistory h;
+  EXPECT_NEAR(complete(kLong, &h), 80.0, 3.0);
+  EXPECT_NEAR(complete(kShort, &h), 20.0, 3.0);  // shrunk to 20 px: it continues the 80-px one
+  EXPECT_NEAR(complete(kShort, &h), 20.0, 3.0);
+  EXPECT_NEAR(complete(topEdge(0.5f, 0.9f), &h), 0.0, 0.0);  // elsewhere on the edge: new, short
+}
+
+}  // namespace
+}  // namespace lodline
