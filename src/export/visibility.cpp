@@ -174,7 +174,9 @@ void splitStrokes(const StrokeSet& strokes, const Camera& camera, const DepthIma
       int steps = 1;
       if (proj.project(a, pa, za) && proj.project(b, pb, zb))
         steps = std::clamp(static_cast<int>(std::ceil(glm::length(pb - pa) / spacing)), 1, 4096);
-      slack = params.segment_tolerance * glm::length(b - a);
+      // Only a contour lies where its own surface turns away; the other kinds lie on faces
+      // that face the eye, and the slack would let them show through near surfaces.
+      slack = strokes.kinds[s] == LineKind::kContour ? params.segment_tolerance * glm::length(b - a) : 0.0f;
       for (int k = 0; k < steps; ++k) {
         const float t = static_cast<float>(k) / static_cast<float>(steps);
         add_sample(a + t * (b - a), strokes.alpha[i] + t * (strokes.alpha[i + 1] - strokes.alpha[i]), k == 0);

@@ -29,10 +29,13 @@ struct VisibilityParams {
   /// Samples per stroke segment are spaced at most this many pixels apart. Default 1.
   float sample_spacing_px = 1.0f;
   /// A stroke segment crosses one face, so its model-space length is the mesh's size there.
-  /// A surface nearer than a sample by less than this many segment lengths is the sample's
-  /// own neighbourhood (on a coarse mesh the interpolated contour runs over faces that turn
-  /// away, just behind the rim's front faces), not an occluder. Default 1.
-  float segment_tolerance = 1.0f;
+  /// For contours, a surface nearer than a sample by less than this many segment lengths is
+  /// the sample's own neighbourhood (on a coarse mesh the interpolated contour runs over
+  /// faces that turn away, just behind the rim's front faces), not an occluder. Other kinds
+  /// get none. Default 0.5: the cow's contour alone covers 0.84 of its outline close up
+  /// (0.78 with 0, 0.85 with 1), and the held-out captures under detail control churn as
+  /// with the depth-tested drawing (1 let hidden lines show through on small, coarse views).
+  float segment_tolerance = 0.5f;
 };
 
 /// Runs of strokes in pixels: the visible (or the hidden) parts of a StrokeSet. A run's

@@ -104,7 +104,11 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
   // Frames before the range advance the simulation and are drawn (the outline's hysteresis
   // builds on the frames drawn before); the one just before it also gives the previous frame
   // of the coherence measure, so frame k and its metrics are the same whichever range
-  // renders it.
+  // renders it. When the camera moves from frame 0 to 1, frame 0 is already a frame in motion.
+  {
+    const Camera c0 = rq.path.at(t0, scene.bounds()), c1 = rq.path.at(t0 + 1.0 / rq.fps, scene.bounds());
+    p.startSequence(c0.eye != c1.eye || c0.target != c1.target || c0.up != c1.up || c0.fov_deg != c1.fov_deg);
+  }
   for (int64_t k = 0; k < rq.range.first; ++k) {
     const Camera cam = simulate(k);
     if (Status s = p.present(scene, cam, frame, k == 0); !s) return s.error();

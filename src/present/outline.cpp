@@ -141,8 +141,10 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
   //    frame's (projected by this camera) is kept whatever its length.
   clearMask(scratch.previous, W, H);
   const glm::mat4 view_proj = camera.projection(static_cast<float>(W) / static_cast<float>(H)) * camera.view();
-  // A sequence whose camera has not moved (a viewer at rest) is drawn like a still.
-  const bool in_sequence = history && history->frames > 0 && view_proj != history->view_proj;
+  // A sequence whose camera has not moved (a viewer at rest) is drawn like a still, and so is
+  // its first frame unless the sequence starts in motion (a capture).
+  const bool in_sequence =
+      history && (history->frames > 0 || history->starts_in_motion) && view_proj != history->view_proj;
   if (in_sequence)
     for (const glm::vec3& p : history->fill) {
       glm::vec2 px;

@@ -42,8 +42,9 @@ struct OutlineParams {
   /// piece shorter than this (pixels, after growing) is not drawn: under detail control the
   /// mesh's silhouette changes from frame to frame, and the short pieces it would add
   /// flicker more than the few pixels of outline they close. Pieces continuing the previous
-  /// frame's are kept whatever their length; stills, a sequence's first frame and frames
-  /// whose camera has not moved (a viewer at rest) draw every piece. Default 32 (measured on the held-out captures: docs/visibility.md).
+  /// frame's are kept whatever their length; stills, the first frame of a sequence that does
+  /// not start in motion and frames whose camera has not moved (a viewer at rest) draw every
+  /// piece. Default 32 (measured on the held-out captures: docs/visibility.md).
   float min_length_px = 32.0f;
   /// Contour samples off the outline within this many pixels of a completing piece are
   /// dropped (they would draw a second line beside it). Default 6.
@@ -60,7 +61,11 @@ struct OutlineParams {
 struct OutlineHistory {
   std::vector<glm::vec3> fill;
   glm::mat4 view_proj{0.0f};  ///< projection · view of the previous frame
-  uint64_t frames = 0;  ///< frames completed so far in the sequence
+  uint64_t frames = 0;        ///< frames completed so far in the sequence
+  /// The sequence is in motion from its first frame (a capture): that frame too leaves out
+  /// short new pieces, which would otherwise vanish on the next. Otherwise (a viewer) the
+  /// first frame is drawn like a still.
+  bool starts_in_motion = false;
 };
 
 /// Scratch of completeOutline(); reuse between calls.

@@ -46,7 +46,11 @@ void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
   visible_.resize(scene.size());
   hidden_.resize(scene.size());
   outline_fill_.assign(scene.size(), 0.0);
-  if (outline_history_.size() != scene.size()) outline_history_.assign(scene.size(), {});
+  if (outline_history_.size() != scene.size()) {
+    OutlineHistory fresh;
+    fresh.starts_in_motion = sequence_in_motion_;
+    outline_history_.assign(scene.size(), fresh);
+  }
   for (size_t i = 0; i < scene.size(); ++i) {
     const SceneDrawing::Object& obj = scene[i];
     const LineDrawing& d = obj.drawing->drawing();

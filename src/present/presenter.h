@@ -64,12 +64,17 @@ class ScenePresenter {
   /// hidden style. Successive calls are frames of one sequence: the outline's completing
   /// pieces continue from the previous call's (hysteresis, docs/visibility.md), so a frame
   /// drawn in a sequence can differ by a few short pieces from the same frame drawn alone
-  /// (resetSequence() starts afresh). Errors: shader compilation for new objects, a style
+  /// (startSequence() starts afresh). Errors: shader compilation for new objects, a style
   /// check() refuses.
   Status present(const SceneDrawing& scene, const Camera& camera, const FrameParams& frame, bool all_meshes);
 
-  /// The next present() starts a new sequence (no hysteresis from earlier frames).
-  void resetSequence() { outline_history_.clear(); }
+  /// The next present() starts a new sequence (no hysteresis from earlier frames). With
+  /// `in_motion` (a capture) its first frame is already drawn as a frame in motion, so the
+  /// short outline pieces a still would add do not vanish on the second (docs/visibility.md).
+  void startSequence(bool in_motion) {
+    outline_history_.clear();
+    sequence_in_motion_ = in_motion;
+  }
 
   /// The colour image of the last present(), row 0 = top.
   Image readImage();
@@ -126,6 +131,7 @@ class ScenePresenter {
   bool visible_all_valid_ = false, hidden_all_valid_ = false;
   OutlineScratch outline_scratch_;
   std::vector<OutlineHistory> outline_history_;
+  bool sequence_in_motion_ = false;
   ScreenLines screen_lines_;
 };
 
