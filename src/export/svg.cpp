@@ -7,6 +7,7 @@
 #include <ostream>
 
 #include "io/atomic_file.h"
+#include "lines/stroke_curve.h"
 
 namespace lodline {
 namespace {
@@ -27,11 +28,19 @@ void writeNumber(std::ostream& os, float v, int decimals) {
   os << buf;
 }
 
-// Polylines of the strokes of `strokes` that `select` accepts, in one group of class
-// `cls` and style `ls` (dashed by `dash` when given); nothing when none is accepted.
+void writePoint(std::ostream& os, glm::vec2 p, int decimals) {
+  writeNumber(os, p.x, decimals);
+  os << ',';
+  writeNumber(os, p.y, decimals);
+}
+
+// The strokes of `strokes` that `select` accepts, in one group of class `cls` and style
+// `ls` (dashed by `dash` when given): smooth paths of cubic Béziers (lines/stroke_curve.h),
+// or polylines with curves off; nothing when none is accepted.
 template <class Select>
 void writeGroup(std::ostream& os, const SvgStrokes& strokes, const char* cls, const SvgLineStyle& ls,
-                const std::array<float, 2>* dash, int decimals, Select&& select) {
+                const std::array<float, 2>* dash, int decimals, const SvgStyle& style, StrokeCurveScratch& scratch,
+                std::vector<glm::vec2>& chain, Select&& select) {
   const size_t ns = strokes.kinds.size();
   bool open = false;
   for (size_t s = 0; s < ns; ++s) {
@@ -52,23 +61,50 @@ void writeGroup(std::ostream& os, const SvgStrokes& strokes, const char* cls, co
       os << ">\n";
       open = true;
     }
-    os << "<polyline";
     float op = ls.opacity * (strokes.opacity.empty() ? 1.0f : strokes.opacity[s]);
     if (!std::isfinite(op)) op = 1.0f;
     op = std::clamp(op, 0.0f, 1.0f);
+    const auto points = strokes.points.subspan(begin, end - begin);
+    chain.clear();
+    if (style.curves) fitStrokeCurve(points, style.curve, chain, scratch);
+    os << (style.curves ? "<path" : "<polyline");
     if (op < 1.0f) {
       os << " stroke-opacity=\"";
       writeNumber(os, op, 3);
       os << '"';
+    }
+    if (style.curves) {
+      os << " d=\"";
+      if (chain.empty()) {  // a stroke of no length: a dot, as the polyline would draw it
+        glm::vec2 p = points.front();
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) p = glm::vec2(0.0f);
+        chain.assign(1, p);
+      }
+      os << 'M';
+      writePoint(os, chain.front(), decimals);
+      for (size_t i = 1; i + 2 < chain.size(); i += 3) {
+        if (isStraightSegment(&chain[i - 1])) {  // one coordinate pair instead of three
+          os << 'L';
+          writePoint(os, chain[i + 2], decimals);
+          continue;
+        }
+        os << 'C';
+        writePoint(os, chain[i], decimals);
+        os << ' ';
+        writePoint(os, chain[i + 1], decimals);
+        os << ' ';
+        writePoint(os, chain[i + 2], decimals);
+      }
+      if (chain.size() == 1) os << 'z';
+      os << "\"/>\n";
+      continue;
     }
     os << " points=\"";
     for (uint32_t i = begin; i < end; ++i) {
       glm::vec2 p = strokes.points[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) p = glm::vec2(0.0f);
       if (i > begin) os << ' ';
-      writeNumber(os, p.x, decimals);
-      os << ',';
-      writeNumber(os, p.y, decimals);
+      writePoint(os, p, decimals);
     }
     os << "\"/>\n";
   }
@@ -78,11 +114,14 @@ void writeGroup(std::ostream& os, const SvgStrokes& strokes, const char* cls, co
 // One layer: its hidden lines (when enabled) under its visible lines, grouped by kind.
 void writeStrokes(std::ostream& os, const SvgLayer& layer, int decimals) {
   const SvgStyle& style = layer.style;
+  StrokeCurveScratch scratch;
+  std::vector<glm::vec2> chain;
   if (style.hidden_enabled)
-    writeGroup(os, layer.hidden, "hidden", style.hidden, &style.hidden_dash, decimals, [](size_t) { return true; });
+    writeGroup(os, layer.hidden, "hidden", style.hidden, &style.hidden_dash, decimals, style, scratch, chain,
+               [](size_t) { return true; });
   for (int kind = 0; kind < kLineKindCount; ++kind)
     writeGroup(os, layer.strokes, lineKindName(static_cast<LineKind>(kind)), style.lines[kind], nullptr, decimals,
-               [&](size_t s) { return static_cast<int>(layer.strokes.kinds[s]) == kind; });
+               style, scratch, chain, [&](size_t s) { return static_cast<int>(layer.strokes.kinds[s]) == kind; });
 }
 
 // Group ids: letters, digits, '-', '_' and '.', starting with a letter.

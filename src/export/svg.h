@@ -14,6 +14,7 @@
 
 #include "core/result.h"
 #include "lines/lines.h"
+#include "lines/stroke_curve.h"
 
 namespace lodline {
 
@@ -40,6 +41,11 @@ struct SvgStyle {
   bool background = true;             ///< fill the page first. Default true
   std::string background_colour = "#ffffff";  ///< Default white
   int decimals = 2;                   ///< digits after the point in coordinates. Default 2
+  /// Strokes as smooth paths of cubic Béziers (lightly smoothed, corners kept, within
+  /// `curve.tolerance_px` of the smoothed curve: lines/stroke_curve.h), not polylines.
+  /// Default true.
+  bool curves = true;
+  StrokeCurveParams curve;
 };
 
 /// 2D strokes in pixel coordinates (origin top-left, y down).
@@ -51,8 +57,9 @@ struct SvgStrokes {
   std::span<const float> opacity;    ///< optional, 1 per stroke, in [0, 1]
 };
 
-/// Writes a `width`×`height` px SVG (viewBox "0 0 width height") with one <polyline> per
-/// stroke of ≥ 2 points, grouped by type. Errors (bad size, inconsistent arrays, unwritable
+/// Writes a `width`×`height` px SVG (viewBox "0 0 width height") with one <path> of cubic
+/// Béziers (or, with style.curves off, one <polyline>) per stroke of ≥ 2 points, grouped by
+/// type. Errors (bad size, inconsistent arrays, unwritable
 /// path) name the file; on error no file is left at `path`.
 Status writeSvg(const std::filesystem::path& path, int width, int height,
                 const SvgStrokes& strokes, const SvgStyle& style = {});

@@ -46,7 +46,7 @@ bool tagsBalanced(const std::string& s) {
   return stack.empty();
 }
 
-TEST(Svg, WritesPolylinesPerStrokeWithViewBox) {
+TEST(Svg, WritesOnePathPerStrokeWithViewBox) {
   test::TempDir dir;
   const auto path = dir / "drawing.svg";
   const std::vector<glm::vec2> points = {{10, 10}, {20, 15}, {30, 10},  // contour
@@ -64,9 +64,11 @@ TEST(Svg, WritesPolylinesPerStrokeWithViewBox) {
   EXPECT_TRUE(tagsBalanced(svg)) << svg;
   EXPECT_NE(svg.find("viewBox=\"0 0 640 480\""), std::string::npos);
   EXPECT_NE(svg.find("width=\"640\" height=\"480\""), std::string::npos);
-  EXPECT_EQ(countOf(svg, "<polyline"), 3u);
+  EXPECT_EQ(countOf(svg, "<path"), 3u);
+  EXPECT_EQ(countOf(svg, "<polyline"), 0u);
   EXPECT_EQ(countOf(svg, "<rect"), 1u);  // background
-  EXPECT_NE(svg.find("points=\"10.00,10.00 20.00,15.00 30.00,10.00\""), std::string::npos);
+  // The contour's path: its corner kept, its two straight pieces written as lines.
+  EXPECT_NE(svg.find("d=\"M10.00,10.00L20.00,15.00L30.00,10.00\""), std::string::npos) << svg;
   EXPECT_NE(svg.find("class=\"suggestive\""), std::string::npos);
   EXPECT_NE(svg.find("stroke-opacity=\"0.250\""), std::string::npos);
   EXPECT_EQ(svg.find("class=\"boundary\""), std::string::npos);  // its only stroke had 1 point
@@ -74,6 +76,13 @@ TEST(Svg, WritesPolylinesPerStrokeWithViewBox) {
   size_t files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
   EXPECT_EQ(files, 1u);
+  // With curves off, the stroke's points as they are.
+  SvgStyle plain;
+  plain.curves = false;
+  ASSERT_TRUE(writeSvg(path, 640, 480, strokes, plain).ok());
+  const std::string poly = readFile(path);
+  EXPECT_EQ(countOf(poly, "<polyline"), 3u);
+  EXPECT_NE(poly.find("points=\"10.00,10.00 20.00,15.00 30.00,10.00\""), std::string::npos);
 }
 
 TEST(Svg, StyleAndNoBackground) {

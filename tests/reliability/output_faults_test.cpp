@@ -164,7 +164,8 @@ TEST_F(OutputFaults, DiskFullByFileSizeLimit) {
   const std::string o = out.string();
   const std::vector<std::vector<std::string>> cases = {
       {"render", model_, "-o", o + "/o.png", "--size", "320x240", "--full-detail"},
-      {"render", model_, "--svg", o + "/o.svg", "--size", "320x240", "--full-detail"},
+      // Hidden lines too: the smooth paths alone come to about 4 KB.
+      {"render", model_, "--svg", o + "/o.svg", "--size", "640x480", "--full-detail", "--hidden-lines", "grey"},
       {"build", model_, "-o", o + "/o.lpm"},
       {"simplify", model_, "--max-error", "0.01%", "-o", o + "/s.off"},
       {"capture", model_, "-o", o + "/seq/", "--size", "320x240", "--duration", "0.2", "--fps", "10"},
