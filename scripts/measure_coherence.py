@@ -5,6 +5,8 @@ the motion-compensated churn and the raw one (docs/capture.md).
 
   scripts/measure_coherence.py [--build build] [--out out/coherence] [--frames 240]
                                [--size 960x540] [--models a.off,b.off]
+                               [--configs full,geomorphs+smoothing] [--extra "--outline contour"]
+--configs picks some of the four configurations; --extra adds options to every capture.
 Writes one CSV per run into --out and prints a markdown table. Plots: scripts/plot_metrics.py.
 """
 import argparse
@@ -21,6 +23,8 @@ ap.add_argument("--frames", type=int, default=240)
 ap.add_argument("--fps", type=float, default=30.0)
 ap.add_argument("--size", default="960x540")
 ap.add_argument("--models", default="")
+ap.add_argument("--configs", default="", help="comma-separated subset of full,lod,geomorphs,geomorphs+smoothing")
+ap.add_argument("--extra", default="", help="options added to every capture (one string)")
 ap.add_argument("--paths", default="orbit,zoom-out",
                 help="comma-separated PATH or PATH:SECONDS (the path's length; default frames/fps)")
 args = ap.parse_args()
@@ -45,6 +49,13 @@ configs = [
     ("geomorphs", ["--geomorphs", "on", "--smoothing", "off"]),
     ("geomorphs+smoothing", ["--geomorphs", "on", "--smoothing", "on"]),
 ]
+if args.configs:
+    wanted = args.configs.split(",")
+    unknown = [c for c in wanted if c not in [n for n, _ in configs]]
+    if unknown:
+        sys.exit("unknown configuration(s): " + ", ".join(unknown))
+    configs = [c for c in configs if c[0] in wanted]
+extra_all = args.extra.split()
 duration = args.frames / args.fps
 print("| model | path | configuration | churn mean | churn p95 | churn_raw mean | churn_raw p95 | specks mean |"
       " strokes mean | faces mean | ms/frame |")
@@ -62,7 +73,7 @@ for model in models:
             cmd = [exe, "capture", model, "--path", path, "--duration", str(path_duration), "--fps", str(args.fps),
                    "--frames", str(args.frames),
                    "--size", args.size, "-o", frames_dir, "--metrics", csv_path, "--stats", stats,
-                   "--cache-dir", os.path.join(out, "cache")] + extra
+                   "--cache-dir", os.path.join(out, "cache")] + extra + extra_all
             r = subprocess.run(cmd, env=env, capture_output=True, text=True)
             if r.returncode != 0:
                 sys.exit("failed: %s\n%s" % (" ".join(cmd), r.stdout + r.stderr))
