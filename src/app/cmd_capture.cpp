@@ -86,7 +86,7 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
   }
   const LoadedScene& l = **loaded;
   auto path = scenePath({o.path, givenOnCommandLine(cmd, "path"), o.duration}, l.drawing.bounds(), l.camera,
-                        l.view.fov_deg, l.view.frame.aspect());
+                        l.view.fov_deg, l.view.frame.aspect(), l.view.orbit);
   if (!path) return reportError(path.error());
   auto range = parseFrames(o.frames, captureFrameCount(*path, o.fps));
   if (!range) return reportError(range.error());

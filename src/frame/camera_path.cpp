@@ -110,10 +110,11 @@ const std::vector<std::string>& builtinPathNames() {
 }
 
 Result<CameraPath> builtinPath(const std::string& name, const Bounds& bounds, float fov_deg,
-                               float aspect, double duration) {
+                               float aspect, double duration, const OrbitView& start) {
   if (!(duration > 0.0 && duration <= kMaxTime))
     return Error::usage("a camera path needs a positive duration of at most 1e9 seconds");
-  const Camera framing = orbitCamera(bounds, {35.0f, 20.0f, 0.0f}, fov_deg, aspect);
+  const Camera framing = orbitCamera(bounds, start, fov_deg, aspect);
+  const float az0 = start.azimuth_deg, el0 = start.elevation_deg;
   const float frame_dist = glm::length(framing.eye - framing.target);
   const glm::vec3 c = bounds.center;
   const float r = std::max(bounds.radius, 1e-6f);
@@ -133,18 +134,18 @@ Result<CameraPath> builtinPath(const std::string& name, const Bounds& bounds, fl
   if (name == "orbit") {
     const int n = 48;  // dense keys: the spline stays within 0.01% of the circle
     for (int i = 0; i <= n; ++i)
-      key(duration * i / n, c + frame_dist * orbit_dir(35.0f + 360.0f * i / n, 20.0f), c);
+      key(duration * i / n, c + frame_dist * orbit_dir(az0 + 360.0f * i / n, el0), c);
   } else if (name == "zoom-out") {
     const int n = 32;
     for (int i = 0; i <= n; ++i) {
       const float s = std::pow(16.0f, static_cast<float>(i) / n);
-      key(duration * i / n, c + frame_dist * s * orbit_dir(35.0f, 20.0f), c);
+      key(duration * i / n, c + frame_dist * s * orbit_dir(az0, el0), c);
     }
   } else if (name == "dolly") {
     const int n = 16;
     for (int i = 0; i <= n; ++i) {
       const float s = 3.0f + (0.6f - 3.0f) * static_cast<float>(i) / n;
-      key(duration * i / n, c + frame_dist * s * orbit_dir(35.0f, 20.0f), c);
+      key(duration * i / n, c + frame_dist * s * orbit_dir(az0, el0), c);
     }
   } else if (name == "flyover") {
     const int n = 16;

@@ -45,15 +45,16 @@ class CameraPath {
 /// Names of the built-in paths: orbit, zoom-out, dolly, flyover.
 const std::vector<std::string>& builtinPathNames();
 
-/// A built-in path of `duration` seconds around `bounds`:
-///  - orbit: one turn around the model at the default framing distance, 20° elevation;
-///  - zoom-out: from the framing distance to 16× farther, exponentially (constant speed in
-///    image scale);
-///  - dolly: from 3× the framing distance to 0.6× (close-up) along a straight line;
+/// A built-in path of `duration` seconds around `bounds`, starting from the orbit view
+/// `start` (`--view`; default azimuth 35°, elevation 20°, the framing distance):
+///  - orbit: one turn around the model from start's azimuth, at its elevation and distance;
+///  - zoom-out: from start's distance to 16× farther, exponentially (constant speed in
+///    image scale), in start's direction;
+///  - dolly: from 3× start's distance to 0.6× (close-up) along a straight line;
 ///  - flyover: low over the model from one side to the other (terrain), looking ahead and
-///    down.
+///    down (start is not used).
 Result<CameraPath> builtinPath(const std::string& name, const Bounds& bounds, float fov_deg,
-                               float aspect, double duration);
+                               float aspect, double duration, const OrbitView& start = {});
 
 /// Reads a path file (JSON); errors name the file and the problem.
 Result<CameraPath> loadCameraPath(const std::filesystem::path& path);

@@ -154,7 +154,7 @@ Result<Camera> initialCamera(const LoadedScene& loaded, float aspect) {
 }
 
 Result<CameraPath> scenePath(const PathChoice& choice, const Bounds& bounds, const std::optional<SceneCamera>& camera,
-                             float fov_deg, float aspect) {
+                             float fov_deg, float aspect, const OrbitView& start) {
   std::string name = choice.name_or_file;
   double duration = choice.duration;
   if (!choice.given && camera && camera->path) {
@@ -164,7 +164,7 @@ Result<CameraPath> scenePath(const PathChoice& choice, const Bounds& bounds, con
   const auto& names = builtinPathNames();
   if (std::find(names.begin(), names.end(), name) != names.end() ||
       std::filesystem::path(name).extension() != ".json")  // unknown names get the usage error
-    return builtinPath(name, bounds, fov_deg, aspect, duration);
+    return builtinPath(name, bounds, fov_deg, aspect, duration, start);
   return loadCameraPath(name);
 }
 

@@ -138,8 +138,8 @@ struct PathChoice {
 
 /// The camera path of a capture or walkthrough: `choice`, or the scene camera's path when
 /// the command line gave none, around `bounds` (the scene's) with a vertical field of view of
-/// `fov_deg` for images of aspect `aspect`.
+/// `fov_deg` for images of aspect `aspect`; a built-in path starts from `start` (--view).
 Result<CameraPath> scenePath(const PathChoice& choice, const Bounds& bounds, const std::optional<SceneCamera>& camera,
-                             float fov_deg, float aspect);
+                             float fov_deg, float aspect, const OrbitView& start = {});
 
 }  // namespace lodline

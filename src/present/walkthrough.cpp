@@ -59,7 +59,8 @@ Result<std::vector<WalkthroughResult>> runWalkthrough(const SceneInput& input, c
       auto p = createPresenter(PresenterBackend::kGl, rq.context, *scene, frame);
       if (!p) return p.error();
       presenter = std::move(p.value());
-      auto cam_path = scenePath(rq.path, scene->bounds(), input.scene.camera, input.view.fov_deg, frame.aspect());
+      auto cam_path = scenePath(rq.path, scene->bounds(), input.scene.camera, input.view.fov_deg, frame.aspect(),
+                                input.view.orbit);
       if (!cam_path) return cam_path.error();
       path = std::move(cam_path.value());
     }

@@ -135,6 +135,27 @@ double meanAfterFirst(const std::vector<double>& v) {
   return v.size() > 1 ? s / static_cast<double>(v.size() - 1) : 0.0;
 }
 
+// Built-in paths start from --view: from ten bounding radii the knot draws far fewer line
+// pixels than from three, on every path that starts there.
+TEST_F(Capture, BuiltInPathsStartFromTheView) {
+  for (const char* path : {"orbit", "zoom-out", "dolly"}) {
+    SCOPED_TRACE(path);
+    std::map<std::string, double> first_pixels;
+    for (const char* dist : {"3", "10"}) {
+      const auto csv = dir_ / (std::string(path) + dist + ".csv");
+      std::string out;
+      ASSERT_EQ(shell(capture(std::string("--path ") + path + " --view 35,20," + dist +
+                              " --duration 1 --fps 4 --frames 0:1 --full-detail -o " +
+                              (dir_ / (std::string(path) + dist)).string() + "/ --metrics " + csv.string()),
+                      &out),
+                0)
+          << out;
+      first_pixels[dist] = readCsv(csv)["line_pixels"].at(0);
+    }
+    EXPECT_GT(first_pixels["3"], 2.0 * first_pixels["10"]);
+  }
+}
+
 // A sphere away from the orbit's centre: its contour sweeps across the image (the raw measure
 // counts nearly every line pixel every frame), yet it never pops (the compensated one does not).
 TEST_F(Capture, CompensatedChurnSeparatesCameraMotionFromPopping) {

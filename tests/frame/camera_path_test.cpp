@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <string>
 
 #include <sys/stat.h>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "frame/camera_path.h"
 #include "test_util.h"
@@ -48,6 +50,34 @@ TEST(CameraPath, ZoomOutCoversSixteenTimes) {
     EXPECT_GT(d, prev);
     prev = d;
   }
+}
+
+// The built-in paths start from --view: its azimuth, elevation and distance (in bounding
+// radii); the default start is the default framing (35°, 20°, framed).
+TEST(CameraPath, BuiltInPathsStartFromTheGivenView) {
+  const Bounds b = unitBounds();
+  const OrbitView start{100.0f, -15.0f, 10.0f};
+  const Camera expected = orbitCamera(b, start, 35.0f, 1.5f);
+  for (const char* name : {"orbit", "zoom-out", "dolly"}) {
+    SCOPED_TRACE(name);
+    auto p = builtinPath(name, b, 35.0f, 1.5f, 4.0, start);
+    ASSERT_TRUE(p.ok());
+    const Camera c = p->at(0.0, b);
+    const glm::vec3 dir = glm::normalize(c.eye - c.target), want = glm::normalize(expected.eye - expected.target);
+    EXPECT_GT(glm::dot(dir, want), 0.99999f);
+    const float dist = glm::length(c.eye - c.target), want_dist = glm::length(expected.eye - expected.target);
+    EXPECT_NEAR(dist, std::string(name) == "dolly" ? 3.0f * want_dist : want_dist, 1e-3f * want_dist);
+  }
+  // The orbit keeps the elevation and distance all the way round.
+  auto orbit = builtinPath("orbit", b, 35.0f, 1.5f, 4.0, start);
+  for (double t = 0.0; t <= 4.0; t += 0.5) {
+    const Camera c = orbit->at(t, b);
+    EXPECT_NEAR(glm::normalize(c.eye - c.target).y, std::sin(glm::radians(-15.0f)), 1e-3f) << t;
+  }
+  // Default start: the default framing.
+  auto plain = builtinPath("orbit", b, 35.0f, 1.5f, 4.0);
+  auto framed = builtinPath("orbit", b, 35.0f, 1.5f, 4.0, OrbitView{35.0f, 20.0f, 0.0f});
+  EXPECT_EQ(plain->at(1.3, b).eye, framed->at(1.3, b).eye);
 }
 
 TEST(CameraPath, InterpolatesKeysAndClamps) {
