@@ -35,6 +35,7 @@ struct CaptureOptions {
   std::string output;
   std::string metrics;
   std::string stats;
+  std::string svg;
   std::string context = "auto";
 };
 
@@ -84,6 +85,12 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
     std::filesystem::create_directories(rq.output, ec);
     if (ec) return reportError(Error::runtime(o.output + ": cannot create directory: " + ec.message()));
   }
+  if (!o.svg.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(o.svg, ec);
+    if (ec || !std::filesystem::is_directory(o.svg))
+      return reportError(Error::runtime(o.svg + ": cannot create directory" + (ec ? ": " + ec.message() : "")));
+  }
   const LoadedScene& l = **loaded;
   auto path = scenePath({o.path, givenOnCommandLine(cmd, "path"), o.duration}, l.drawing.bounds(), l.camera,
                         l.view.fov_deg, l.view.frame.aspect(), l.view.orbit);
@@ -97,6 +104,7 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
   rq.range = *range;
   rq.metrics = o.metrics;
   rq.stats = o.stats;
+  rq.svg_dir = o.svg;
   rq.interrupted = &g_interrupted;
   rq.progress = isatty(STDERR_FILENO);
   std::signal(SIGINT, onInterrupt);
@@ -136,6 +144,9 @@ Command addCaptureCommand(CLI::App& parent) {
       ->required();
   cmd->add_option("--metrics", o->metrics, "Per-frame temporal-coherence metrics as CSV (docs/capture.md)");
   cmd->add_option("--stats", o->stats, "Summary statistics as JSON");
+  cmd->add_option("--svg", o->svg,
+                  "DIR/: one SVG per frame (frame_NNNNN.svg), each stroke with an id it keeps while it "
+                  "persists from frame to frame (docs/capture.md)");
   cmd->add_option("--context", o->context, "OpenGL context: auto, egl or osmesa")->capture_default_str();
   return {cmd, [o, cmd] { return runCapture(*cmd, *o); }};
 }

@@ -68,6 +68,7 @@ void writeGroup(std::ostream& os, const SvgStrokes& strokes, const char* cls, co
     chain.clear();
     if (style.curves) fitStrokeCurve(points, style.curve, chain, scratch);
     os << (style.curves ? "<path" : "<polyline");
+    if (!strokes.ids.empty()) os << " id=\"s" << strokes.ids[s] << '"';
     if (op < 1.0f) {
       os << " stroke-opacity=\"";
       writeNumber(os, op, 3);
@@ -154,6 +155,8 @@ Status writeSvgLayers(const std::filesystem::path& path, int width, int height, 
                               ") do not match stroke count (" + std::to_string(ns) + ")");
       if (!strokes->opacity.empty() && strokes->opacity.size() != ns)
         return Error::runtime(name + ": stroke opacities do not match stroke count");
+      if (!strokes->ids.empty() && strokes->ids.size() != ns)
+        return Error::runtime(name + ": stroke ids do not match stroke count");
       for (size_t s = 0; s < ns; ++s)
         if (strokes->offsets[s] > strokes->offsets[s + 1] || strokes->offsets[s + 1] > strokes->points.size())
           return Error::runtime(name + ": stroke " + std::to_string(s) + " is out of range");

@@ -55,6 +55,9 @@ struct SvgStrokes {
   std::span<const uint32_t> offsets;
   std::span<const LineKind> kinds;   ///< 1 per stroke
   std::span<const float> opacity;    ///< optional, 1 per stroke, in [0, 1]
+  /// Optional, 1 per stroke: written as the stroke's element id "s<N>" (stable stroke ids of
+  /// a sequence, present/stroke_ids.h); ids must be unique within the file.
+  std::span<const uint64_t> ids = {};
 };
 
 /// Writes a `width`×`height` px SVG (viewBox "0 0 width height") with one <path> of cubic

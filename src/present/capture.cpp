@@ -16,6 +16,8 @@
 #include "io/image.h"
 #include "present/frame_report.h"
 #include "present/presenter.h"
+#include "present/stroke_ids.h"
+#include "present/svg_output.h"
 
 namespace lodline {
 namespace {
@@ -73,6 +75,8 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
   }
 
   const bool want_metrics = !rq.metrics.empty() || !rq.stats.empty();
+  const bool want_svg = !rq.svg_dir.empty();
+  StrokeIdTracker ids;  // stroke ids from frame 0 on, so frame k's are the same whichever range
   CoherenceMeter meter;
   LineMask mask;
   SurfaceImage surface;
@@ -112,6 +116,7 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
   for (int64_t k = 0; k < rq.range.first; ++k) {
     const Camera cam = simulate(k);
     if (Status s = p.present(scene, cam, frame, k == 0); !s) return s.error();
+    if (want_svg) ids.update(p.visible(), cam, frame.width, frame.height);
     if (want_metrics && k == rq.range.first - 1) {
       (void)reportFrame(scene, p, &mask);
       if (Status s = p.readSurface(surface); !s) return s.error();
@@ -128,6 +133,12 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
     const Camera cam = simulate(k);
     if (failure = p.present(scene, cam, frame, k == 0); !failure) break;
     const Image image = p.readImage();
+    if (want_svg) {
+      ids.update(p.visible(), cam, frame.width, frame.height);
+      char name[32];
+      std::snprintf(name, sizeof(name), "frame_%05lld.svg", static_cast<long long>(k));
+      if (failure = writeFrameSvg(rq.svg_dir / name, scene, p, &ids.ids()); !failure) break;
+    }
     if (rq.png_sequence) {
       char name[32];
       std::snprintf(name, sizeof(name), "frame_%05lld.png", static_cast<long long>(k));

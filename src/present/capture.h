@@ -37,6 +37,9 @@ struct CaptureRequest {
   bool png_sequence = false;
   std::filesystem::path metrics;  ///< per-frame CSV; empty: none
   std::filesystem::path stats;    ///< summary JSON; empty: none
+  /// A folder for frame_NNNNN.svg, one per frame, strokes with stable ids
+  /// (present/stroke_ids.h); empty: none. Must exist.
+  std::filesystem::path svg_dir;
   /// Set (by a signal handler) to stop after the current frame; outputs are finished.
   const std::atomic<bool>* interrupted = nullptr;
   bool progress = false;  ///< a progress bar on stderr

@@ -32,7 +32,8 @@ SvgStyle svgStyleOf(const ObjectStyle& style, const FrameParams& frame) {
   return s;
 }
 
-Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scene, ScenePresenter& presenter) {
+Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scene, ScenePresenter& presenter,
+                     const std::vector<std::vector<uint64_t>>* ids) {
   const FrameParams& frame = presenter.frame();
   const std::vector<StrokeRuns>& visible = presenter.visible();
   const std::vector<StrokeRuns>& hidden = presenter.hidden();
@@ -40,7 +41,9 @@ Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scen
   for (size_t i = 0; i < scene.size(); ++i) {
     const StrokeRuns& v = visible[i];
     const StrokeRuns& h = hidden[i];
-    layers.push_back({scene[i].name, SvgStrokes{v.points, v.offsets, v.kinds, v.opacity},
+    SvgStrokes strokes{v.points, v.offsets, v.kinds, v.opacity};
+    if (ids && i < ids->size() && (*ids)[i].size() == v.strokeCount()) strokes.ids = (*ids)[i];
+    layers.push_back({scene[i].name, strokes,
                       svgStyleOf(scene[i].style, frame), SvgStrokes{h.points, h.offsets, h.kinds, h.opacity}});
   }
   ObjectStyle page_style;

@@ -2,7 +2,9 @@
 // its own line styles, on the frame's page (export/svg.h writes the file).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <vector>
 
 #include "core/result.h"
 #include "export/svg.h"
@@ -14,7 +16,9 @@ namespace lodline {
 /// The SVG style of one object's line styles (colours as #rrggbb, opacity from alpha).
 SvgStyle svgStyleOf(const ObjectStyle& style, const FrameParams& frame);
 
-/// Writes the visible strokes of `presenter`'s last present() of `scene` to `path`.
-Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scene, ScenePresenter& presenter);
+/// Writes the visible strokes of `presenter`'s last present() of `scene` to `path`; with
+/// `ids` (ids[object][visible run], e.g. StrokeIdTracker::ids()), each stroke carries its id.
+Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scene, ScenePresenter& presenter,
+                     const std::vector<std::vector<uint64_t>>* ids = nullptr);
 
 }  // namespace lodline

@@ -156,6 +156,50 @@ TEST_F(Capture, BuiltInPathsStartFromTheView) {
   }
 }
 
+// capture --svg DIR/: one SVG per frame, each stroke with an id; most of a frame's stroke
+// length keeps the ids of the frame before (a slow orbit), ids are unique within a frame, and
+// frame k's SVG is the same whichever range renders it.
+TEST_F(Capture, SvgPerFrameWithStableStrokeIds) {
+  auto ids = [](const std::filesystem::path& f) {
+    std::ifstream in(f);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<std::string> out;
+    for (size_t at = text.find(" id=\"s"); at != std::string::npos; at = text.find(" id=\"s", at + 1))
+      out.push_back(text.substr(at + 6, text.find('"', at + 6) - at - 6));
+    return out;
+  };
+  const auto svg = dir_ / "svg", svg2 = dir_ / "svg2";
+  std::string out;
+  ASSERT_EQ(shell(capture("--path orbit --duration 8 --fps 30 --frames 4 -o " + (dir_ / "png").string() + "/ --svg " +
+                          svg.string() + "/"),
+                  &out),
+            0)
+      << out;
+  std::vector<std::vector<std::string>> frames;
+  for (int k = 0; k < 4; ++k) {
+    const auto f = svg / ("frame_0000" + std::to_string(k) + ".svg");
+    ASSERT_TRUE(std::filesystem::exists(f)) << f;
+    frames.push_back(ids(f));
+    auto sorted = frames.back();
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(std::unique(sorted.begin(), sorted.end()), sorted.end()) << "duplicate ids in frame " << k;
+    EXPECT_GT(frames.back().size(), 3u);
+  }
+  for (int k = 1; k < 4; ++k) {
+    size_t kept = 0;
+    for (const auto& id : frames[k]) kept += std::count(frames[k - 1].begin(), frames[k - 1].end(), id);
+    EXPECT_GE(2 * kept, frames[k].size()) << "frame " << k;
+  }
+  // Frames 2..3 alone: the same files.
+  ASSERT_EQ(shell(capture("--path orbit --duration 8 --fps 30 --frames 2:4 -o " + (dir_ / "png2").string() +
+                          "/ --svg " + svg2.string() + "/"),
+                  &out),
+            0)
+      << out;
+  EXPECT_EQ(ids(svg2 / "frame_00003.svg"), frames[3]);
+  EXPECT_FALSE(std::filesystem::exists(svg2 / "frame_00001.svg"));
+}
+
 // A sphere away from the orbit's centre: its contour sweeps across the image (the raw measure
 // counts nearly every line pixel every frame), yet it never pops (the compensated one does not).
 TEST_F(Capture, CompensatedChurnSeparatesCameraMotionFromPopping) {
