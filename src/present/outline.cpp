@@ -75,11 +75,20 @@ void emitRun(const std::vector<Sample>& samples, size_t i, size_t j, LineKind ki
   if (out.offsets.empty()) out.offsets.push_back(0);
   float length = 0.0f, alpha = 0.0f;
   for (size_t k = i; k < j; ++k) {
+    alpha += samples[k].alpha;
+    if (k > i) length += glm::length(samples[k].px - samples[k - 1].px);
+    // Samples inside a straight piece (same direction on both sides) are not points of the
+    // run: every point is a joint where the drawn line can lose a row of samples.
+    if (k > i && k + 1 < j) {
+      const glm::vec2 d0 = samples[k].px - samples[k - 1].px, d1 = samples[k + 1].px - samples[k].px;
+      const float l0 = glm::length(d0), l1 = glm::length(d1);
+      if (l0 > 0.0f && l1 > 0.0f && std::abs(d0.x * d1.y - d0.y * d1.x) <= 1e-4f * l0 * l1 && glm::dot(d0, d1) > 0.0f &&
+          std::abs(samples[k].alpha - 0.5f * (samples[k - 1].alpha + samples[k + 1].alpha)) < 1e-4f)
+        continue;
+    }
     out.points.push_back(samples[k].px);
     out.positions.push_back(samples[k].p);
     out.alpha.push_back(samples[k].alpha);
-    alpha += samples[k].alpha;
-    if (k > i) length += glm::length(samples[k].px - samples[k - 1].px);
   }
   out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
   out.kinds.push_back(kind);
@@ -153,6 +162,7 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     }
   StrokeRuns fill;
   fill.offsets.push_back(0);
+  scratch.fill_samples.clear();
   clearMask(scratch.fill, W, H);
   const int extend = std::max(0, static_cast<int>(std::lround(params.extend_px)));
   for (size_t r = 0; r < sil.strokeCount(); ++r) {
@@ -183,12 +193,14 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
           samples[k].alpha = 1.0f;
         }
         emitRun(samples, i, j, LineKind::kContour, sil.strokes[r], fill);
+        if (history)
+          for (size_t k = i; k < j; ++k) scratch.fill_samples.push_back(samples[k].p);
       }
       i = j;
     }
   }
   if (history) {
-    history->fill = fill.positions;
+    history->fill.swap(scratch.fill_samples);
     history->view_proj = view_proj;
     ++history->frames;
   }
@@ -211,7 +223,20 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
         scratch.flags[i] = 0;
         dropped = true;
       }
-    if (!dropped) {
+    // Drops shorter than min_drop_px are noise (a sample or two a pixel off the outline):
+    // cutting there would leave a notch in the line, not remove a second one.
+    for (size_t i = 0; dropped && i < samples.size();) {
+      if (scratch.flags[i]) {
+        ++i;
+        continue;
+      }
+      size_t j = i;
+      while (j < samples.size() && !scratch.flags[j]) ++j;
+      if (static_cast<float>(j - i) < params.min_drop_px)
+        for (size_t k = i; k < j; ++k) scratch.flags[k] = 1;
+      i = j;
+    }
+    if (!dropped || std::all_of(scratch.flags.begin(), scratch.flags.end(), [](uint8_t f) { return f != 0; })) {
       copyRun(visible, r, out);
       continue;
     }

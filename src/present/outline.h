@@ -49,6 +49,9 @@ struct OutlineParams {
   /// Contour samples off the outline within this many pixels of a completing piece are
   /// dropped (they would draw a second line beside it). Default 6.
   int double_radius_px = 6;
+  /// Only stretches of at least this many pixels of such contour are dropped: a shorter one
+  /// is a sample or two off the outline, and cutting it would leave a notch. Default 4.
+  float min_drop_px = 4.0f;
   /// Hysteresis between frames (with an OutlineHistory): a piece with a sample within this
   /// many pixels of the previous frame's pieces (projected by this frame's camera, so the
   /// comparison follows the motion) continues one and is kept whatever its length, so a
@@ -73,6 +76,7 @@ struct OutlineScratch {
   StrokeRuns silhouette, rebuilt;
   LineMask outline, contours, fill, previous;
   std::vector<uint8_t> flags, grown;
+  std::vector<glm::vec3> fill_samples;  ///< every sample of this frame's completing pieces
 };
 
 /// Completes the exterior outline of one object in `visible` (its visible runs): appends

@@ -75,6 +75,19 @@ TEST(Outline, AStillDrawsEveryCompletingPiece) {
   EXPECT_FALSE(first.fill.empty());
 }
 
+TEST(Outline, ACompletingPieceAlongAStraightEdgeIsOneSegment) {
+  // Its samples are a pixel apart, but the run keeps only its ends and corners: every point
+  // is a joint where a drawn line can lose a row of samples (multisampled GL_LINES).
+  StrokeRuns visible;
+  OutlineScratch scratch;
+  const double len = completeOutline(kLong, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{},
+                                     visible, scratch);
+  EXPECT_NEAR(len, 80.0, 3.0);
+  ASSERT_EQ(visible.strokeCount(), 1u);
+  EXPECT_EQ(visible.offsets[1] - visible.offsets[0], 2u);
+  EXPECT_NEAR(visible.length_px[0], 80.0f, 3.0f);
+}
+
 TEST(Outline, InASequenceANewShortPieceWaitsAndALongOneIsDrawn) {
   OutlineHistory h;
   EXPECT_EQ(complete(StrokeSet{}, &h), 0.0);  // frame 0: nothing to complete
