@@ -99,17 +99,22 @@ std::string formatNumber(double v) {
   return o.str();
 }
 
+// The first vertex with a NaN or infinite coordinate, as an error naming `what`.
+Status checkFinite(const std::vector<glm::vec3>& positions, const std::string& what) {
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const glm::vec3& p = positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      return Error::runtime(what + ": vertex " + std::to_string(i) + " has a non-finite coordinate (NaN or inf)");
+  }
+  return {};
+}
+
 }  // namespace
 
 Status validateMesh(const TriMesh& mesh, const std::string& what) {
   if (mesh.positions.empty()) return Error::runtime(what + ": no vertices");
   if (mesh.faces.empty()) return Error::runtime(what + ": no faces");
-  for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    const glm::vec3& p = mesh.positions[i];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      return Error::runtime(what + ": vertex " + std::to_string(i) +
-                            " has a non-finite coordinate (NaN or inf)");
-  }
+  if (Status s = checkFinite(mesh.positions, what); !s) return s;
   // The extent must leave room for squared lengths and areas in single precision: beyond
   // 1e18 they overflow, below 1e-18 they vanish (and a model of zero size cannot be framed).
   const float diagonal = computeBounds(mesh.positions).diagonal();
@@ -147,6 +152,9 @@ Result<TriMesh> loadMesh(const std::filesystem::path& path) {
   bytes->clear();
   bytes->shrink_to_fit();
   const PolygonMesh& pm = *polygons;
+  // Coordinates first: NaN corners of an STL weld into one vertex, and its faces would be
+  // refused for repeating it instead of for what is wrong.
+  if (Status s = checkFinite(pm.positions, name); !s) return s.error();
 
   // OpenMesh for the topology: a face that would make an edge or vertex non-manifold gets
   // its own copies of its vertices (as OpenMesh's importer does); a face that repeats a

@@ -208,6 +208,15 @@ TEST(MeshReaderHostile, BadNumbersAndIndices) {
   TempDir dir;
   expectRefused(dir, "nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n", "non-finite");
   expectRefused(dir, "inf.obj", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n", "non-finite");
+  // A binary STL whose coordinates are all NaN: its corners weld into one vertex, yet the
+  // problem to name is the coordinates, not "every face repeats a vertex".
+  std::string nan_stl(80, ' ');
+  put<uint32_t>(nan_stl, 2);
+  for (int f = 0; f < 2; ++f) {
+    for (int k = 0; k < 12; ++k) put(nan_stl, std::nanf(""));
+    put<uint16_t>(nan_stl, 0);
+  }
+  expectRefused(dir, "nan.stl", nan_stl, "non-finite");
   expectRefused(dir, "big.off", "OFF\n3 1 0\n1e38 0 0\n-1e38 0 0\n0 1e38 0\n3 0 1 2\n", "too large");
   expectRefused(dir, "huge.off", "OFF\n3 1 0\n1e39 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "non-finite");
   expectRefused(dir, "point.off", "OFF\n3 1 0\n1 1 1\n1 1 1\n1 1 1\n3 0 1 2\n", "no extent");
