@@ -19,6 +19,8 @@
 
 #include "app/child_process.h"
 #include "app/commands.h"
+#include "app/model.h"
+#include "app/options.h"
 #include "app/sweep.h"
 #include "core/timer.h"
 #include "export/text.h"
@@ -44,7 +46,28 @@ struct SweepOptions {
   std::vector<std::string> charts;  ///< stat columns to plot
   SheetOptions sheet;
   std::string font = kDefaultFontPath;
+  // Render options given directly (sweep MODEL --size 320x240 ...): parsed here only to be
+  // passed on to every run, as if they followed `--`.
+  ViewOptions render_view;
+  DetailOptions render_detail;
+  std::vector<const CLI::Option*> render_options;
 };
+
+// The render options given on the sweep's command line, as render arguments, in the order
+// the options were declared.
+std::vector<std::string> givenRenderOptions(const std::vector<const CLI::Option*>& options) {
+  std::vector<std::string> out;
+  for (const CLI::Option* opt : options) {
+    if (opt->count() == 0) continue;
+    const std::string name = "--" + opt->get_single_name();
+    if (opt->get_type_size() == 0) {  // a flag
+      out.push_back(name);
+      continue;
+    }
+    for (const std::string& v : opt->results()) out.push_back(name + "=" + v);
+  }
+  return out;
+}
 
 std::string shellQuote(const std::string& s) {
   if (!s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
@@ -370,6 +393,20 @@ Command addSweepCommand(CLI::App& parent) {
   cmd->add_option("--cell-width", o->sheet.cell_width, "Contact-sheet cell width in px (default: the render width, at most 320)");
   cmd->add_option("--title", o->sheet.title, "Contact-sheet title (default: the model and the axes)");
   cmd->add_option("--font", o->font, "TrueType font of the contact-sheet labels")->capture_default_str();
+  // Every drawing option of `render`, fixed for every run (the same as after `--`).
+  const size_t own = cmd->get_options().size();
+  addViewOptions(*cmd, o->render_view);
+  addDetailOptions(*cmd, o->render_detail);
+  const std::vector<CLI::Option*> all = cmd->get_options([](CLI::Option*) { return true; });
+  for (size_t i = own; i < all.size(); ++i) {
+    CLI::Option* opt = all[i];
+    if (opt->get_positional()) {  // render's model: the sweep has its own
+      cmd->remove_option(opt);
+      continue;
+    }
+    o->render_options.push_back(opt);
+    opt->group("Render options (fixed for every run)");
+  }
   cmd->footer(
       "Each run is `lodline render MODEL [fixed options] --KEY=VALUE ... -o DIR/runs/NAME.png --stats "
       "DIR/runs/NAME.json`, NAME made of the varied values (target-area-4_view.dist-2.5). All option keys and "
@@ -379,7 +416,11 @@ Command addSweepCommand(CLI::App& parent) {
       "one axis or --zip: one sheet, cells captioned. Ctrl-C stops the running renders and writes the summaries "
       "of the runs done. Exit status: 0 all runs done, 1 some failed, 2 usage error, 130 interrupted. "
       "See docs/experiments.md.");
-  return {cmd, [o] { return runSweep(*o); }};
+  return {cmd, [o] {
+            const auto given = givenRenderOptions(o->render_options);
+            o->plan.passthrough.insert(o->plan.passthrough.begin(), given.begin(), given.end());
+            return runSweep(*o);
+          }};
 }
 
 }  // namespace lodline

@@ -186,6 +186,25 @@ TEST_F(Sweep, ModelsCanBeAnAxis) {
   EXPECT_NE(none.output.find("MODEL"), std::string::npos) << none.output;
 }
 
+TEST_F(Sweep, RenderOptionsGivenDirectlyReachEveryRun) {
+  // `sweep MODEL --size 320x240 ...` was refused ("not expected: --size"); render's drawing
+  // options are the sweep's too, and reach every run as if they followed --.
+  CliRun r = sweep("--vary target-area=8,16 --fov 40 --style lines --geomorphs off -o " + (dir_ / "direct").string() +
+                   " --dry-run");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto l = lines(r.output);
+  ASSERT_EQ(l.size(), 3u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_NE(l[i].find("--fov=40"), std::string::npos) << l[i];
+    EXPECT_NE(l[i].find("--style=lines"), std::string::npos) << l[i];
+    EXPECT_NE(l[i].find("--geomorphs=off"), std::string::npos) << l[i];
+  }
+  // Varied and given directly: refused, as after --.
+  CliRun both = sweep("--vary fov=30,50 --fov 40 -o " + (dir_ / "both").string() + " --dry-run");
+  EXPECT_EQ(both.code, 2) << both.output;
+  EXPECT_NE(both.output.find("also varied"), std::string::npos) << both.output;
+}
+
 TEST_F(Sweep, RenderOptionsAfterDoubleDashAndFramingDistance) {
   // Options after -- reach every run; with only the azimuth varied, the distance is the one
   // render's default view frames the model with (35° fov, 96x64: ~3.6 radii).
