@@ -192,6 +192,7 @@ void statsSection(const ViewerSession& s, const PanelState& st) {
     cell("upload", r.ms.upload);
     cell("draw", r.ms.render);
     cell("visibility", r.ms.visibility);
+    cell("strokes", r.ms.strokes);
     ImGui::EndTable();
   }
   const auto u = [](uint64_t v) { return static_cast<unsigned long long>(v); };

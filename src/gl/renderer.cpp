@@ -72,7 +72,7 @@ Result<Renderer> Renderer::create() {
   if (!toon) return toon.error();
   auto depth = loadProgram("mesh.vert", "depth_only.frag");
   if (!depth) return depth.error();
-  auto line = loadProgram("line.vert", "line.frag");
+  auto line = loadProgram("stroke.vert", "stroke.frag");
   if (!line) return line.error();
   r.toon_ = std::move(toon.value());
   r.depth_only_ = std::move(depth.value());
@@ -108,10 +108,10 @@ Result<Renderer::Object> Renderer::makeObject() const {
   glBindVertexArray(o.line_vao.id());
   glBindBuffer(GL_ARRAY_BUFFER, o.line_vertices.id());
   glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(ScreenLineVertex), nullptr);
+  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(StrokeVertex), nullptr);
   glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(ScreenLineVertex),
-                        reinterpret_cast<const void*>(offsetof(ScreenLineVertex, alpha)));
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(StrokeVertex),
+                        reinterpret_cast<const void*>(offsetof(StrokeVertex, half_width)));
   glBindVertexArray(0);
   return o;
 }
@@ -142,9 +142,11 @@ void Renderer::setMesh(size_t object, std::span<const glm::vec3> positions, std:
 void Renderer::setLines(size_t object, const ScreenLines& lines) {
   Object& o = objects_[object];
   glBindVertexArray(0);
-  uploadArray(GL_ARRAY_BUFFER, o.line_vertices, std::span<const ScreenLineVertex>(lines.vertices));
+  uploadArray(GL_ARRAY_BUFFER, o.line_vertices, std::span<const StrokeVertex>(lines.vertices));
   o.first = lines.first;
   o.count = lines.count;
+  o.segments = lines.segments;
+  o.hidden_segments = lines.hidden_segments;
   o.hidden_first = lines.hidden_first;
   o.hidden_count = lines.hidden_count;
 }
@@ -248,24 +250,23 @@ void Renderer::drawSurfaces(const Camera& camera, const FrameParams& frame, std:
 void Renderer::drawObjectLines(Object& o, const ObjectStyle& style) {
   glBindVertexArray(o.line_vao.id());
   o.segments_drawn = 0;
-  GLfloat width_range[2] = {1.0f, 1.0f};
-  glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, width_range);
   const GLint color_loc = glGetUniformLocation(line_.id(), "u_color");
-  auto draw = [&](const glm::vec4& colour, float width, uint32_t first, uint32_t count) {
-    glLineWidth(std::clamp(width, width_range[0], width_range[1]));
+  auto draw = [&](const glm::vec4& colour, uint32_t first, uint32_t count) {
     glUniform4fv(color_loc, 1, glm::value_ptr(colour));
-    glDrawArrays(GL_LINES, static_cast<GLint>(first), static_cast<GLsizei>(count));
-    o.segments_drawn += count / 2;
+    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(count));
   };
   // Hidden lines first, under the visible ones.
-  if (style.hidden.enabled && o.hidden_count > 0)
-    draw(style.hidden.color, style.hidden.width_px, o.hidden_first, o.hidden_count);
+  if (style.hidden.enabled && o.hidden_count > 0) {
+    draw(style.hidden.color, o.hidden_first, o.hidden_count);
+    o.segments_drawn += o.hidden_segments;
+  }
   for (int k = 0; k < kLineKindCount; ++k) {
     const LineStyle& s = style.lines.kinds[k];
     if (!s.enabled || o.count[k] == 0) continue;
     // Highlighted sharp edges replace the crease lines drawn on them.
     if (k == static_cast<int>(LineKind::kCrease) && o.chamfer_drawn > 0 && style.chamfer.replace_creases) continue;
-    draw(s.color, s.width_px, o.first[k], o.count[k]);
+    draw(s.color, o.first[k], o.count[k]);
+    o.segments_drawn += o.segments[k];
   }
 }
 
@@ -280,7 +281,6 @@ void Renderer::drawLines(const FrameParams& frame, std::span<const ObjectStyle> 
   glUniform2f(glGetUniformLocation(line_.id(), "u_viewport"), static_cast<float>(frame.width),
               static_cast<float>(frame.height));
   for (size_t i = 0; i < objects_.size(); ++i) drawObjectLines(objects_[i], styles[i]);
-  glLineWidth(1.0f);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glBindVertexArray(0);

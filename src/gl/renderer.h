@@ -41,7 +41,7 @@ class Renderer {
   /// needs them.
   void setMesh(size_t object, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                std::span<const std::array<uint32_t, 3>> faces, std::span<const EdgeKey> marked_edges = {});
-  /// Uploads the lines of `object` (pixels; visible per kind, then hidden).
+  /// Uploads the lines of `object`: stroke geometry in pixels, visible per kind, then hidden.
   void setLines(size_t object, const ScreenLines& lines);
 
   /// Draws every object's surface into the currently bound framebuffer of frame.width ×
@@ -51,8 +51,8 @@ class Renderer {
   /// object's faces.
   void drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles);
   /// Draws every object's lines over the bound framebuffer (after drawSurfaces()), blended,
-  /// no depth test: hidden lines in styles[i].hidden (when enabled), then visible lines in
-  /// their kind's style.
+  /// no depth test, antialiased by coverage: hidden lines in styles[i].hidden's colour (when
+  /// enabled), then visible lines in their kind's colour (widths are in the geometry).
   void drawLines(const FrameParams& frame, std::span<const ObjectStyle> styles);
 
   /// Faces uploaded of one object.
@@ -77,8 +77,8 @@ class Renderer {
     GlBuffer positions, normals, indices, line_vertices;
     ChamferLayer chamfer;
     size_t face_count = 0, segments_drawn = 0, chamfer_drawn = 0;
-    std::array<uint32_t, kLineKindCount> first{}, count{};
-    uint32_t hidden_first = 0, hidden_count = 0;
+    std::array<uint32_t, kLineKindCount> first{}, count{}, segments{};
+    uint32_t hidden_first = 0, hidden_count = 0, hidden_segments = 0;
   };
   Renderer() = default;
   Result<Object> makeObject() const;

@@ -139,6 +139,7 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
   r.ms.render = pt.render;
   r.ms.readback = pt.readback;
   r.ms.visibility = pt.visibility;
+  r.ms.strokes = pt.strokes;
   return r;
 }
 

@@ -59,7 +59,7 @@ struct ObjectReport {
 /// Milliseconds of the frame's stages (sums over the objects).
 struct StageTimes {
   double adapt = 0.0, shape = 0.0, view = 0.0, extract = 0.0, chain = 0.0;  ///< CPU stages
-  double upload = 0.0, render = 0.0, readback = 0.0, visibility = 0.0;      ///< presenting
+  double upload = 0.0, render = 0.0, readback = 0.0, visibility = 0.0, strokes = 0.0;  ///< presenting
 };
 
 struct FrameReport {

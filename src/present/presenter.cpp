@@ -29,11 +29,13 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
   readDepth(depth_);
   splitObjectLines(scene);
   times_.visibility = sw.lap();
+  times_.strokes = 0.0;
   for (size_t i = 0; i < scene.size(); ++i) {
-    buildScreenLines(visible_[i], hidden_[i], styles_[i].hidden, screen_lines_);
+    buildScreenLines(visible_[i], hidden_[i], styles_[i], screen_lines_, stroke_scratch_);
+    times_.strokes += sw.lap();
     uploadLines(i, screen_lines_);
+    times_.upload += sw.lap();
   }
-  times_.upload += sw.lap();
   drawLines(frame, styles_);
   times_.render += sw.lap();
   times_.readback = 0.0;

@@ -28,6 +28,7 @@
 #include "frame/scene_drawing.h"
 #include "gl/context.h"
 #include "present/outline.h"
+#include "present/stroke_geometry.h"
 
 namespace lodline {
 
@@ -42,9 +43,10 @@ struct PresentTimes {
   double upload = 0.0;      ///< meshes and lines to the renderer
   double render = 0.0;      ///< drawing faces and lines, until the image is complete (glFinish)
   double readback = 0.0;    ///< the colour image (readImage())
-  /// Depth readback, the strokes' visible and hidden runs, the outline's completion and the
-  /// runs turned into line segments.
+  /// Depth readback, the strokes' visible and hidden runs and the outline's completion.
   double visibility = 0.0;
+  /// The runs made stroke geometry (present/stroke_geometry.h), every object.
+  double strokes = 0.0;
 };
 
 class ScenePresenter {
@@ -133,6 +135,7 @@ class ScenePresenter {
   std::vector<OutlineHistory> outline_history_;
   bool sequence_in_motion_ = false;
   ScreenLines screen_lines_;
+  StrokeGeometryScratch stroke_scratch_;
 };
 
 /// A presenter for `scene` on `backend`: OpenGL through a headless context of kind

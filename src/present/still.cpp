@@ -92,6 +92,7 @@ Status renderStill(LoadedScene& loaded, const StillRequest& request) {
              {"render", ms.render},
              {"readback", ms.readback},
              {"visibility", ms.visibility},
+             {"strokes", ms.strokes},
              {"total", request.elapsed_ms + total.elapsed()}};
   const std::string text = j.dump(2) + "\n";
   return writeFileAtomically(request.stats, [&](std::ostream& out) -> Status {

@@ -48,52 +48,70 @@ glm::vec4 sampleTexture(const Image& image, float u, float v, TextureFilter filt
   return top * (1.0f - ay) + bottom * ay;
 }
 
-size_t drawScreenLines(std::span<const ScreenLineVertex> vertices, const glm::vec4& colour, float width_px,
-                       Image& image, WorkerPool& pool) {
+size_t drawStrokeTriangles(std::span<const StrokeVertex> vertices, const glm::vec4& colour, Image& image,
+                           WorkerPool& pool) {
   const int W = image.width, H = image.height;
-  // OpenGL rounds the width of aliased wide lines to an integer.
-  const int width = std::max(1, static_cast<int>(std::lround(width_px)));
-  const float half = 0.5f * static_cast<float>(width);
-  const size_t segments = vertices.size() / 2;
+  const size_t triangles = vertices.size() / 3;
   auto draw_band = [&](int row_begin, int row_end) {
-    for (size_t s = 0; s < segments; ++s) {
-      const ScreenLineVertex& p0 = vertices[2 * s];
-      const ScreenLineVertex& p1 = vertices[2 * s + 1];
-      // Non-finite or absurdly far endpoints (bad input) are skipped, not converted to int.
+    for (size_t t = 0; t < triangles; ++t) {
+      const StrokeVertex* v = &vertices[3 * t];
+      // Non-finite or absurdly far vertices (bad input) are skipped, not converted to int.
       constexpr float kFar = 1e7f;
-      if (!(std::abs(p0.px.x) < kFar && std::abs(p0.px.y) < kFar && std::abs(p1.px.x) < kFar &&
-            std::abs(p1.px.y) < kFar))
-        continue;
-      const float dx = p1.px.x - p0.px.x, dy = p1.px.y - p0.px.y;
-      const bool x_major = std::abs(dx) >= std::abs(dy);
-      const float major0 = x_major ? p0.px.x : p0.px.y, major1 = x_major ? p1.px.x : p1.px.y;
-      const float len = major1 - major0;
-      if (!(std::abs(len) > 0.0f)) continue;
-      // Pixel centres c + 0.5 in [min, max) along the major axis.
-      const float lo = std::min(major0, major1), hi = std::max(major0, major1);
-      int m_lo = static_cast<int>(std::ceil(lo - 0.5f)), m_hi = static_cast<int>(std::ceil(hi - 0.5f)) - 1;
-      const int major_size = x_major ? W : H;
-      m_lo = std::max(m_lo, 0);
-      m_hi = std::min(m_hi, major_size - 1);
-      if (x_major) {
-        // Columns: only rows in this band.
-        for (int x = m_lo; x <= m_hi; ++x) {
-          const float t = ((x + 0.5f) - p0.px.x) / len;
-          const float yc = p0.px.y + t * dy;
-          const int y_lo = std::max(static_cast<int>(std::ceil(yc - half - 0.5f)), row_begin);
-          const int y_hi = std::min(static_cast<int>(std::ceil(yc + half - 0.5f)) - 1, row_end - 1);
-          const glm::vec4 col(glm::vec3(colour), colour.a * (p0.alpha + t * (p1.alpha - p0.alpha)));
-          for (int y = y_lo; y <= y_hi; ++y) blend(image.pixel(x, y), col);
-        }
-      } else {
-        const int y_lo = std::max(m_lo, row_begin), y_hi = std::min(m_hi, row_end - 1);
-        for (int y = y_lo; y <= y_hi; ++y) {
-          const float t = ((y + 0.5f) - p0.px.y) / len;
-          const float xc = p0.px.x + t * dx;
-          const int x_lo = std::max(static_cast<int>(std::ceil(xc - half - 0.5f)), 0);
-          const int x_hi = std::min(static_cast<int>(std::ceil(xc + half - 0.5f)) - 1, W - 1);
-          const glm::vec4 col(glm::vec3(colour), colour.a * (p0.alpha + t * (p1.alpha - p0.alpha)));
-          for (int x = x_lo; x <= x_hi; ++x) blend(image.pixel(x, y), col);
+      bool sane = true;
+      for (int k = 0; k < 3; ++k) sane = sane && std::abs(v[k].px.x) < kFar && std::abs(v[k].px.y) < kFar;
+      if (!sane) continue;
+      const float min_y = std::min({v[0].px.y, v[1].px.y, v[2].px.y});
+      const float max_y = std::max({v[0].px.y, v[1].px.y, v[2].px.y});
+      const int y_lo = std::max(static_cast<int>(std::ceil(min_y - 0.5f)), row_begin);
+      const int y_hi = std::min(static_cast<int>(std::ceil(max_y - 0.5f)) - 1, row_end - 1);
+      if (y_lo > y_hi) continue;
+      const float min_x = std::min({v[0].px.x, v[1].px.x, v[2].px.x});
+      const float max_x = std::max({v[0].px.x, v[1].px.x, v[2].px.x});
+      const int x_lo = std::max(static_cast<int>(std::ceil(min_x - 0.5f)), 0);
+      const int x_hi = std::min(static_cast<int>(std::ceil(max_x - 0.5f)) - 1, W - 1);
+      if (x_lo > x_hi) continue;
+      // Edge functions in double, oriented so the triangle's inside is positive.
+      glm::dvec2 p[3] = {glm::dvec2(v[0].px), glm::dvec2(v[1].px), glm::dvec2(v[2].px)};
+      int idx[3] = {0, 1, 2};
+      double area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
+      if (area == 0.0) continue;
+      if (area < 0.0) {
+        std::swap(p[1], p[2]);
+        std::swap(idx[1], idx[2]);
+        area = -area;
+      }
+      // Edge k runs from p[k+1] to p[k+2] (opposite vertex k). Top-left rule in y-down
+      // pixels: an edge with a pixel centre exactly on it owns the pixel when it is a top
+      // edge (horizontal, inside below) or a left edge (inside to its right... going up).
+      bool owns[3];
+      for (int k = 0; k < 3; ++k) {
+        const glm::dvec2 a = p[(k + 1) % 3], b = p[(k + 2) % 3];
+        const glm::dvec2 d = b - a;
+        owns[k] = (d.y == 0.0 && d.x > 0.0) || d.y < 0.0;
+      }
+      auto edge = [&](int k, double x, double y) {
+        const glm::dvec2 a = p[(k + 1) % 3], b = p[(k + 2) % 3];
+        return (b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x);
+      };
+      const StrokeVertex& v0 = v[idx[0]];
+      const StrokeVertex& v1 = v[idx[1]];
+      const StrokeVertex& v2 = v[idx[2]];
+      const float cap = v[2].cap;  // flat: the last vertex, as OpenGL's provoking vertex
+      for (int y = y_lo; y <= y_hi; ++y) {
+        const double cy = y + 0.5;
+        for (int x = x_lo; x <= x_hi; ++x) {
+          const double cx = x + 0.5;
+          const double e0 = edge(0, cx, cy), e1 = edge(1, cx, cy), e2 = edge(2, cx, cy);
+          if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) continue;
+          if ((e0 == 0.0 && !owns[0]) || (e1 == 0.0 && !owns[1]) || (e2 == 0.0 && !owns[2])) continue;
+          const float w0 = static_cast<float>(e0 / area), w1 = static_cast<float>(e1 / area);
+          const float w2 = 1.0f - w0 - w1;
+          const glm::vec2 local = w0 * v0.local + w1 * v1.local + w2 * v2.local;
+          const float half_width = w0 * v0.half_width + w1 * v1.half_width + w2 * v2.half_width;
+          const float alpha = w0 * v0.alpha + w1 * v1.alpha + w2 * v2.alpha;
+          const float c = strokeCoverage(local, half_width, cap);
+          if (c <= 0.0f) continue;
+          blend(image.pixel(x, y), glm::vec4(glm::vec3(colour), colour.a * alpha * c));
         }
       }
     }
@@ -101,7 +119,7 @@ size_t drawScreenLines(std::span<const ScreenLineVertex> vertices, const glm::ve
   pool.forRange(static_cast<size_t>(H), 16, [&](size_t y0, size_t y1) {
     draw_band(static_cast<int>(y0), static_cast<int>(y1));
   });
-  return segments;
+  return triangles;
 }
 
 SoftRenderer::SoftRenderer(const RasterParams& params) : params_(params) { setObjectCount(1); }
@@ -260,14 +278,16 @@ void SoftRenderer::drawLines(const FrameParams& frame, std::span<const ObjectSty
     const ObjectStyle& style = styles[i];
     o.segments_drawn = 0;
     const ScreenLines& l = o.lines;
-    if (style.hidden.enabled && l.hidden_count > 0)
-      o.segments_drawn += drawScreenLines(std::span(l.vertices).subspan(l.hidden_first, l.hidden_count),
-                                          style.hidden.color, style.hidden.width_px, image_, pool());
+    if (style.hidden.enabled && l.hidden_count > 0) {
+      drawStrokeTriangles(std::span(l.vertices).subspan(l.hidden_first, l.hidden_count), style.hidden.color, image_,
+                          pool());
+      o.segments_drawn += l.hidden_segments;
+    }
     for (int k = 0; k < kLineKindCount; ++k) {
       const LineStyle& s = style.lines.kinds[k];
       if (!s.enabled || l.count[k] == 0) continue;
-      o.segments_drawn += drawScreenLines(std::span(l.vertices).subspan(l.first[k], l.count[k]), s.color, s.width_px,
-                                          image_, pool());
+      drawStrokeTriangles(std::span(l.vertices).subspan(l.first[k], l.count[k]), s.color, image_, pool());
+      o.segments_drawn += l.segments[k];
     }
   }
   times_.lines = sw.lap();

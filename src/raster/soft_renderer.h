@@ -38,13 +38,13 @@ enum class TextureFilter { kNearest, kBilinear };
 /// not be empty.
 glm::vec4 sampleTexture(const Image& image, float u, float v, TextureFilter filter);
 
-/// Draws `vertices` (pairs = segments, in pixels) as aliased wide lines like OpenGL's
-/// GL_LINES with glLineWidth: per column (x-major) or row (y-major) a run of
-/// round(width_px) pixels centred on the segment, half-open along the major axis so chained
-/// segments neither overlap nor leave gaps, blended (src alpha = colour alpha × vertex alpha)
-/// into `image` with no depth test. Bands of rows run on `pool`. Returns segments drawn.
-size_t drawScreenLines(std::span<const ScreenLineVertex> vertices, const glm::vec4& colour, float width_px,
-                       Image& image, WorkerPool& pool);
+/// Draws stroke geometry (`vertices`: triangles in pixels, present/stroke_geometry.h) as
+/// OpenGL draws it with shaders/stroke.frag: pixel centres inside each triangle (top-left
+/// fill rule, so the triangles of one band never cover a pixel twice) get the interpolated
+/// offsets, strokeCoverage() of them × vertex alpha × colour alpha is blended into `image`
+/// with no depth test. Bands of rows run on `pool`. Returns triangles drawn.
+size_t drawStrokeTriangles(std::span<const StrokeVertex> vertices, const glm::vec4& colour, Image& image,
+                           WorkerPool& pool);
 
 /// Milliseconds per stage of the last drawSurfaces() and drawLines().
 struct SoftTimes {
@@ -52,7 +52,7 @@ struct SoftTimes {
   double setup = 0.0;      ///< triangle setup + binning (raster.h)
   double raster = 0.0;     ///< tile traversal with attribute interpolation
   double shade = 0.0;      ///< toon ramp (+ texture) per pixel
-  double lines = 0.0;      ///< wide lines (drawLines)
+  double lines = 0.0;      ///< stroke geometry (drawLines)
 };
 
 /// The scene drawn in software, like gl/renderer.h: every object's faces (each in its own

@@ -75,10 +75,15 @@ class Viewer : public ::testing::Test {
     return target->readback();
   }
 
-  static size_t differing(const Image& a, const Image& b) {
+  // Pixels whose channels differ by more than `levels` (of 255).
+  static size_t differing(const Image& a, const Image& b, int levels = 0) {
     if (a.width != b.width || a.height != b.height) return SIZE_MAX;
     size_t n = 0;
-    for (size_t i = 0; i < a.rgba.size(); i += 4) n += std::memcmp(&a.rgba[i], &b.rgba[i], 4) != 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) {
+      int d = 0;
+      for (int k = 0; k < 4; ++k) d = std::max(d, std::abs(int(a.rgba[i + k]) - int(b.rgba[i + k])));
+      n += d > levels;
+    }
     return n;
   }
 
@@ -138,7 +143,9 @@ TEST_F(Viewer, ASavedViewRendersToTheSamePicture) {
   auto rendered = readPng(dir_ / "saved.png");
   ASSERT_TRUE(rendered);
   EXPECT_EQ(rendered->width, 300);
-  EXPECT_EQ(differing(viewer, *rendered), 0u);
+  // Up to one level of 255: a stroke's coverage turns a last-bit difference of its position
+  // (the saved camera read back in another process) into a level in a few fringe pixels.
+  EXPECT_EQ(differing(viewer, *rendered, 1), 0u);
 }
 
 // One frame, three readers: the viewer's panel (the session's report), `render --stats` and

@@ -124,7 +124,7 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   // Converge at the first camera, as captures do.
   (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width,
                             frame.height, detail, 1.0f / 30.0f, 300);
-  std::vector<double> adapt, shape, lines, upload, draw, visibility, static_draw, full_lines, full_draw, faces;
+  std::vector<double> adapt, shape, lines, upload, draw, visibility, strokes, static_draw, full_lines, full_draw, faces;
   float az = 0.0f;
   bool first = true;
   for (auto _ : state) {
@@ -139,6 +139,7 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
     upload.push_back((*controlled_presenter)->times().upload);
     draw.push_back((*controlled_presenter)->times().render);
     visibility.push_back((*controlled_presenter)->times().visibility);
+    strokes.push_back((*controlled_presenter)->times().strokes);
     faces.push_back(st.faces);
     // The same adapted mesh drawn again: the static cost of what controlled detail draws.
     (void)(*controlled_presenter)->present(controlled, cam, frame, false);
@@ -152,7 +153,8 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
     first = false;
   }
   const double controlled_total = bench::median(adapt) + bench::median(shape) + bench::median(lines) +
-                                  bench::median(upload) + bench::median(draw) + bench::median(visibility);
+                                  bench::median(upload) + bench::median(draw) + bench::median(visibility) +
+                                  bench::median(strokes);
   state.counters["model_faces"] = static_cast<double>(model->mesh.faceCount());
   state.counters["active_faces"] = bench::median(faces);
   state.counters["adapt_ms"] = bench::median(adapt);
@@ -161,6 +163,7 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   state.counters["upload_ms"] = bench::median(upload);
   state.counters["draw_ms"] = bench::median(draw);
   state.counters["visibility_ms"] = bench::median(visibility);
+  state.counters["strokes_ms"] = bench::median(strokes);
   state.counters["controlled_ms"] = controlled_total;
   state.counters["static_ms"] = bench::median(static_draw);
   state.counters["full_lines_ms"] = bench::median(full_lines);

@@ -115,8 +115,8 @@ TEST(HeadlessRender, HiddenLinesRemoved) {
   for (auto f : back.faces) scene.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
   const int w = 320, h = 240;
   Rendered r = renderMesh(scene, ContextBackend::kEgl, linesOnly(w, h), {0.0f, 0.0f, 3.0f});
-  // Both spheres' contours were extracted (the renderer got the hidden one too)...
-  EXPECT_GT(r.segments, 100u);
+  // The front sphere's contour ring was drawn (simplified to a polygon of a few dozen sides)...
+  EXPECT_GT(r.segments, 30u);
   // ...but inside the big sphere's projected disk (minus a 3 px rim) every pixel is white.
   const glm::vec2 c = projectToPixels(r.camera, glm::vec3(0.0f), w, h);
   const glm::vec2 edge = projectToPixels(r.camera, glm::vec3(1.0f, 0.0f, 0.0f), w, h);

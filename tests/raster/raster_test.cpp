@@ -427,27 +427,40 @@ TEST(SoftRenderer, ToonCentreHasTheRampTone) {
   EXPECT_EQ(r.depth().at(0, 0), 1.0f);
 }
 
-// Lines in pixels have the width GL gives wide lines and are blended with their opacity;
-// nothing is drawn off the segment (visibility is decided before drawing, by the presenter).
-TEST(SoftRenderer, ScreenLinesHaveTheirWidthAndOpacity) {
+// Stroke triangles are drawn with their coverage: a band whose vertices say "1.5 px either
+// side of the centre line at y = 16.5" inks three rows fully and nothing outside; the
+// triangles of a strip never blend a pixel twice; half opacity blends halfway.
+TEST(SoftRenderer, StrokeTrianglesAreDrawnByCoverage) {
   const int W = 64, H = 32;
-  std::vector<ScreenLineVertex> v = {{{8.0f, 16.0f}, 1.0f}, {{56.0f, 16.0f}, 1.0f}};
+  auto vertex = [](float x, float y, float across, float alpha) {
+    return StrokeVertex{{x, y}, {0.0f, across}, 1.5f, alpha, 0.0f, 0.0f};
+  };
+  auto band = [&](float alpha) {
+    // Two quads (four triangles) from x = 8 to 32 and 32 to 56, 2.5 px either side.
+    std::vector<StrokeVertex> v;
+    for (float x0 : {8.0f, 32.0f}) {
+      const float x1 = x0 + 24.0f;
+      const StrokeVertex a0 = vertex(x0, 14.0f, 2.5f, alpha), a1 = vertex(x0, 19.0f, -2.5f, alpha);
+      const StrokeVertex b0 = vertex(x1, 14.0f, 2.5f, alpha), b1 = vertex(x1, 19.0f, -2.5f, alpha);
+      for (const StrokeVertex& p : {a0, a1, b0, a1, b1, b0}) v.push_back(p);
+    }
+    return v;
+  };
   Image img(W, H);
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
   WorkerPool pool(2);
-  EXPECT_EQ(drawScreenLines(v, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), 3.0f, img, pool), 1u);
-  for (int x = 10; x < W - 10; ++x) {  // the line spans x ∈ [8, 56) px
+  EXPECT_EQ(drawStrokeTriangles(band(1.0f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), img, pool), 4u);
+  for (int x = 8; x < 56; ++x) {
     int dark = 0;
     for (int y = 0; y < H; ++y) dark += img.pixel(x, y)[0] == 0;
     EXPECT_EQ(dark, 3) << x;
+    EXPECT_EQ(img.pixel(x, 14)[0], 255) << x;  // centre 14.5: 2 px from the line, no ink
   }
-  for (int x : {0, 4, 60, 63})
+  for (int x : {0, 4, 7, 56, 60, 63})
     for (int y = 0; y < H; ++y) ASSERT_EQ(img.pixel(x, y)[0], 255) << x << "," << y;
-  // Half opacity (colour alpha × vertex alpha) blends halfway to the page.
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
-  v[0].alpha = v[1].alpha = 0.5f;
-  drawScreenLines(v, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), 1.0f, img, pool);
-  EXPECT_NEAR(img.pixel(32, 15)[0], 128, 1);  // a 1-px line at y = 16 covers row 15 (centre 15.5)
+  drawStrokeTriangles(band(0.5f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), img, pool);
+  for (int x = 8; x < 56; ++x) EXPECT_NEAR(img.pixel(x, 16)[0], 128, 1) << x;  // x = 32: two quads meet
 }
 
 TEST(SoftRenderer, TextureSampling) {
