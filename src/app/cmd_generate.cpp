@@ -1,11 +1,14 @@
 // `lodline generate SHAPE -o FILE`: writes one of the project's analytic surfaces (the
-// default model in models/ was made this way).
+// default model in models/ was made this way), or one of the stroke styles' brushes as a PNG
+// (models/brushes/ was made this way; docs/strokes.md).
 #include <algorithm>
 #include <iostream>
 #include <memory>
 
 #include "app/commands.h"
 #include "io/generate.h"
+#include "io/image.h"
+#include "io/stroke_style_file.h"
 #include "io/load_mesh.h"
 
 namespace lodline {
@@ -18,14 +21,23 @@ Command addGenerateCommand(CLI::App& parent) {
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = parent.add_subcommand(
-      "generate", "Write an analytic test surface as an OFF file (knot = the default model)");
-  cmd->add_option("shape", o->shape, "sphere, uvsphere, torus, cylinder, ellipsoid, grid, terrain or knot")
+      "generate",
+      "Write an analytic test surface as an OFF file (knot = the default model), or a stroke brush as a PNG");
+  cmd->add_option("shape", o->shape,
+                  "sphere, uvsphere, torus, cylinder, ellipsoid, grid, terrain or knot; brush-pencil or brush-marker")
       ->required()
-      ->check(CLI::IsMember({"sphere", "uvsphere", "torus", "cylinder", "ellipsoid", "grid", "terrain", "knot"}));
-  cmd->add_option("-o,--output", o->output, "Output .off file")->required();
+      ->check(CLI::IsMember({"sphere", "uvsphere", "torus", "cylinder", "ellipsoid", "grid", "terrain", "knot",
+                             "brush-pencil", "brush-marker"}));
+  cmd->add_option("-o,--output", o->output, "Output .off file (.png for a brush)")->required();
   cmd->add_option("--resolution", o->resolution,
                   "Subdivision level (sphere, ellipsoid) or segments (others); 0 = a sensible default");
   return {cmd, [o]() -> int {
+            if (o->shape.starts_with("brush-")) {
+              const Image brush = makeBrush(o->shape == "brush-pencil" ? BrushKind::kPencil : BrushKind::kMarker);
+              if (Status s = writePng(o->output, brush); !s) return reportError(s.error());
+              std::cout << "wrote " << o->output << ": " << brush.width << "x" << brush.height << " brush\n";
+              return 0;
+            }
             const int r = o->resolution;
             const bool levels = o->shape == "sphere" || o->shape == "ellipsoid";
             if (r < 0 || (levels && r > 9) || (!levels && r > 4096))

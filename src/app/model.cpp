@@ -204,8 +204,9 @@ Status applySceneSettings(const Scene& scene, CLI::App& cmd) {
       values.push_back(s.str());
     }
     // File settings are relative to the scene file, as its mesh paths are.
-    if ((key == "detail-map" || key == "play" || (key == "path" && !values.empty() &&
-                                                  std::filesystem::path(values[0]).extension() == ".json")) &&
+    if ((key == "detail-map" || key == "play" ||
+         ((key == "path" || key == "stroke-style") && !values.empty() &&
+          std::filesystem::path(values[0]).extension() == ".json")) &&
         !values.empty() && std::filesystem::path(values[0]).is_relative())
       values[0] = (scene.file.parent_path() / values[0]).string();
     try {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "io/scene_file.h"
+#include "io/stroke_style_file.h"
 
 namespace lodline {
 
@@ -34,6 +35,10 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
   cmd.add_option("--line-style", o.line_styles,
                  "Colour and width of one line kind, KIND=COLOUR[:WIDTH], e.g. suggestive=#804020:1.2 "
                  "(repeatable; applied after --line-width)");
+  cmd.add_option("--stroke-style", o.stroke_style,
+                 "How strokes are drawn: plain, ink, pencil, marker, or a style file (.json): caps, tapering, "
+                 "thickness and opacity by depth, strength and bend, dashes, jitter, brush (docs/strokes.md)")
+      ->capture_default_str();
   cmd.add_option("--lines", o.lines,
                  "Comma-separated line kinds to draw: contour, suggestive, crease, boundary, intersection "
                  "(or none)")
@@ -121,6 +126,10 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   auto style = parseStyle(o.style);
   if (!style) return style.error();
   r.style.style = *style;
+  auto strokes = loadStrokeStyle(o.stroke_style);
+  if (!strokes) return strokes.error();
+  applyStrokeStyle(*strokes, r.style.lines);
+  r.style.stroke_style = strokes->name;
   if (o.line_width != 0.0f) {
     if (!(o.line_width > 0.0f && o.line_width <= 64.0f))
       return Error::usage("--line-width: must be in (0, 64] pixels");
@@ -242,6 +251,7 @@ Result<ObjectStyle> resolveObjectStyle(const ViewOptions& base, const nlohmann::
     } else if (key == "line-width") {
       if (Status s = number(v, key, o.line_width); !s) return s.error();
     } else if (key == "hidden-lines") o.hidden_lines = text(v);
+    else if (key == "stroke-style") o.stroke_style = text(v);
     else if (key == "chamfer") o.chamfer = text(v);
     else if (key == "chamfer-radius") {
       if (Status s = number(v, key, o.chamfer_radius); !s) return s.error();
@@ -292,6 +302,10 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   }
   s["lines"] = kinds.empty() ? "none" : kinds;
   s["line-style"] = line_styles;
+  // A style file is written relative to the saved view, like the detail map.
+  s["stroke-style"] = std::filesystem::path(style.stroke_style).extension() == ".json"
+                          ? pathRelativeTo(style.stroke_style, base_dir)
+                          : style.stroke_style;
   const ChamferParams& ch = style.chamfer;
   s["chamfer"] = !ch.enabled ? "off" : ch.over_toon ? "on" : "auto";
   s["chamfer-radius"] = exact(ch.radius);

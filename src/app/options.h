@@ -32,6 +32,7 @@ struct ViewOptions {
   std::string hidden_lines = "off";  ///< off or COLOUR[:WIDTH][:dash=ON,OFF]
   std::string outline = "complete";  ///< complete (mesh silhouette fills contour gaps) or contour
   std::vector<std::string> line_styles;  ///< "KIND=COLOUR[:WIDTH]", repeatable
+  std::string stroke_style = "plain";    ///< a preset (plain, ink, pencil, marker) or a .json file
   // Chamfer edge highlights (ChamferParams; Wei, Shi, Yong 2014).
   std::string chamfer = "auto";   ///< auto (with the shaded style), on (also over toon), off
   float chamfer_radius = 0.0f;    ///< r_e, model units; 0 = auto
@@ -56,7 +57,7 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o);
 Result<OrbitView> parseOrbitView(const std::string& s);
 
 /// The style of one scene object: `base` with the object's style keys (render option names:
-/// style, lines, line-style, line-width, chamfer, chamfer-radius) applied, resolved as the
+/// style, lines, line-style, line-width, stroke-style, hidden-lines, chamfer, chamfer-radius) applied, resolved as the
 /// command-line options are. Errors name `where` and the key.
 Result<ObjectStyle> resolveObjectStyle(const ViewOptions& base, const nlohmann::json& style,
                                        const std::string& where);

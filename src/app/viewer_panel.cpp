@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "io/stroke_style_file.h"
+
 namespace lodline {
 namespace {
 
@@ -103,8 +105,30 @@ void smoothingSection(ViewerSession& s) {
   ImGui::SliderFloat("within (s)", &p.seconds, 0.05f, 5.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
 }
 
+const char* kStrokeStyles[] = {"plain", "ink", "pencil", "marker"};
+
+// The stroke style: a preset for every kind, as --stroke-style sets it (the preset's colours
+// and widths replace the current ones), so that a saved view names it and renders the same.
+void strokeStyleSection(ViewerSession& s) {
+  int current = -1;
+  for (int i = 0; i < 4; ++i)
+    if (s.defaultStyle().stroke_style == kStrokeStyles[i]) current = i;
+  if (ImGui::Combo("Stroke style", &current, kStrokeStyles, 4) && current >= 0) {
+    auto preset = loadStrokeStyle(kStrokeStyles[current]);
+    if (preset)
+      editAllStyles(s, {"stroke-style", "line-style", "line-width"}, [&](ObjectStyle& p) {
+        LineStyles fresh;
+        for (int k = 0; k < kLineKindCount; ++k) fresh.kinds[k].enabled = p.lines.kinds[k].enabled;
+        applyStrokeStyle(*preset, fresh);
+        p.lines = fresh;
+        p.stroke_style = preset->name;
+      });
+  }
+}
+
 void linesSection(ViewerSession& s) {
   if (!ImGui::CollapsingHeader("Lines")) return;
+  strokeStyleSection(s);
   for (int k = 0; k < kLineKindCount; ++k) {
     ImGui::PushID(k);
     LineStyle ls = s.defaultStyle().lines.kinds[k];

@@ -29,7 +29,7 @@ struct StrokeVertex {
   float half_width = 1;  ///< half the stroke's width here, pixels (≥ 0.5)
   float alpha = 1.0f;    ///< opacity multiplier (fading of weak lines), in [0, 1]
   float cap = 0.0f;      ///< the StrokeCap of the piece this vertex belongs to, as a float
-  float pad = 0.0f;      ///< (keeps the vertex 32 bytes)
+  float u = 0.0f;        ///< arc length along the stroke, pixels (brush texture coordinate)
 };
 
 /// The fraction of a pixel centred at `local` that a stroke of half width `half_width`
@@ -48,6 +48,13 @@ inline float strokeCoverage(glm::vec2 local, float half_width, float cap) {
     d = std::max(beyond, std::abs(local.y));
   }
   return std::clamp(half_width + 0.5f - d, 0.0f, 1.0f);
+}
+
+/// Where a brush of `period_px` is sampled for a pixel at arc length `u` and offset `local`
+/// from a stroke of half width `half_width`: (u / period, across in [0, 1], 0 on the left
+/// edge), the texture coordinates of shaders/stroke.frag (repeat along, clamp across).
+inline glm::vec2 brushCoordinates(float u, glm::vec2 local, float half_width, float period_px) {
+  return {u / period_px, std::clamp(0.5f - 0.5f * local.y / half_width, 0.0f, 1.0f)};
 }
 
 /// Triangles (3 vertices each) in ranges: the visible strokes of each kind, drawn in that

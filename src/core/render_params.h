@@ -13,6 +13,7 @@
 
 #include "core/line_kind.h"
 #include "core/result.h"
+#include "core/stroke_style.h"
 
 namespace lodline {
 
@@ -26,6 +27,7 @@ struct LineStyle {
   bool enabled = true;
   glm::vec4 color{0.0f, 0.0f, 0.0f, 1.0f};  ///< RGBA in [0,1]
   float width_px = 2.0f;                    ///< line width in pixels
+  StrokeStyle stroke;                       ///< caps, profile, dashes, brush (default: plain)
 };
 
 /// Per-kind styles. Defaults: black contours 2.5 px, dark-grey suggestive contours 1.5 px,
@@ -131,6 +133,9 @@ struct ObjectStyle {
   ChamferParams chamfer;
   LineStyles lines;
   HiddenLineStyle hidden;
+  /// The stroke style applied to `lines` (a preset's name or a style file's path; default
+  /// "plain"), kept to write it back (saved views).
+  std::string stroke_style = "plain";
   /// The line kinds to extract and draw (LineStyle::enabled), indexed by LineKind.
   std::array<bool, kLineKindCount> enabledKinds() const;
 };

@@ -50,8 +50,10 @@ void writeGroup(std::ostream& os, const SvgStrokes& strokes, const char* cls, co
     if (!open) {
       os << "<g class=\"" << cls << "\" fill=\"none\" stroke=\"" << sanitizeColour(ls.colour) << "\" stroke-width=\"";
       writeNumber(os, ls.width, 3);
-      os << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"";
-      if (dash && (*dash)[1] > 0.0f) {
+      const std::string cap = ls.linecap == "butt" || ls.linecap == "square" ? ls.linecap : "round";
+      os << "\" stroke-linecap=\"" << cap << "\" stroke-linejoin=\"round\"";
+      if (!dash) dash = &ls.dash;
+      if ((*dash)[1] > 0.0f) {
         os << " stroke-dasharray=\"";
         writeNumber(os, (*dash)[0], 3);
         os << ' ';
@@ -112,6 +114,40 @@ void writeGroup(std::ostream& os, const SvgStrokes& strokes, const char* cls, co
   if (open) os << "</g>\n";
 }
 
+// The closed outlines of `strokes` of kind `kind`, filled: one group, a path per outline.
+void writeOutlines(std::ostream& os, const SvgStrokes& strokes, int kind, const SvgLineStyle& ls, int decimals) {
+  bool open = false;
+  for (size_t s = 0; s < strokes.kinds.size(); ++s) {
+    if (static_cast<int>(strokes.kinds[s]) != kind) continue;
+    const uint32_t begin = strokes.offsets[s], end = strokes.offsets[s + 1];
+    if (end - begin < 3) continue;
+    if (!open) {
+      os << "<g class=\"" << lineKindName(static_cast<LineKind>(kind)) << " outline\" fill=\""
+         << sanitizeColour(ls.colour) << "\" stroke=\"none\">\n";
+      open = true;
+    }
+    float op = ls.opacity * (strokes.opacity.empty() ? 1.0f : strokes.opacity[s]);
+    if (!std::isfinite(op)) op = 1.0f;
+    op = std::clamp(op, 0.0f, 1.0f);
+    os << "<path";
+    if (!strokes.ids.empty()) os << " id=\"s" << strokes.ids[s] << '"';
+    if (op < 1.0f) {
+      os << " fill-opacity=\"";
+      writeNumber(os, op, 3);
+      os << '"';
+    }
+    os << " d=\"M";
+    for (uint32_t i = begin; i < end; ++i) {
+      glm::vec2 p = strokes.points[i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) p = glm::vec2(0.0f);
+      if (i > begin) os << 'L';
+      writePoint(os, p, decimals);
+    }
+    os << "Z\"/>\n";
+  }
+  if (open) os << "</g>\n";
+}
+
 // One layer: its hidden lines (when enabled) under its visible lines, grouped by kind.
 void writeStrokes(std::ostream& os, const SvgLayer& layer, int decimals) {
   const SvgStyle& style = layer.style;
@@ -120,9 +156,11 @@ void writeStrokes(std::ostream& os, const SvgLayer& layer, int decimals) {
   if (style.hidden_enabled)
     writeGroup(os, layer.hidden, "hidden", style.hidden, &style.hidden_dash, decimals, style, scratch, chain,
                [](size_t) { return true; });
-  for (int kind = 0; kind < kLineKindCount; ++kind)
+  for (int kind = 0; kind < kLineKindCount; ++kind) {
     writeGroup(os, layer.strokes, lineKindName(static_cast<LineKind>(kind)), style.lines[kind], nullptr, decimals,
                style, scratch, chain, [&](size_t s) { return static_cast<int>(layer.strokes.kinds[s]) == kind; });
+    writeOutlines(os, layer.outlines, kind, style.lines[kind], decimals);
+  }
 }
 
 // Group ids: letters, digits, '-', '_' and '.', starting with a letter.
@@ -148,7 +186,7 @@ Status writeSvgLayers(const std::filesystem::path& path, int width, int height, 
     return Error::runtime(name + ": invalid SVG size " + std::to_string(width) + "x" +
                           std::to_string(height));
   for (const SvgLayer& layer : layers)
-    for (const SvgStrokes* strokes : {&layer.strokes, &layer.hidden}) {
+    for (const SvgStrokes* strokes : {&layer.strokes, &layer.hidden, &layer.outlines}) {
       const size_t ns = strokes->kinds.size();
       if (ns > 0 && strokes->offsets.size() != ns + 1)
         return Error::runtime(name + ": stroke offsets (" + std::to_string(strokes->offsets.size()) +

@@ -23,6 +23,8 @@ struct SvgLineStyle {
   std::string colour = "#000000";  ///< any SVG colour. Default black
   float width = 1.5f;              ///< stroke width, px. Default 1.5
   float opacity = 1.0f;            ///< multiplied by the stroke's own opacity. Default 1
+  std::string linecap = "round";   ///< "round", "butt" or "square". Default round
+  std::array<float, 2> dash{0.0f, 0.0f};  ///< dash on, off px (off 0 = solid). Default solid
 };
 
 /// Per-kind styles and the page.
@@ -74,6 +76,10 @@ struct SvgLayer {
   SvgStrokes strokes;
   SvgStyle style;
   SvgStrokes hidden = {};  ///< the hidden runs (written when style.hidden_enabled)
+  /// Strokes of varying width (tapered, or thicker by depth, strength or bend) as closed
+  /// outline polygons, filled in their kind's colour and written above the kind's other
+  /// strokes (points = the outline, opacity = the stroke's mean opacity).
+  SvgStrokes outlines = {};
 };
 
 /// Several objects in one SVG, in order (later layers on top), each in a <g id="name">

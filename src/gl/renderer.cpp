@@ -110,7 +110,7 @@ Result<Renderer::Object> Renderer::makeObject() const {
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(StrokeVertex), nullptr);
   glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(StrokeVertex),
+  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(StrokeVertex),
                         reinterpret_cast<const void*>(offsetof(StrokeVertex, half_width)));
   glBindVertexArray(0);
   return o;
@@ -247,17 +247,42 @@ void Renderer::drawSurfaces(const Camera& camera, const FrameParams& frame, std:
   glBindVertexArray(0);
 }
 
+unsigned Renderer::brushTexture(const std::shared_ptr<const Image>& brush) {
+  for (const BrushTexture& b : brushes_)
+    if (b.image == brush) return b.texture.id();
+  BrushTexture b{brush, makeTexture()};
+  glBindTexture(GL_TEXTURE_2D, b.texture.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, brush->width, brush->height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               brush->rgba.data());
+  // Already resampled to its size on screen (io/stroke_style_file.h): no mipmaps.
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  brushes_.push_back(std::move(b));
+  return brushes_.back().texture.id();
+}
+
 void Renderer::drawObjectLines(Object& o, const ObjectStyle& style) {
   glBindVertexArray(o.line_vao.id());
   o.segments_drawn = 0;
   const GLint color_loc = glGetUniformLocation(line_.id(), "u_color");
-  auto draw = [&](const glm::vec4& colour, uint32_t first, uint32_t count) {
+  const GLint period_loc = glGetUniformLocation(line_.id(), "u_brush_period");
+  auto draw = [&](const glm::vec4& colour, const StrokeStyle* stroke, uint32_t first, uint32_t count) {
     glUniform4fv(color_loc, 1, glm::value_ptr(colour));
+    if (stroke && stroke->brush && stroke->brush->width > 0) {
+      glActiveTexture(GL_TEXTURE1);
+      glBindTexture(GL_TEXTURE_2D, brushTexture(stroke->brush));
+      glUniform1f(period_loc, static_cast<float>(stroke->brush->width));
+    } else {
+      glUniform1f(period_loc, 0.0f);
+    }
     glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(count));
   };
   // Hidden lines first, under the visible ones.
   if (style.hidden.enabled && o.hidden_count > 0) {
-    draw(style.hidden.color, o.hidden_first, o.hidden_count);
+    draw(style.hidden.color, nullptr, o.hidden_first, o.hidden_count);
     o.segments_drawn += o.hidden_segments;
   }
   for (int k = 0; k < kLineKindCount; ++k) {
@@ -265,7 +290,7 @@ void Renderer::drawObjectLines(Object& o, const ObjectStyle& style) {
     if (!s.enabled || o.count[k] == 0) continue;
     // Highlighted sharp edges replace the crease lines drawn on them.
     if (k == static_cast<int>(LineKind::kCrease) && o.chamfer_drawn > 0 && style.chamfer.replace_creases) continue;
-    draw(s.color, o.first[k], o.count[k]);
+    draw(s.color, &s.stroke, o.first[k], o.count[k]);
     o.segments_drawn += o.segments[k];
   }
 }
@@ -280,7 +305,11 @@ void Renderer::drawLines(const FrameParams& frame, std::span<const ObjectStyle> 
   glUseProgram(line_.id());
   glUniform2f(glGetUniformLocation(line_.id(), "u_viewport"), static_cast<float>(frame.width),
               static_cast<float>(frame.height));
+  glUniform1i(glGetUniformLocation(line_.id(), "u_brush"), 1);
+  // Brushes no style holds any more (the viewer switched presets) are let go.
+  std::erase_if(brushes_, [](const BrushTexture& b) { return b.image.use_count() == 1; });
   for (size_t i = 0; i < objects_.size(); ++i) drawObjectLines(objects_[i], styles[i]);
+  glActiveTexture(GL_TEXTURE0);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glBindVertexArray(0);

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -85,6 +86,13 @@ class Renderer {
   void drawFaces(Object& o, const Camera& camera, const ObjectStyle& style, const FrameParams& frame);
   void drawChamfer(Object& o, const Camera& camera, const ObjectStyle& style, const FrameParams& frame);
   void drawObjectLines(Object& o, const ObjectStyle& style);
+  /// The texture of a stroke style's brush (uploaded at its first use).
+  unsigned brushTexture(const std::shared_ptr<const Image>& brush);
+  struct BrushTexture {
+    std::shared_ptr<const Image> image;
+    GlTexture texture;
+  };
+  std::vector<BrushTexture> brushes_;
   GlProgram toon_, depth_only_, line_, surface_;
   GlTexture ramp_;
   std::vector<Object> objects_;

@@ -34,7 +34,7 @@ const std::map<std::string, std::string>& styleKeys() {
   static const std::map<std::string, std::string> keys = {
       {"style", "style"},         {"lines", "lines"},     {"line_style", "line-style"},
       {"line_width", "line-width"}, {"chamfer", "chamfer"}, {"chamfer_radius", "chamfer-radius"},
-      {"hidden_lines", "hidden-lines"}};
+      {"hidden_lines", "hidden-lines"}, {"stroke_style", "stroke-style"}};
   return keys;
 }
 
@@ -210,6 +210,10 @@ Status readObject(Reader& r, const nlohmann::json& o, const std::string& where, 
                      std::all_of(v.begin(), v.end(), [](const nlohmann::json& e) { return e.is_string(); }));
     if (!ok) return bad(where + "." + key, key == "line_style" ? "expected a string or an array of strings" : "expected a string or a number");
     style[option] = v;
+    // A style file is relative to the scene file, as mesh paths are.
+    if (key == "stroke_style" && v.is_string() && std::filesystem::path(v.get<std::string>()).extension() == ".json" &&
+        std::filesystem::path(v.get<std::string>()).is_relative())
+      style[option] = (dir / v.get<std::string>()).string();
   }
   for (const auto& [k, v] : parent_style.items())
     if (!style.contains(k)) style[k] = v;

@@ -31,7 +31,9 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
   times_.visibility = sw.lap();
   times_.strokes = 0.0;
   for (size_t i = 0; i < scene.size(); ++i) {
-    buildScreenLines(visible_[i], hidden_[i], styles_[i], screen_lines_, stroke_scratch_);
+    const Bounds& b = scene[i].drawing->bounds();
+    const StrokeView view{camera.eye, camera.forward(), b.center, b.radius};
+    buildScreenLines(visible_[i], hidden_[i], styles_[i], view, screen_lines_, stroke_scratch_);
     times_.strokes += sw.lap();
     uploadLines(i, screen_lines_);
     times_.upload += sw.lap();

@@ -28,7 +28,7 @@
 #include "frame/scene_drawing.h"
 #include "gl/context.h"
 #include "present/outline.h"
-#include "present/stroke_geometry.h"
+#include "present/screen_lines.h"
 
 namespace lodline {
 
@@ -135,7 +135,7 @@ class ScenePresenter {
   std::vector<OutlineHistory> outline_history_;
   bool sequence_in_motion_ = false;
   ScreenLines screen_lines_;
-  StrokeGeometryScratch stroke_scratch_;
+  ScreenLinesScratch stroke_scratch_;
 };
 
 /// A presenter for `scene` on `backend`: OpenGL through a headless context of kind

@@ -8,81 +8,183 @@
 namespace lodline {
 namespace {
 
-// Run r of `runs` as one stroke.
-size_t runStroke(const StrokeRuns& runs, size_t r, float width, const StrokeGeometryParams& params,
-                 ScreenLines& out, StrokeGeometryScratch& scratch) {
-  const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
-  return appendStrokeGeometry(std::span(runs.points).subspan(b, e - b), std::span(runs.alpha).subspan(b, e - b),
-                              width, params, out.vertices, scratch);
+// Value noise along a line (smooth between integer lattice points), in [−1, 1].
+float noise1(uint32_t seed, float x) {
+  auto lattice = [seed](int i) {
+    uint64_t z = (static_cast<uint64_t>(seed) << 32) ^ static_cast<uint32_t>(i);
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    return static_cast<float>(z >> 40) / static_cast<float>(1ull << 23) - 1.0f;
+  };
+  const float f = std::floor(x);
+  const int i = static_cast<int>(f);
+  const float t = x - f, s = t * t * (3.0f - 2.0f * t);
+  return lattice(i) + s * (lattice(i + 1) - lattice(i));
 }
 
-// The parts of run r's polyline inside the dashes [k·period, k·period + on), arc length
-// from the run's start, each as a stroke.
-size_t runDashes(const StrokeRuns& runs, size_t r, float on, float period, float width,
-                 const StrokeGeometryParams& params, ScreenLines& out, StrokeGeometryScratch& scratch) {
-  std::vector<glm::vec2> dash;
-  std::vector<float> dash_alpha;
-  size_t segments = 0;
-  auto flush = [&] {
-    if (dash.size() >= 2) segments += appendStrokeGeometry(dash, dash_alpha, width, params, out.vertices, scratch);
-    dash.clear();
-    dash_alpha.clear();
-  };
-  float s0 = 0.0f;  // arc length at the start of the current segment
-  for (uint32_t i = runs.offsets[r]; i + 1 < runs.offsets[r + 1]; ++i) {
-    const glm::vec2 a = runs.points[i], b = runs.points[i + 1];
-    const float len = glm::length(b - a);
-    if (!(len > 0.0f)) continue;
-    const float s1 = s0 + len;
-    for (float d = std::floor(s0 / period) * period; d < s1; d += period) {
-      const float lo = std::max(d, s0), hi = std::min(d + on, s1);
-      if (hi <= lo) continue;
-      const float t0 = (lo - s0) / len, t1 = (hi - s0) / len;
-      const float a0 = runs.alpha[i] + t0 * (runs.alpha[i + 1] - runs.alpha[i]);
-      const float a1 = runs.alpha[i] + t1 * (runs.alpha[i + 1] - runs.alpha[i]);
-      // A dash that began on an earlier segment continues through this one's start.
-      if (lo > s0 || dash.empty()) {
-        flush();
-        dash.push_back(a + t0 * (b - a));
-        dash_alpha.push_back(a0);
-      }
-      dash.push_back(a + t1 * (b - a));
-      dash_alpha.push_back(a1);
-      if (hi < d + on) continue;  // the dash goes on past this segment's end
-      flush();
-    }
-    s0 = s1;
+float smoothstep01(float x) {
+  x = std::clamp(x, 0.0f, 1.0f);
+  return x * x * (3.0f - 2.0f * x);
+}
+
+// The turning of the polyline at each point, per pixel of arc length, over ±`reach` px,
+// times 8 px and clamped to [0, 1] (a bend of 1 turns by a radian within 8 px).
+void computeBend(const std::vector<glm::vec2>& p, const std::vector<float>& s, float reach, std::vector<float>& out) {
+  const size_t n = p.size();
+  out.assign(n, 0.0f);
+  size_t lo = 0, hi = 0;
+  for (size_t i = 0; i < n; ++i) {
+    while (lo < i && s[i] - s[lo + 1] >= reach) ++lo;
+    if (hi < i) hi = i;
+    while (hi + 1 < n && s[hi] - s[i] < reach) ++hi;
+    if (lo == i || hi == i) continue;
+    const glm::vec2 a = p[i] - p[lo], b = p[hi] - p[i];
+    const float la = glm::length(a), lb = glm::length(b);
+    if (!(la > 0.0f && lb > 0.0f)) continue;
+    const float c = std::clamp(glm::dot(a, b) / (la * lb), -1.0f, 1.0f);
+    out[i] = std::clamp(std::acos(c) / (s[hi] - s[lo]) * 8.0f, 0.0f, 1.0f);
   }
-  flush();
+}
+
+}  // namespace
+
+bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const StrokeStyle& st, const StrokeView& view,
+                   ScreenLinesScratch& sc) {
+  const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+  if (e <= b) return false;
+  auto& P = sc.points;
+  auto& A = sc.alpha;
+  auto& W = sc.width;
+  auto& S = sc.arc;
+  P.assign(runs.points.begin() + b, runs.points.begin() + e);
+  S.resize(P.size());
+  S[0] = 0.0f;
+  for (size_t i = 1; i < P.size(); ++i) S[i] = S[i - 1] + glm::length(P[i] - P[i - 1]);
+  const float length = S.back();
+  if (length < st.min_length_px) return false;
+  const size_t n = P.size();
+
+  // Depth across the object's bounding sphere, and the bend, where the style uses them.
+  const bool use_depth = st.depth_thickness != 0.0f || st.depth_opacity != 0.0f;
+  const bool use_bend = st.curvature_thickness != 0.0f || st.curvature_opacity != 0.0f;
+  auto& D = sc.depth;
+  D.assign(n, 0.0f);
+  if (use_depth && runs.positions.size() >= e) {
+    const float zc = glm::dot(view.center - view.eye, view.forward);
+    const float r2 = 2.0f * std::max(view.radius, 1e-12f);
+    for (size_t i = 0; i < n; ++i) {
+      const float z = glm::dot(runs.positions[b + i] - view.eye, view.forward);
+      D[i] = std::clamp((z - (zc - 0.5f * r2)) / r2, 0.0f, 1.0f);
+    }
+  }
+  if (use_bend) computeBend(P, S, 4.0f, sc.bend);
+  else sc.bend.assign(n, 0.0f);
+
+  A.resize(n);
+  W.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const float strength = runs.alpha[b + i];
+    const float d = D[i], bend = sc.bend[i];
+    float taper = 1.0f;
+    if (st.taper_in_px > 0.0f) taper = std::min(taper, smoothstep01(S[i] / st.taper_in_px));
+    if (st.taper_out_px > 0.0f) taper = std::min(taper, smoothstep01((length - S[i]) / st.taper_out_px));
+    taper = st.taper_min + (1.0f - st.taper_min) * taper;
+    const float w = width_px * taper * (1.0f + st.depth_thickness * (1.0f - 2.0f * d)) *
+                    (1.0f - st.strength_thickness * (1.0f - strength)) * (1.0f + st.curvature_thickness * bend);
+    W[i] = std::max(w, 0.0f);
+    A[i] = std::clamp((1.0f - st.strength_opacity * (1.0f - strength)) * (1.0f - st.depth_opacity * d) *
+                          (1.0f - st.curvature_opacity * bend),
+                      0.0f, 1.0f);
+  }
+  // Jitter: the centre line moved sideways by noise along the arc length.
+  if (st.jitter_px > 0.0f && n >= 2) {
+    sc.piece.assign(P.begin(), P.end());
+    for (size_t i = 0; i < n; ++i) {
+      const glm::vec2 d = sc.piece[std::min(i + 1, n - 1)] - sc.piece[i > 0 ? i - 1 : 0];
+      const float len = glm::length(d);
+      if (!(len > 0.0f)) continue;
+      const glm::vec2 normal(-d.y / len, d.x / len);
+      P[i] = sc.piece[i] + normal * (st.jitter_px * noise1(st.seed, S[i] / st.jitter_period_px));
+    }
+  }
+  return true;
+}
+
+namespace {
+
+// Run r of `runs` as one stroke in style `st` (width `width_px`), cut into dashes when the
+// style has them. Returns the polyline segments drawn.
+size_t styledRun(const StrokeRuns& runs, size_t r, float width_px, const StrokeStyle& st, const StrokeView& view,
+                 ScreenLines& out, ScreenLinesScratch& sc) {
+  if (!strokeProfile(runs, r, width_px, st, view, sc)) return 0;
+  const auto& P = sc.points;
+  const auto& A = sc.alpha;
+  const auto& W = sc.width;
+  const auto& S = sc.arc;
+  const size_t n = P.size();
+  const float length = S.back();
+  StrokeGeometryParams gp;
+  gp.cap = st.cap;
+  const bool dashed = st.dash_on > 0.0f && st.dash_off > 0.0f;
+  if (!dashed) return appendStrokeGeometry(P, A, W, 0.0f, gp, out.vertices, sc.geometry);
+
+  // Dashes [k·period, k·period + on) of arc length, each a stroke with the points inside.
+  const float on = std::max(st.dash_on, 0.5f), period = on + st.dash_off;
+  size_t segments = 0;
+  for (float d0 = 0.0f; d0 < length; d0 += period) {
+    const float d1 = std::min(d0 + on, length);
+    sc.piece.clear();
+    sc.piece_alpha.clear();
+    sc.piece_width.clear();
+    auto at = [&](float s) {  // the point at arc length s, interpolated
+      const size_t j = static_cast<size_t>(std::upper_bound(S.begin(), S.end(), s) - S.begin());
+      const size_t i1 = std::clamp<size_t>(j, 1, n - 1), i0 = i1 - 1;
+      const float span = S[i1] - S[i0];
+      const float t = span > 0.0f ? std::clamp((s - S[i0]) / span, 0.0f, 1.0f) : 0.0f;
+      sc.piece.push_back(P[i0] + t * (P[i1] - P[i0]));
+      sc.piece_alpha.push_back(A[i0] + t * (A[i1] - A[i0]));
+      sc.piece_width.push_back(W[i0] + t * (W[i1] - W[i0]));
+    };
+    at(d0);
+    for (size_t i = 0; i < n; ++i)
+      if (S[i] > d0 && S[i] < d1) {
+        sc.piece.push_back(P[i]);
+        sc.piece_alpha.push_back(A[i]);
+        sc.piece_width.push_back(W[i]);
+      }
+    at(d1);
+    segments += appendStrokeGeometry(sc.piece, sc.piece_alpha, sc.piece_width, d0, gp, out.vertices, sc.geometry);
+  }
   return segments;
 }
 
 }  // namespace
 
 void buildScreenLines(const StrokeRuns& visible, const StrokeRuns& hidden, const ObjectStyle& style,
-                      ScreenLines& out, StrokeGeometryScratch& scratch) {
+                      const StrokeView& view, ScreenLines& out, ScreenLinesScratch& scratch) {
   out.clear();
-  const StrokeGeometryParams round;  // round caps and joins
   for (int k = 0; k < kLineKindCount; ++k) {
     out.first[k] = static_cast<uint32_t>(out.vertices.size());
     const LineStyle& ls = style.lines.kinds[k];
     if (ls.enabled)
       for (size_t r = 0; r < visible.strokeCount(); ++r)
         if (static_cast<int>(visible.kinds[r]) == k)
-          out.segments[k] += static_cast<uint32_t>(runStroke(visible, r, ls.width_px, round, out, scratch));
+          out.segments[k] += static_cast<uint32_t>(styledRun(visible, r, ls.width_px, ls.stroke, view, out, scratch));
     out.count[k] = static_cast<uint32_t>(out.vertices.size()) - out.first[k];
   }
   out.hidden_first = static_cast<uint32_t>(out.vertices.size());
   const HiddenLineStyle& h = style.hidden;
   if (h.enabled) {
-    StrokeGeometryParams butt;
-    butt.cap = StrokeCap::kButt;
-    const bool solid = !(h.dash_off > 0.0f);
-    const float on = std::max(h.dash_on, 0.5f), period = on + std::max(h.dash_off, 0.0f);
+    StrokeStyle hs;
+    hs.cap = StrokeCap::kButt;
+    if (h.dash_off > 0.0f) {
+      hs.dash_on = h.dash_on;
+      hs.dash_off = h.dash_off;
+    }
     for (size_t r = 0; r < hidden.strokeCount(); ++r)
-      out.hidden_segments += static_cast<uint32_t>(
-          solid ? runStroke(hidden, r, h.width_px, butt, out, scratch)
-                : runDashes(hidden, r, on, period, h.width_px, butt, out, scratch));
+      out.hidden_segments += static_cast<uint32_t>(styledRun(hidden, r, h.width_px, hs, view, out, scratch));
   }
   out.hidden_count = static_cast<uint32_t>(out.vertices.size()) - out.hidden_first;
 }

@@ -1,20 +1,49 @@
 // From stroke runs to what the renderers draw (core/line_buffer.h): the visible runs grouped
-// by kind as stroke geometry of their kind's width, the hidden runs cut into the hidden
-// style's dashes (docs/visibility.md, docs/strokes.md).
+// by kind as stroke geometry in their kind's style, the hidden runs in the hidden style
+// (docs/visibility.md, docs/strokes.md).
 #pragma once
 
+#include "core/camera.h"
 #include "core/line_buffer.h"
+#include "core/mesh.h"
 #include "core/render_params.h"
 #include "export/visibility.h"
 #include "present/stroke_geometry.h"
 
 namespace lodline {
 
-/// Fills `out` with the strokes of `visible` (per kind, in style.lines' widths, round caps
-/// and joins) and, when style.hidden is enabled, of `hidden` cut into dashes of
-/// hidden.dash_on pixels every dash_on + dash_off pixels along each run (solid when dash_off
-/// is 0; butt caps). Kinds that are not enabled are left out.
+/// Where the strokes are seen from, for the styles' depth terms: the camera and the object's
+/// bounding sphere (depth 0 at its nearest point, 1 at its farthest).
+struct StrokeView {
+  glm::vec3 eye{0.0f};
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};
+  glm::vec3 center{0.0f};
+  float radius = 1.0f;
+};
+
+/// Scratch of buildScreenLines(); reuse between calls.
+struct ScreenLinesScratch {
+  std::vector<glm::vec2> points;
+  std::vector<float> alpha, width, arc, depth, bend;
+  std::vector<glm::vec2> piece;
+  std::vector<float> piece_alpha, piece_width;
+  StrokeGeometryScratch geometry;
+};
+
+/// The profile of run r of `runs` in style `st` at width `width_px`, into sc.points (jitter
+/// applied), sc.width (px), sc.alpha (opacity) and sc.arc (arc length from the run's start),
+/// one entry per point of the run. False (and nothing to draw) when the run is shorter than
+/// the style's minimum length or empty. The renderers' geometry and the SVG's variable-width
+/// outlines both come from it.
+bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const StrokeStyle& st, const StrokeView& view,
+                   ScreenLinesScratch& sc);
+
+/// Fills `out` with the strokes of `visible` (per kind, in style.lines' colours, widths and
+/// stroke styles: profile, dashes, jitter, minimum length; docs/strokes.md) and, when
+/// style.hidden is enabled, of `hidden` in the hidden style (its width and colour, dashes of
+/// hidden.dash_on pixels every dash_on + dash_off pixels, butt ends). Kinds that are not
+/// enabled are left out.
 void buildScreenLines(const StrokeRuns& visible, const StrokeRuns& hidden, const ObjectStyle& style,
-                      ScreenLines& out, StrokeGeometryScratch& scratch);
+                      const StrokeView& view, ScreenLines& out, ScreenLinesScratch& scratch);
 
 }  // namespace lodline

@@ -5,6 +5,11 @@
 #include <cstdio>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
+#include "present/screen_lines.h"
+#include "present/stroke_geometry.h"
+
 namespace lodline {
 namespace {
 
@@ -15,6 +20,87 @@ std::string colourToHex(const glm::vec4& c) {
   return buf;
 }
 
+const char* capName(StrokeCap c) { return c == StrokeCap::kButt ? "butt" : c == StrokeCap::kSquare ? "square" : "round"; }
+
+// A style whose width varies along a stroke: its strokes become filled outlines.
+bool variableWidth(const StrokeStyle& s) {
+  return s.taper_in_px > 0.0f || s.taper_out_px > 0.0f || s.depth_thickness != 0.0f || s.strength_thickness != 0.0f ||
+         s.curvature_thickness != 0.0f || s.jitter_px > 0.0f;
+}
+
+// One layer's runs as the SVG writes them: constant-width runs kept as strokes (those the
+// style's minimum length keeps), the others as closed outlines of their profile.
+struct LayerStrokes {
+  std::vector<glm::vec2> points, outline_points;
+  std::vector<uint32_t> offsets{0}, outline_offsets{0};
+  std::vector<LineKind> kinds, outline_kinds;
+  std::vector<float> opacity, outline_opacity;
+  std::vector<uint64_t> ids, outline_ids;
+};
+
+// The outline of the profile in sc (points, width; simplified): the left side forward, the
+// end cap, the right side back, the start cap (round caps as 8-gons).
+void appendOutline(const ScreenLinesScratch& sc, StrokeCap cap, std::vector<glm::vec2>& out) {
+  const auto& P = sc.geometry.points;
+  const auto& W = sc.geometry.width;
+  const size_t n = P.size();
+  auto normal = [&](size_t i) {
+    const glm::vec2 d = P[std::min(i + 1, n - 1)] - P[i > 0 ? i - 1 : 0];
+    const float len = glm::length(d);
+    return len > 0.0f ? glm::vec2(-d.y, d.x) / len : glm::vec2(0.0f, 1.0f);
+  };
+  auto end_cap = [&](size_t i, glm::vec2 dir) {  // from the left side round to the right side
+    const glm::vec2 nrm(-dir.y, dir.x);
+    const float r = 0.5f * W[i];
+    if (cap == StrokeCap::kRound) {
+      for (int k = 1; k < 8; ++k) {
+        const float a = static_cast<float>(k) * 3.14159265f / 8.0f;
+        out.push_back(P[i] + r * (std::cos(a) * nrm + std::sin(a) * dir));
+      }
+    } else if (cap == StrokeCap::kSquare) {
+      out.push_back(P[i] + r * (nrm + dir));
+      out.push_back(P[i] + r * (dir - nrm));
+    }
+  };
+  for (size_t i = 0; i < n; ++i) out.push_back(P[i] + 0.5f * W[i] * normal(i));
+  end_cap(n - 1, glm::normalize(P[n - 1] - P[n - 2]));
+  for (size_t i = n; i-- > 0;) out.push_back(P[i] - 0.5f * W[i] * normal(i));
+  end_cap(0, glm::normalize(P[0] - P[1]));
+}
+
+void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView& view, const std::vector<uint64_t>* ids,
+             LayerStrokes& out, ScreenLinesScratch& sc) {
+  for (size_t r = 0; r < runs.strokeCount(); ++r) {
+    const LineStyle& ls = style.lines[runs.kinds[r]];
+    const StrokeStyle& st = ls.stroke;
+    const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+    if (!variableWidth(st)) {
+      if (st.min_length_px > 0.0f && runs.length_px[r] < st.min_length_px) continue;
+      out.points.insert(out.points.end(), runs.points.begin() + b, runs.points.begin() + e);
+      out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
+      out.kinds.push_back(runs.kinds[r]);
+      out.opacity.push_back(runs.opacity[r]);
+      if (ids) out.ids.push_back((*ids)[r]);
+      continue;
+    }
+    if (!strokeProfile(runs, r, ls.width_px, st, view, sc) || sc.points.size() < 2) continue;
+    StrokeGeometryScratch& g = sc.geometry;
+    g.points = sc.points;
+    g.width = sc.width;
+    g.alpha = sc.alpha;
+    g.arc = sc.arc;
+    simplifyStroke(0.25f, g);
+    if (g.points.size() < 2) continue;
+    float mean_alpha = 0.0f;
+    for (float a : sc.alpha) mean_alpha += a;
+    appendOutline(sc, st.cap, out.outline_points);
+    out.outline_offsets.push_back(static_cast<uint32_t>(out.outline_points.size()));
+    out.outline_kinds.push_back(runs.kinds[r]);
+    out.outline_opacity.push_back(mean_alpha / static_cast<float>(sc.alpha.size()));
+    if (ids) out.outline_ids.push_back((*ids)[r]);
+  }
+}
+
 }  // namespace
 
 SvgStyle svgStyleOf(const ObjectStyle& style, const FrameParams& frame) {
@@ -23,11 +109,13 @@ SvgStyle svgStyleOf(const ObjectStyle& style, const FrameParams& frame) {
   s.background_colour = colourToHex(frame.background);
   for (int k = 0; k < kLineKindCount; ++k) {
     const LineStyle& ls = style.lines.kinds[k];
-    s.lines[k] = {colourToHex(ls.color), ls.width_px, ls.color.a};
+    const StrokeStyle& st = ls.stroke;
+    s.lines[k] = {colourToHex(ls.color), ls.width_px, ls.color.a, capName(st.cap), {0.0f, 0.0f}};
+    if (st.dash_on > 0.0f && st.dash_off > 0.0f) s.lines[k].dash = {st.dash_on, st.dash_off};
   }
   const HiddenLineStyle& h = style.hidden;
   s.hidden_enabled = h.enabled;
-  s.hidden = {colourToHex(h.color), h.width_px, h.color.a};
+  s.hidden = {colourToHex(h.color), h.width_px, h.color.a, "butt", {h.dash_on, h.dash_off}};
   s.hidden_dash = {h.dash_on, h.dash_off};
   return s;
 }
@@ -35,16 +123,27 @@ SvgStyle svgStyleOf(const ObjectStyle& style, const FrameParams& frame) {
 Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scene, ScenePresenter& presenter,
                      const std::vector<std::vector<uint64_t>>* ids) {
   const FrameParams& frame = presenter.frame();
+  const Camera& camera = presenter.camera();
   const std::vector<StrokeRuns>& visible = presenter.visible();
   const std::vector<StrokeRuns>& hidden = presenter.hidden();
+  std::vector<LayerStrokes> kept(scene.size());
+  ScreenLinesScratch scratch;
   std::vector<SvgLayer> layers;
   for (size_t i = 0; i < scene.size(); ++i) {
     const StrokeRuns& v = visible[i];
     const StrokeRuns& h = hidden[i];
-    SvgStrokes strokes{v.points, v.offsets, v.kinds, v.opacity};
-    if (ids && i < ids->size() && (*ids)[i].size() == v.strokeCount()) strokes.ids = (*ids)[i];
-    layers.push_back({scene[i].name, strokes,
-                      svgStyleOf(scene[i].style, frame), SvgStrokes{h.points, h.offsets, h.kinds, h.opacity}});
+    const Bounds& b = scene[i].drawing->bounds();
+    const StrokeView view{camera.eye, camera.forward(), b.center, b.radius};
+    const std::vector<uint64_t>* object_ids =
+        ids && i < ids->size() && (*ids)[i].size() == v.strokeCount() ? &(*ids)[i] : nullptr;
+    LayerStrokes& k = kept[i];
+    collect(v, scene[i].style, view, object_ids, k, scratch);
+    SvgStrokes strokes{k.points, k.offsets, k.kinds, k.opacity};
+    if (object_ids) strokes.ids = k.ids;
+    SvgStrokes outlines{k.outline_points, k.outline_offsets, k.outline_kinds, k.outline_opacity};
+    if (object_ids) outlines.ids = k.outline_ids;
+    layers.push_back({scene[i].name, strokes, svgStyleOf(scene[i].style, frame),
+                      SvgStrokes{h.points, h.offsets, h.kinds, h.opacity}, outlines});
   }
   ObjectStyle page_style;
   return writeSvgLayers(path, frame.width, frame.height, layers, svgStyleOf(page_style, frame));

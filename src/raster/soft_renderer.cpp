@@ -48,9 +48,13 @@ glm::vec4 sampleTexture(const Image& image, float u, float v, TextureFilter filt
   return top * (1.0f - ay) + bottom * ay;
 }
 
-size_t drawStrokeTriangles(std::span<const StrokeVertex> vertices, const glm::vec4& colour, Image& image,
-                           WorkerPool& pool) {
+size_t drawStrokeTriangles(std::span<const StrokeVertex> vertices, const glm::vec4& colour, const Image* brush,
+                           Image& image, WorkerPool& pool) {
   const int W = image.width, H = image.height;
+  if (brush && (brush->width <= 0 || brush->height <= 0)) brush = nullptr;
+  const float period = brush ? static_cast<float>(brush->width) : 1.0f;
+  // Across, texel centres only (GL's CLAMP_TO_EDGE; sampleTexture() would wrap).
+  const float v_lo = brush ? 0.5f / static_cast<float>(brush->height) : 0.0f, v_hi = 1.0f - v_lo;
   const size_t triangles = vertices.size() / 3;
   auto draw_band = [&](int row_begin, int row_end) {
     for (size_t t = 0; t < triangles; ++t) {
@@ -109,8 +113,13 @@ size_t drawStrokeTriangles(std::span<const StrokeVertex> vertices, const glm::ve
           const glm::vec2 local = w0 * v0.local + w1 * v1.local + w2 * v2.local;
           const float half_width = w0 * v0.half_width + w1 * v1.half_width + w2 * v2.half_width;
           const float alpha = w0 * v0.alpha + w1 * v1.alpha + w2 * v2.alpha;
-          const float c = strokeCoverage(local, half_width, cap);
+          float c = strokeCoverage(local, half_width, cap);
           if (c <= 0.0f) continue;
+          if (brush) {
+            const float u = w0 * v0.u + w1 * v1.u + w2 * v2.u;
+            const glm::vec2 st = brushCoordinates(u, local, half_width, period);
+            c *= sampleTexture(*brush, st.x, std::clamp(st.y, v_lo, v_hi), TextureFilter::kBilinear).r;
+          }
           blend(image.pixel(x, y), glm::vec4(glm::vec3(colour), colour.a * alpha * c));
         }
       }
@@ -279,14 +288,15 @@ void SoftRenderer::drawLines(const FrameParams& frame, std::span<const ObjectSty
     o.segments_drawn = 0;
     const ScreenLines& l = o.lines;
     if (style.hidden.enabled && l.hidden_count > 0) {
-      drawStrokeTriangles(std::span(l.vertices).subspan(l.hidden_first, l.hidden_count), style.hidden.color, image_,
-                          pool());
+      drawStrokeTriangles(std::span(l.vertices).subspan(l.hidden_first, l.hidden_count), style.hidden.color, nullptr,
+                          image_, pool());
       o.segments_drawn += l.hidden_segments;
     }
     for (int k = 0; k < kLineKindCount; ++k) {
       const LineStyle& s = style.lines.kinds[k];
       if (!s.enabled || l.count[k] == 0) continue;
-      drawStrokeTriangles(std::span(l.vertices).subspan(l.first[k], l.count[k]), s.color, image_, pool());
+      drawStrokeTriangles(std::span(l.vertices).subspan(l.first[k], l.count[k]), s.color, s.stroke.brush.get(),
+                          image_, pool());
       o.segments_drawn += l.segments[k];
     }
   }

@@ -42,9 +42,11 @@ glm::vec4 sampleTexture(const Image& image, float u, float v, TextureFilter filt
 /// OpenGL draws it with shaders/stroke.frag: pixel centres inside each triangle (top-left
 /// fill rule, so the triangles of one band never cover a pixel twice) get the interpolated
 /// offsets, strokeCoverage() of them × vertex alpha × colour alpha is blended into `image`
-/// with no depth test. Bands of rows run on `pool`. Returns triangles drawn.
-size_t drawStrokeTriangles(std::span<const StrokeVertex> vertices, const glm::vec4& colour, Image& image,
-                           WorkerPool& pool);
+/// with no depth test. With a `brush` (one period, its width in pixels of arc length), the
+/// coverage is also × its red channel at brushCoordinates(), bilinear, repeating along and
+/// clamped across like the GL texture. Bands of rows run on `pool`. Returns triangles drawn.
+size_t drawStrokeTriangles(std::span<const StrokeVertex> vertices, const glm::vec4& colour, const Image* brush,
+                           Image& image, WorkerPool& pool);
 
 /// Milliseconds per stage of the last drawSurfaces() and drawLines().
 struct SoftTimes {

@@ -256,6 +256,41 @@ TEST_F(SceneCli, HiddenLinesInTheirOwnStyle) {
   EXPECT_EQ(run(in + " --hidden-lines nonsense -o " + (dir_ / "x.png").string(), &out), 2) << out;
 }
 
+// Stroke styles: per object in a scene (a preset, and a style file relative to the scene),
+// and on the command line; bad names and bad files are refused before anything is written.
+TEST_F(SceneCli, StrokeStylesPerObjectAndOnTheCommandLine) {
+  std::ofstream(dir_ / "red.json") << R"({"all": {"color": "#ff0000", "width_scale": 2}})";
+  nlohmann::json left = {{"mesh", "sphere.off"}, {"translate", {-1.3, 0, 0}}, {"stroke_style", "marker"}};
+  nlohmann::json right = {{"mesh", "sphere.off"}, {"translate", {1.3, 0, 0}}, {"stroke_style", "red.json"}};
+  const auto in = write("styled.json", {{"settings", {{"style", "lines"}, {"size", "320x160"}}},
+                                       {"camera", frontCamera()}, {"objects", {left, right}}});
+  std::string out;
+  ASSERT_EQ(run(in.string() + " -o " + (dir_ / "styled.png").string(), &out), 0) << out;
+  auto img = readPng(dir_ / "styled.png");
+  ASSERT_TRUE(img);
+  int blue_left = 0, red_right = 0, red_left = 0;
+  for (int y = 0; y < img->height; ++y)
+    for (int x = 0; x < img->width; ++x) {
+      const uint8_t* p = img->pixel(x, y);
+      const bool blue = p[2] > p[0] + 20 && p[0] < 160, red = p[0] > 200 && p[1] < 100;
+      (x < img->width / 2 ? blue_left : red_right) += x < img->width / 2 ? blue : red;
+      if (x < img->width / 2) red_left += red;
+    }
+  EXPECT_GT(blue_left, 100);  // the marker's slate blue
+  EXPECT_GT(red_right, 100);  // the file's red
+  EXPECT_EQ(red_left, 0);
+  // The command line's style is every object's default.
+  const auto sphere = (dir_ / "sphere.off").string();
+  ASSERT_EQ(run(sphere + " --style lines --stroke-style pencil -o " + (dir_ / "p.png").string(), &out), 0) << out;
+  EXPECT_EQ(run(sphere + " --stroke-style crayon -o " + (dir_ / "x.png").string(), &out), 2);
+  EXPECT_NE(out.find("plain, ink, pencil, marker"), std::string::npos) << out;
+  std::ofstream(dir_ / "bad.json") << R"({"contour": {"taper_in": -1}})";
+  EXPECT_EQ(run(sphere + " --stroke-style " + (dir_ / "bad.json").string() + " -o " + (dir_ / "x.png").string(), &out),
+            1);
+  EXPECT_NE(out.find("bad.json: contour.taper_in"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "x.png"));
+}
+
 // Pixels that differ between two images of one size (SIZE_MAX when the sizes differ).
 size_t differingPixels(const Image& a, const Image& b) {
   if (a.width != b.width || a.height != b.height) return SIZE_MAX;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "present/screen_lines.h"
 #include "present/stroke_geometry.h"
 #include "raster/soft_renderer.h"
 
@@ -27,7 +28,7 @@ std::vector<float> draw(const std::vector<glm::vec2>& points, float width, const
   Image img(kW, kH);
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
   WorkerPool pool(2);
-  drawStrokeTriangles(v, glm::vec4(0.0f, 0.0f, 0.0f, opacity), img, pool);
+  drawStrokeTriangles(v, glm::vec4(0.0f, 0.0f, 0.0f, opacity), nullptr, img, pool);
   std::vector<float> ink(static_cast<size_t>(kW) * kH);
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) ink[static_cast<size_t>(y) * kW + x] = 1.0f - img.pixel(x, y)[0] / 255.0f;
@@ -144,6 +145,114 @@ TEST(StrokeGeometry, NonFinitePointsAreDroppedAndNothingIsWrittenForNoWidth) {
   EXPECT_EQ(appendStrokeGeometry(line, alpha, 0.0f, {}, v, scratch), 0u);
   EXPECT_EQ(appendStrokeGeometry(line, alpha, nan, {}, v, scratch), 0u);
   EXPECT_TRUE(v.empty());
+}
+
+// A run along y = 40.5 from x = 20 to 120, sampled every pixel, of `kind`.
+StrokeRuns straightRun(LineKind kind = LineKind::kContour, float length = 100.0f) {
+  StrokeRuns r;
+  r.offsets.push_back(0);
+  for (int i = 0; i <= static_cast<int>(length); ++i) {
+    r.points.push_back({20.0f + static_cast<float>(i), 40.5f});
+    r.positions.push_back(glm::vec3(static_cast<float>(i), 0.0f, 0.0f));
+    r.alpha.push_back(1.0f);
+  }
+  r.offsets.push_back(static_cast<uint32_t>(r.points.size()));
+  r.kinds.push_back(kind);
+  r.strokes.push_back(0);
+  r.opacity.push_back(1.0f);
+  r.length_px.push_back(length);
+  return r;
+}
+
+// Ink per column of `runs` drawn in `style` (contours only, in black).
+std::vector<double> columnInk(const StrokeRuns& runs, const ObjectStyle& style, Image* brushless = nullptr) {
+  ScreenLines lines;
+  ScreenLinesScratch scratch;
+  buildScreenLines(runs, StrokeRuns{}, style, StrokeView{}, lines, scratch);
+  Image img(kW, kH);
+  std::fill(img.rgba.begin(), img.rgba.end(), 255);
+  WorkerPool pool(2);
+  const LineStyle& ls = style.lines[LineKind::kContour];
+  drawStrokeTriangles(std::span(lines.vertices).subspan(lines.first[0], lines.count[0]), glm::vec4(0, 0, 0, 1),
+                      ls.stroke.brush.get(), img, pool);
+  if (brushless) *brushless = img;
+  std::vector<double> ink(kW, 0.0);
+  for (int x = 0; x < kW; ++x)
+    for (int y = 0; y < kH; ++y) ink[x] += 1.0 - img.pixel(x, y)[0] / 255.0;
+  return ink;
+}
+
+ObjectStyle contourStyle(float width) {
+  ObjectStyle s;
+  for (auto& k : s.lines.kinds) k.enabled = false;
+  s.lines[LineKind::kContour].enabled = true;
+  s.lines[LineKind::kContour].color = {0, 0, 0, 1};
+  s.lines[LineKind::kContour].width_px = width;
+  return s;
+}
+
+TEST(StrokeStyles, TaperThinsTheEnds) {
+  ObjectStyle style = contourStyle(4.0f);
+  style.lines[LineKind::kContour].stroke.taper_in_px = 20.0f;
+  style.lines[LineKind::kContour].stroke.taper_out_px = 30.0f;
+  style.lines[LineKind::kContour].stroke.taper_min = 0.1f;
+  const std::vector<double> ink = columnInk(straightRun(), style);
+  EXPECT_NEAR(ink[70], 4.0, 0.1);                 // the middle: full width
+  EXPECT_LT(ink[22], 0.35 * 4.0);                 // 2 px from the start
+  EXPECT_NEAR(ink[30], 4.0 * (0.1 + 0.9 * 0.5), 0.4);  // halfway up the taper in (smoothstep 0.5)
+  EXPECT_LT(ink[118], 0.35 * 4.0);                // 2 px from the end
+  EXPECT_GT(ink[105], ink[112]);                  // thinning towards the end
+}
+
+TEST(StrokeStyles, DashesMinimumLengthAndStrengthOpacity) {
+  ObjectStyle style = contourStyle(2.0f);
+  style.lines[LineKind::kContour].stroke.cap = StrokeCap::kButt;
+  style.lines[LineKind::kContour].stroke.dash_on = 6.0f;
+  style.lines[LineKind::kContour].stroke.dash_off = 4.0f;
+  const std::vector<double> ink = columnInk(straightRun(), style);
+  int dashes = 0;
+  for (int x = 1; x < kW; ++x) dashes += ink[x] > 1.0 && ink[x - 1] <= 1.0;
+  EXPECT_EQ(dashes, 10);  // 100 px at a 10 px period
+  EXPECT_LT(ink[20 + 8], 0.05);  // inside the first gap [6, 10)
+  EXPECT_NEAR(ink[20 + 3], 2.0, 0.05);
+
+  ObjectStyle shortest = contourStyle(2.0f);
+  shortest.lines[LineKind::kContour].stroke.min_length_px = 12.0f;
+  ScreenLines lines;
+  ScreenLinesScratch scratch;
+  buildScreenLines(straightRun(LineKind::kContour, 10.0f), StrokeRuns{}, shortest, StrokeView{}, lines, scratch);
+  EXPECT_EQ(lines.count[0], 0u);
+  buildScreenLines(straightRun(LineKind::kContour, 14.0f), StrokeRuns{}, shortest, StrokeView{}, lines, scratch);
+  EXPECT_GT(lines.count[0], 0u);
+
+  // A weak line (strength 0.4): opacity 0.4 with the default strength_opacity 1, full with 0.
+  StrokeRuns weak = straightRun();
+  std::fill(weak.alpha.begin(), weak.alpha.end(), 0.4f);
+  EXPECT_NEAR(columnInk(weak, contourStyle(2.0f))[70], 0.8, 0.05);
+  ObjectStyle full = contourStyle(2.0f);
+  full.lines[LineKind::kContour].stroke.strength_opacity = 0.0f;
+  full.lines[LineKind::kContour].stroke.strength_thickness = 0.5f;  // and 1 - 0.5 * 0.6 = 0.7 of the width
+  EXPECT_NEAR(columnInk(weak, full)[70], 1.4, 0.05);
+}
+
+TEST(StrokeStyles, BrushInkFollowsTheArcLength) {
+  // A brush of one period 10 px: ink in its first half, none in its second.
+  auto brush = std::make_shared<Image>(10, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 10; ++x) {
+      uint8_t* p = brush->pixel(x, y);
+      p[0] = p[1] = p[2] = x < 5 ? 255 : 0;
+      p[3] = 255;
+    }
+  ObjectStyle style = contourStyle(3.0f);
+  style.lines[LineKind::kContour].stroke.cap = StrokeCap::kButt;
+  style.lines[LineKind::kContour].stroke.brush = brush;
+  const std::vector<double> ink = columnInk(straightRun(), style);
+  // Column x has arc length x - 20 + 0.5 at its centre: inked where that is in [k·10 + 1, k·10 + 4).
+  for (int k = 0; k < 9; ++k) {
+    EXPECT_NEAR(ink[20 + 10 * k + 2], 3.0, 0.1) << k;
+    EXPECT_LT(ink[20 + 10 * k + 7], 0.1) << k;
+  }
 }
 
 }  // namespace

@@ -449,7 +449,7 @@ TEST(SoftRenderer, StrokeTrianglesAreDrawnByCoverage) {
   Image img(W, H);
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
   WorkerPool pool(2);
-  EXPECT_EQ(drawStrokeTriangles(band(1.0f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), img, pool), 4u);
+  EXPECT_EQ(drawStrokeTriangles(band(1.0f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), nullptr, img, pool), 4u);
   for (int x = 8; x < 56; ++x) {
     int dark = 0;
     for (int y = 0; y < H; ++y) dark += img.pixel(x, y)[0] == 0;
@@ -459,7 +459,7 @@ TEST(SoftRenderer, StrokeTrianglesAreDrawnByCoverage) {
   for (int x : {0, 4, 7, 56, 60, 63})
     for (int y = 0; y < H; ++y) ASSERT_EQ(img.pixel(x, y)[0], 255) << x << "," << y;
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
-  drawStrokeTriangles(band(0.5f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), img, pool);
+  drawStrokeTriangles(band(0.5f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), nullptr, img, pool);
   for (int x = 8; x < 56; ++x) EXPECT_NEAR(img.pixel(x, 16)[0], 128, 1) << x;  // x = 32: two quads meet
 }
 
