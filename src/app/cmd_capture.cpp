@@ -37,6 +37,7 @@ struct CaptureOptions {
   std::string stats;
   std::string svg;
   std::string context = "auto";
+  std::string stroke_coherence = "on";
 };
 
 Result<FrameRange> parseFrames(const std::string& s, int64_t total) {
@@ -105,6 +106,9 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
   rq.metrics = o.metrics;
   rq.stats = o.stats;
   rq.svg_dir = o.svg;
+  if (o.stroke_coherence != "on" && o.stroke_coherence != "off")
+    return reportError(Error::usage("--stroke-coherence: expected on or off, got '" + o.stroke_coherence + "'"));
+  rq.stroke_coherence = o.stroke_coherence == "on";
   rq.interrupted = &g_interrupted;
   rq.progress = isatty(STDERR_FILENO);
   std::signal(SIGINT, onInterrupt);
@@ -115,7 +119,8 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
   if (!outcome) return reportError(outcome.error());
   if (outcome->measured)
     std::cout << "frames " << outcome->frames << "  churn mean " << outcome->churn_mean << " p95 " << outcome->churn_p95
-              << "  churn_raw mean " << outcome->churn_raw_mean << "  specks mean " << outcome->specks_mean << '\n';
+              << "  churn_raw mean " << outcome->churn_raw_mean << "  specks mean " << outcome->specks_mean
+              << "  texture drift mean " << outcome->texture_drift_mean << " px\n";
   if (outcome->interrupted) {
     std::cerr << "lodline: interrupted after " << outcome->frames << " frame(s); outputs hold the frames done\n";
     return 130;
@@ -148,6 +153,10 @@ Command addCaptureCommand(CLI::App& parent) {
                   "DIR/: one SVG per frame (frame_NNNNN.svg), each stroke with an id it keeps while it "
                   "persists from frame to frame (docs/capture.md)");
   cmd->add_option("--context", o->context, "OpenGL context: auto, egl or osmesa")->capture_default_str();
+  cmd->add_option("--stroke-coherence", o->stroke_coherence,
+                  "on: brushes, dashes and jitter stay on the surface from frame to frame; off: they start at "
+                  "each visible run's first point (docs/strokes.md)")
+      ->capture_default_str();
   return {cmd, [o, cmd] { return runCapture(*cmd, *o); }};
 }
 

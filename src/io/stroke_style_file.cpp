@@ -158,7 +158,7 @@ Status readKind(const nlohmann::json& j, const std::filesystem::path& base, cons
       } else {
         const std::filesystem::path p = std::filesystem::path(b).is_absolute() ? std::filesystem::path(b) : base / b;
         auto img = readPng(p);
-        if (!img) return Error::runtime(where + ".brush: " + img.error().message);
+        if (!img) return Error::runtime(where + ".brush: " + printableText(img.error().message, 300));
         s.brush = std::make_shared<const Image>(std::move(img.value()));
         s.brush_path = p.string();
       }
@@ -168,7 +168,7 @@ Status readKind(const nlohmann::json& j, const std::filesystem::path& base, cons
       k.set_color = true;
       k.color = *c;
     } else if (key == "width_scale") st = number(key, v, 0.05f, 16, k.width_scale);
-    else return Error::runtime(where + ": unknown key \"" + key + "\"");
+    else return Error::runtime(where + ": unknown key \"" + printableText(key, 80) + "\"");
     if (!st) return st;
   }
   return {};
@@ -246,14 +246,20 @@ Result<NamedStrokeStyle> loadStrokeStyle(const std::string& name_or_path) {
     return Error::usage("--stroke-style: expected " + strokeStylePresetList() + " or a .json file, got '" +
                         name_or_path + "'");
   if (Status s = checkInputFile(path, "stroke style file"); !s) return s.error();
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) return Error::runtime(path.string() + ": cannot read (" + ec.message() + ")");
+  if (size > (1u << 20)) return Error::runtime(path.string() + ": stroke style file larger than 1 MB");
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text.str());
-  } catch (const std::exception& e) {
-    return Error::runtime(path.string() + ": not valid JSON (" + e.what() + ")");
+  } catch (const std::exception& e) {  // parse_error, and out_of_range for numbers past double
+    std::string what = e.what();
+    if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    return Error::runtime(path.string() + ": not valid JSON (" + printableText(what, 300) + ")");
   }
   if (!j.is_object()) return Error::runtime(path.string() + ": expected an object of line kinds");
   NamedStrokeStyle out = preset("plain");
@@ -268,8 +274,8 @@ Result<NamedStrokeStyle> loadStrokeStyle(const std::string& name_or_path) {
     if (key == "all") continue;
     const auto kind = parseLineKind(key);
     if (!kind)
-      return Error::runtime(path.string() + ": unknown key \"" + key + "\" (expected all or a line kind: " +
-                            lineKindList() + ")");
+      return Error::runtime(path.string() + ": unknown key \"" + printableText(key, 80) +
+                            "\" (expected all or a line kind: " + lineKindList() + ")");
     if (Status s = readKind(v, base, path.string() + ": " + key, out.kinds[static_cast<int>(*kind)]); !s)
       return s.error();
   }

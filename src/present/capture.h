@@ -43,12 +43,15 @@ struct CaptureRequest {
   /// Set (by a signal handler) to stop after the current frame; outputs are finished.
   const std::atomic<bool>* interrupted = nullptr;
   bool progress = false;  ///< a progress bar on stderr
+  /// Coherent stroke parameterisation (present/stroke_parameterization.h). Default on.
+  bool stroke_coherence = true;
 };
 
 struct CaptureOutcome {
   int64_t frames = 0;  ///< frames written
   bool interrupted = false;
   double churn_mean = 0.0, churn_p95 = 0.0, churn_raw_mean = 0.0, specks_mean = 0.0;
+  double texture_drift_mean = 0.0;  ///< mean of the frames' texture_drift (frames after the first)
   bool measured = false;  ///< metrics were computed (metrics or stats requested)
 };
 

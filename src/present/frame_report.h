@@ -71,6 +71,9 @@ struct FrameReport {
   /// lod.band_fraction: weighted by visible faces). name "total".
   ObjectReport total;
   StageTimes ms;
+  /// Mean movement, px, of the texture under the line samples that persist from the
+  /// previous frame, along their strokes (ScenePresenter::textureDrift()); 0 for a first frame.
+  double texture_drift = 0.0;
 };
 
 /// Counts the last present() of `presenter` of `scene` (reads the depth and computes the

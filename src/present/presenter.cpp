@@ -30,10 +30,13 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
   splitObjectLines(scene);
   times_.visibility = sw.lap();
   times_.strokes = 0.0;
+  parameterizers_.resize(scene.size());
   for (size_t i = 0; i < scene.size(); ++i) {
+    parameterizers_[i].update(visible_[i], camera, frame.width, frame.height, stroke_coherence_);
     const Bounds& b = scene[i].drawing->bounds();
     const StrokeView view{camera.eye, camera.forward(), b.center, b.radius};
-    buildScreenLines(visible_[i], hidden_[i], styles_[i], view, screen_lines_, stroke_scratch_);
+    buildScreenLines(visible_[i], hidden_[i], styles_[i], view, parameterizers_[i].parameters(), screen_lines_,
+                     stroke_scratch_);
     times_.strokes += sw.lap();
     uploadLines(i, screen_lines_);
     times_.upload += sw.lap();
@@ -72,6 +75,19 @@ void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
     else
       outline_history_[i].fill.clear();
   }
+}
+
+size_t ScenePresenter::persistingSamples() const {
+  size_t n = 0;
+  for (const StrokeParameterizer& p : parameterizers_) n += p.persisting();
+  return n;
+}
+
+double ScenePresenter::textureDrift() const {
+  double sum = 0.0;
+  for (const StrokeParameterizer& p : parameterizers_) sum += p.driftSum();
+  const size_t n = persistingSamples();
+  return n > 0 ? sum / static_cast<double>(n) : 0.0;
 }
 
 Image ScenePresenter::readImage() {

@@ -29,6 +29,7 @@
 #include "gl/context.h"
 #include "present/outline.h"
 #include "present/screen_lines.h"
+#include "present/stroke_parameterization.h"
 
 namespace lodline {
 
@@ -76,7 +77,18 @@ class ScenePresenter {
   void startSequence(bool in_motion) {
     outline_history_.clear();
     sequence_in_motion_ = in_motion;
+    for (StrokeParameterizer& p : parameterizers_) p.reset();
   }
+  /// Whether brushes, dashes and jitter follow the surface from frame to frame (coherent
+  /// parameterisation, present/stroke_parameterization.h) or start at each visible run's
+  /// first point (u = arc length). Default on; a still's single frame is the same either way.
+  void setStrokeCoherence(bool on) { stroke_coherence_ = on; }
+  /// Of the last present(), over every object: previous line samples that persist and the
+  /// mean movement, px, of the texture under them along their strokes (0 when none).
+  size_t persistingSamples() const;
+  double textureDrift() const;
+  /// The stroke parameter of each point of an object's visible runs in the last present().
+  const std::vector<float>& strokeParameters(size_t object) const { return parameterizers_[object].parameters(); }
 
   /// The colour image of the last present(), row 0 = top.
   Image readImage();
@@ -136,6 +148,8 @@ class ScenePresenter {
   bool sequence_in_motion_ = false;
   ScreenLines screen_lines_;
   ScreenLinesScratch stroke_scratch_;
+  std::vector<StrokeParameterizer> parameterizers_;
+  bool stroke_coherence_ = true;
 };
 
 /// A presenter for `scene` on `backend`: OpenGL through a headless context of kind

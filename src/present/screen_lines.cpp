@@ -51,9 +51,10 @@ void computeBend(const std::vector<glm::vec2>& p, const std::vector<float>& s, f
 }  // namespace
 
 bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const StrokeStyle& st, const StrokeView& view,
-                   ScreenLinesScratch& sc) {
+                   std::span<const float> u, ScreenLinesScratch& sc) {
   const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
   if (e <= b) return false;
+  if (!u.empty() && u.size() < e) u = {};
   auto& P = sc.points;
   auto& A = sc.alpha;
   auto& W = sc.width;
@@ -65,6 +66,8 @@ bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const Strok
   const float length = S.back();
   if (length < st.min_length_px) return false;
   const size_t n = P.size();
+  if (u.empty()) sc.u.assign(S.begin(), S.end());
+  else sc.u.assign(u.begin() + b, u.begin() + e);
 
   // Depth across the object's bounding sphere, and the bend, where the style uses them.
   const bool use_depth = st.depth_thickness != 0.0f || st.depth_opacity != 0.0f;
@@ -106,7 +109,7 @@ bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const Strok
       const float len = glm::length(d);
       if (!(len > 0.0f)) continue;
       const glm::vec2 normal(-d.y / len, d.x / len);
-      P[i] = sc.piece[i] + normal * (st.jitter_px * noise1(st.seed, S[i] / st.jitter_period_px));
+      P[i] = sc.piece[i] + normal * (st.jitter_px * noise1(st.seed, sc.u[i] / st.jitter_period_px));
     }
   }
   return true;
@@ -114,56 +117,88 @@ bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const Strok
 
 namespace {
 
-// Run r of `runs` as one stroke in style `st` (width `width_px`), cut into dashes when the
-// style has them. Returns the polyline segments drawn.
+// Run r of `runs` as one stroke in style `st` (width `width_px`, parameter `u` per point or
+// empty), cut into dashes of the parameter when the style has them. Returns the polyline
+// segments drawn.
 size_t styledRun(const StrokeRuns& runs, size_t r, float width_px, const StrokeStyle& st, const StrokeView& view,
-                 ScreenLines& out, ScreenLinesScratch& sc) {
-  if (!strokeProfile(runs, r, width_px, st, view, sc)) return 0;
+                 std::span<const float> u, ScreenLines& out, ScreenLinesScratch& sc) {
+  if (!strokeProfile(runs, r, width_px, st, view, u, sc)) return 0;
   const auto& P = sc.points;
   const auto& A = sc.alpha;
   const auto& W = sc.width;
-  const auto& S = sc.arc;
+  const auto& U = sc.u;
   const size_t n = P.size();
-  const float length = S.back();
   StrokeGeometryParams gp;
   gp.cap = st.cap;
   const bool dashed = st.dash_on > 0.0f && st.dash_off > 0.0f;
-  if (!dashed) return appendStrokeGeometry(P, A, W, 0.0f, gp, out.vertices, sc.geometry);
+  // The geometry needs the parameter only for a brush (dashes and jitter are applied here).
+  const std::span<const float> brush_u = st.brush ? std::span<const float>(U) : std::span<const float>();
+  if (!dashed) return appendStrokeGeometry(P, A, W, brush_u, gp, out.vertices, sc.geometry);
 
-  // Dashes [k·period, k·period + on) of arc length, each a stroke with the points inside.
+  // Dashes: the parts of the run where u mod period < on, segment by segment (u is linear
+  // along a segment and may run either way), each a stroke of the points inside.
   const float on = std::max(st.dash_on, 0.5f), period = on + st.dash_off;
   size_t segments = 0;
-  for (float d0 = 0.0f; d0 < length; d0 += period) {
-    const float d1 = std::min(d0 + on, length);
+  auto flush = [&] {
+    if (sc.piece.size() >= 2)
+      segments += appendStrokeGeometry(sc.piece, sc.piece_alpha, sc.piece_width,
+                                       st.brush ? std::span<const float>(sc.piece_u) : std::span<const float>(), gp,
+                                       out.vertices, sc.geometry);
     sc.piece.clear();
     sc.piece_alpha.clear();
     sc.piece_width.clear();
-    auto at = [&](float s) {  // the point at arc length s, interpolated
-      const size_t j = static_cast<size_t>(std::upper_bound(S.begin(), S.end(), s) - S.begin());
-      const size_t i1 = std::clamp<size_t>(j, 1, n - 1), i0 = i1 - 1;
-      const float span = S[i1] - S[i0];
-      const float t = span > 0.0f ? std::clamp((s - S[i0]) / span, 0.0f, 1.0f) : 0.0f;
-      sc.piece.push_back(P[i0] + t * (P[i1] - P[i0]));
-      sc.piece_alpha.push_back(A[i0] + t * (A[i1] - A[i0]));
-      sc.piece_width.push_back(W[i0] + t * (W[i1] - W[i0]));
-    };
-    at(d0);
-    for (size_t i = 0; i < n; ++i)
-      if (S[i] > d0 && S[i] < d1) {
-        sc.piece.push_back(P[i]);
-        sc.piece_alpha.push_back(A[i]);
-        sc.piece_width.push_back(W[i]);
+    sc.piece_u.clear();
+  };
+  auto push = [&](size_t i, float t) {
+    sc.piece.push_back(P[i] + t * (P[i + 1] - P[i]));
+    sc.piece_alpha.push_back(A[i] + t * (A[i + 1] - A[i]));
+    sc.piece_width.push_back(W[i] + t * (W[i + 1] - W[i]));
+    sc.piece_u.push_back(U[i] + t * (U[i + 1] - U[i]));
+  };
+  flush();
+  for (size_t i = 0; i + 1 < n; ++i) {
+    const float ua = U[i], ub = U[i + 1];
+    const float lo = std::min(ua, ub), hi = std::max(ua, ub);
+    if (!(hi > lo)) {  // no parameter change: on or off as a whole
+      const float m = ua - std::floor(ua / period) * period;
+      if (m < on) {
+        if (sc.piece.empty()) push(i, 0.0f);
+        push(i, 1.0f);
+      } else {
+        flush();
       }
-    at(d1);
-    segments += appendStrokeGeometry(sc.piece, sc.piece_alpha, sc.piece_width, d0, gp, out.vertices, sc.geometry);
+      continue;
+    }
+    // The dashes [d, d + on) meeting [lo, hi], in the segment's t from its first point.
+    std::vector<std::pair<float, float>> spans;
+    for (float d = std::floor(lo / period) * period; d < hi; d += period) {
+      const float a = std::max(d, lo), c = std::min(d + on, hi);
+      if (c <= a) continue;
+      float t0 = (a - ua) / (ub - ua), t1 = (c - ua) / (ub - ua);
+      if (t0 > t1) std::swap(t0, t1);
+      spans.emplace_back(std::clamp(t0, 0.0f, 1.0f), std::clamp(t1, 0.0f, 1.0f));
+    }
+    std::sort(spans.begin(), spans.end());
+    for (const auto& [t0, t1] : spans) {
+      // A dash that does not start at this segment's first point ends the one before.
+      if (t0 > 0.0f || sc.piece.empty()) {
+        flush();
+        push(i, t0);
+      }
+      push(i, t1);
+      if (t1 < 1.0f) flush();
+    }
+    if (spans.empty() || spans.back().second < 1.0f) flush();
   }
+  flush();
   return segments;
 }
 
 }  // namespace
 
 void buildScreenLines(const StrokeRuns& visible, const StrokeRuns& hidden, const ObjectStyle& style,
-                      const StrokeView& view, ScreenLines& out, ScreenLinesScratch& scratch) {
+                      const StrokeView& view, std::span<const float> visible_u, ScreenLines& out,
+                      ScreenLinesScratch& scratch) {
   out.clear();
   for (int k = 0; k < kLineKindCount; ++k) {
     out.first[k] = static_cast<uint32_t>(out.vertices.size());
@@ -171,7 +206,8 @@ void buildScreenLines(const StrokeRuns& visible, const StrokeRuns& hidden, const
     if (ls.enabled)
       for (size_t r = 0; r < visible.strokeCount(); ++r)
         if (static_cast<int>(visible.kinds[r]) == k)
-          out.segments[k] += static_cast<uint32_t>(styledRun(visible, r, ls.width_px, ls.stroke, view, out, scratch));
+          out.segments[k] +=
+              static_cast<uint32_t>(styledRun(visible, r, ls.width_px, ls.stroke, view, visible_u, out, scratch));
     out.count[k] = static_cast<uint32_t>(out.vertices.size()) - out.first[k];
   }
   out.hidden_first = static_cast<uint32_t>(out.vertices.size());
@@ -184,7 +220,7 @@ void buildScreenLines(const StrokeRuns& visible, const StrokeRuns& hidden, const
       hs.dash_off = h.dash_off;
     }
     for (size_t r = 0; r < hidden.strokeCount(); ++r)
-      out.hidden_segments += static_cast<uint32_t>(styledRun(hidden, r, h.width_px, hs, view, out, scratch));
+      out.hidden_segments += static_cast<uint32_t>(styledRun(hidden, r, h.width_px, hs, view, {}, out, scratch));
   }
   out.hidden_count = static_cast<uint32_t>(out.vertices.size()) - out.hidden_first;
 }

@@ -3,6 +3,8 @@
 // (docs/visibility.md, docs/strokes.md).
 #pragma once
 
+#include <span>
+
 #include "core/camera.h"
 #include "core/line_buffer.h"
 #include "core/mesh.h"
@@ -24,26 +26,30 @@ struct StrokeView {
 /// Scratch of buildScreenLines(); reuse between calls.
 struct ScreenLinesScratch {
   std::vector<glm::vec2> points;
-  std::vector<float> alpha, width, arc, depth, bend;
+  std::vector<float> alpha, width, arc, u, depth, bend;
   std::vector<glm::vec2> piece;
-  std::vector<float> piece_alpha, piece_width;
+  std::vector<float> piece_alpha, piece_width, piece_u;
   StrokeGeometryScratch geometry;
 };
 
 /// The profile of run r of `runs` in style `st` at width `width_px`, into sc.points (jitter
-/// applied), sc.width (px), sc.alpha (opacity) and sc.arc (arc length from the run's start),
-/// one entry per point of the run. False (and nothing to draw) when the run is shorter than
-/// the style's minimum length or empty. The renderers' geometry and the SVG's variable-width
-/// outlines both come from it.
+/// applied along the parameter), sc.width (px), sc.alpha (opacity), sc.arc (arc length from
+/// the run's start) and sc.u (the parameter: `u`, one per point of `runs`, or the arc length
+/// when `u` is empty), one entry per point of the run. False (and nothing to
+/// draw) when the run is shorter than the style's minimum length or empty. The renderers'
+/// geometry and the SVG's variable-width outlines both come from it.
 bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const StrokeStyle& st, const StrokeView& view,
-                   ScreenLinesScratch& sc);
+                   std::span<const float> u, ScreenLinesScratch& sc);
 
 /// Fills `out` with the strokes of `visible` (per kind, in style.lines' colours, widths and
 /// stroke styles: profile, dashes, jitter, minimum length; docs/strokes.md) and, when
 /// style.hidden is enabled, of `hidden` in the hidden style (its width and colour, dashes of
 /// hidden.dash_on pixels every dash_on + dash_off pixels, butt ends). Kinds that are not
-/// enabled are left out.
+/// enabled are left out. `visible_u` (one per point of `visible`, or empty for u = arc
+/// length from each run's start) places the brush, dashes and jitter along the runs
+/// (present/stroke_parameterization.h).
 void buildScreenLines(const StrokeRuns& visible, const StrokeRuns& hidden, const ObjectStyle& style,
-                      const StrokeView& view, ScreenLines& out, ScreenLinesScratch& scratch);
+                      const StrokeView& view, std::span<const float> visible_u, ScreenLines& out,
+                      ScreenLinesScratch& scratch);
 
 }  // namespace lodline

@@ -20,7 +20,8 @@ float chordError(const StrokeGeometryScratch& s, uint32_t i, uint32_t a, uint32_
   const float d = glm::length(p - (pa + t * ab));
   const float dw = std::abs(s.width[i] - (s.width[a] + t * (s.width[b] - s.width[a])));
   const float da = std::abs(s.alpha[i] - (s.alpha[a] + t * (s.alpha[b] - s.alpha[a])));
-  return std::max({d, dw, 5.0f * da});
+  const float du = s.simplify_u ? std::abs(s.arc[i] - (s.arc[a] + t * (s.arc[b] - s.arc[a]))) : 0.0f;
+  return std::max({d, dw, du, 5.0f * da});
 }
 
 }  // namespace
@@ -103,7 +104,8 @@ struct Emitter {
 }  // namespace
 
 size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const float> alpha,
-                            std::span<const float> width, float u_start, const StrokeGeometryParams& params,
+                            std::span<const float> width, std::span<const float> u,
+                            const StrokeGeometryParams& params,
                             std::vector<StrokeVertex>& out, StrokeGeometryScratch& scratch) {
   auto& P = scratch.points;
   auto& A = scratch.alpha;
@@ -113,6 +115,7 @@ size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const f
   A.clear();
   Wd.clear();
   S.clear();
+  float last_arc = 0.0f;
   for (size_t i = 0; i < points.size(); ++i) {
     if (!finite(points[i])) continue;
     const float a = i < alpha.size() ? alpha[i] : 1.0f;
@@ -123,12 +126,17 @@ size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const f
       Wd.back() = std::max(Wd.back(), w);
       continue;
     }
-    S.push_back(P.empty() ? u_start : S.back() + glm::length(points[i] - P.back()));
+    // The parameter: given, or the arc length so far (of the points kept).
+    float arc = 0.0f;
+    if (!P.empty()) arc = last_arc + glm::length(points[i] - P.back());
+    last_arc = arc;
+    S.push_back(i < u.size() && std::isfinite(u[i]) ? u[i] : arc);
     P.push_back(points[i]);
     A.push_back(a);
     Wd.push_back(w);
   }
   if (P.empty() || *std::max_element(Wd.begin(), Wd.end()) <= 0.0f) return 0;
+  scratch.simplify_u = !u.empty();  // a given parameter may jump (seams): keep its points
   simplifyStroke(params.simplify_px, scratch);
 
   auto section = [&](size_t i) {
@@ -195,7 +203,7 @@ size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const f
                             StrokeGeometryScratch& scratch) {
   if (!(width_px > 0.0f) || !std::isfinite(width_px)) return 0;
   std::vector<float> width(points.size(), width_px);
-  return appendStrokeGeometry(points, alpha, width, 0.0f, params, out, scratch);
+  return appendStrokeGeometry(points, alpha, width, {}, params, out, scratch);
 }
 
 }  // namespace lodline

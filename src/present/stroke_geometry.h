@@ -34,27 +34,29 @@ struct StrokeGeometryParams {
 /// Scratch of appendStrokeGeometry(); reuse between calls.
 struct StrokeGeometryScratch {
   std::vector<glm::vec2> points;
-  std::vector<float> alpha, width, arc;
+  std::vector<float> alpha, width, arc;  ///< arc: the parameter u per point
+  bool simplify_u = false;  ///< simplifyStroke() also keeps the points where u bends
   std::vector<uint8_t> keep;
   std::vector<std::pair<uint32_t, uint32_t>> stack;
 };
 
 /// Douglas–Peucker on scratch.points (with .alpha, .width and .arc alongside, all the same
 /// size) in place: keeps the ends and every point farther than `tol` px from its section's
-/// chord, or whose width differs by more than `tol` px or opacity by more than tol/5 from
-/// the chord's interpolation.
+/// chord, or whose width (or parameter, with scratch.simplify_u) differs by more than `tol`
+/// px, or opacity by more than tol/5, from the chord's interpolation.
 void simplifyStroke(float tol, StrokeGeometryScratch& scratch);
 
 /// Appends the triangles of one stroke through `points` (pixels) with opacity `alpha` and
 /// width `width` (pixels) per point; a width under 1 px is drawn 1 px wide with the width as
 /// opacity. The simplification keeps the points where the width changes by more than
 /// simplify_px or the opacity by more than 0.05 from the chord's, so profiles survive it.
-/// Vertices get the arc length from the stroke's start plus `u_start` (brush and dash
-/// coordinate). A stroke of one point (or of zero length) is a dot with round or square caps
+/// Vertices get the parameter `u` of their point (px along the stroke: the brush's
+/// coordinate), or the arc length from the stroke's start when `u` is empty. A stroke of one point (or of zero length) is a dot with round or square caps
 /// and nothing with butt caps; non-finite points are dropped. Returns the number of
 /// polyline segments drawn (after simplification).
 size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const float> alpha,
-                            std::span<const float> width, float u_start, const StrokeGeometryParams& params,
+                            std::span<const float> width, std::span<const float> u,
+                            const StrokeGeometryParams& params,
                             std::vector<StrokeVertex>& out, StrokeGeometryScratch& scratch);
 /// The same with one width for the whole stroke, u from 0.
 size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const float> alpha, float width_px,

@@ -68,8 +68,9 @@ void appendOutline(const ScreenLinesScratch& sc, StrokeCap cap, std::vector<glm:
   end_cap(0, glm::normalize(P[0] - P[1]));
 }
 
-void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView& view, const std::vector<uint64_t>* ids,
-             LayerStrokes& out, ScreenLinesScratch& sc) {
+void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView& view,
+             std::span<const float> u, const std::vector<uint64_t>* ids, LayerStrokes& out,
+             ScreenLinesScratch& sc) {
   for (size_t r = 0; r < runs.strokeCount(); ++r) {
     const LineStyle& ls = style.lines[runs.kinds[r]];
     const StrokeStyle& st = ls.stroke;
@@ -83,12 +84,13 @@ void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView&
       if (ids) out.ids.push_back((*ids)[r]);
       continue;
     }
-    if (!strokeProfile(runs, r, ls.width_px, st, view, sc) || sc.points.size() < 2) continue;
+    if (!strokeProfile(runs, r, ls.width_px, st, view, u, sc) || sc.points.size() < 2) continue;
     StrokeGeometryScratch& g = sc.geometry;
     g.points = sc.points;
     g.width = sc.width;
     g.alpha = sc.alpha;
     g.arc = sc.arc;
+    g.simplify_u = false;
     simplifyStroke(0.25f, g);
     if (g.points.size() < 2) continue;
     float mean_alpha = 0.0f;
@@ -137,7 +139,7 @@ Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scen
     const std::vector<uint64_t>* object_ids =
         ids && i < ids->size() && (*ids)[i].size() == v.strokeCount() ? &(*ids)[i] : nullptr;
     LayerStrokes& k = kept[i];
-    collect(v, scene[i].style, view, object_ids, k, scratch);
+    collect(v, scene[i].style, view, presenter.strokeParameters(i), object_ids, k, scratch);
     SvgStrokes strokes{k.points, k.offsets, k.kinds, k.opacity};
     if (object_ids) strokes.ids = k.ids;
     SvgStrokes outlines{k.outline_points, k.outline_offsets, k.outline_kinds, k.outline_opacity};

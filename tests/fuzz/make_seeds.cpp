@@ -254,6 +254,14 @@ int main(int argc, char** argv) {
       R"( "camera": {"view": [20, 10, 3]}})");
   put("scene_json", "include.json", R"({"objects": [{"scene": "one.json", "translate": [0, 1, 0]}]})");
 
+  // Stroke style files (docs/strokes.md): the fuzz target puts a brush "b.png" beside each input.
+  put("stroke_style", "all.json", R"({"all": {"cap": "butt", "taper_in": 5, "taper_out": 8, "taper_min": 0.2}})");
+  put("stroke_style", "kinds.json",
+      R"({"all": {"color": "#202020", "width_scale": 1.2, "depth_thickness": 0.3, "strength_opacity": 0.5},)"
+      R"( "suggestive": {"dash": [4, 2], "jitter": 0.5, "jitter_period": 20, "seed": 7, "min_length": 3},)"
+      R"( "contour": {"brush": "b.png", "brush_period": 32, "curvature_thickness": 0.5, "cap": "square"},)"
+      R"( "crease": {"brush": "pencil"}, "boundary": {"brush": "none", "depth_opacity": 0.2}})");
+
   // glTF: a cube, and two nodes in a hierarchy with translation, rotation and scale.
   test::GltfTestNode child = test::gltfCube();
   child.name = "child";

@@ -168,7 +168,7 @@ StrokeRuns straightRun(LineKind kind = LineKind::kContour, float length = 100.0f
 std::vector<double> columnInk(const StrokeRuns& runs, const ObjectStyle& style, Image* brushless = nullptr) {
   ScreenLines lines;
   ScreenLinesScratch scratch;
-  buildScreenLines(runs, StrokeRuns{}, style, StrokeView{}, lines, scratch);
+  buildScreenLines(runs, StrokeRuns{}, style, StrokeView{}, {}, lines, scratch);
   Image img(kW, kH);
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
   WorkerPool pool(2);
@@ -220,9 +220,9 @@ TEST(StrokeStyles, DashesMinimumLengthAndStrengthOpacity) {
   shortest.lines[LineKind::kContour].stroke.min_length_px = 12.0f;
   ScreenLines lines;
   ScreenLinesScratch scratch;
-  buildScreenLines(straightRun(LineKind::kContour, 10.0f), StrokeRuns{}, shortest, StrokeView{}, lines, scratch);
+  buildScreenLines(straightRun(LineKind::kContour, 10.0f), StrokeRuns{}, shortest, StrokeView{}, {}, lines, scratch);
   EXPECT_EQ(lines.count[0], 0u);
-  buildScreenLines(straightRun(LineKind::kContour, 14.0f), StrokeRuns{}, shortest, StrokeView{}, lines, scratch);
+  buildScreenLines(straightRun(LineKind::kContour, 14.0f), StrokeRuns{}, shortest, StrokeView{}, {}, lines, scratch);
   EXPECT_GT(lines.count[0], 0u);
 
   // A weak line (strength 0.4): opacity 0.4 with the default strength_opacity 1, full with 0.

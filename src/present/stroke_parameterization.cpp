@@ -1,0 +1,227 @@
+#include "present/stroke_parameterization.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace lodline {
+namespace {
+
+constexpr float kCell = 4.0f;  // grid cell of the current segments, px (≥ 2 × match_px)
+
+float median(std::vector<float>& v) {
+  const size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+  return v[mid];
+}
+
+}  // namespace
+
+void StrokeParameterizer::reset() {
+  prev_positions_.clear();
+  prev_u_.clear();
+  prev_kinds_.clear();
+  prev_runs_.clear();
+  prev_run_count_ = 0;
+}
+
+void StrokeParameterizer::update(const StrokeRuns& runs, const Camera& camera, int width, int height, bool coherent,
+                                 const StrokeParameterizationParams& params) {
+  const size_t nr = runs.strokeCount();
+  const size_t np = runs.points.size();
+  persisting_ = 0;
+  drift_sum_ = 0.0;
+  arc_.assign(np, 0.0f);
+  point_run_.assign(np, 0);
+  for (size_t r = 0; r < nr; ++r)
+    for (uint32_t i = runs.offsets[r]; i < runs.offsets[r + 1]; ++i) {
+      point_run_[i] = static_cast<uint32_t>(r);
+      if (i > runs.offsets[r]) arc_[i] = arc_[i - 1] + glm::length(runs.points[i] - runs.points[i - 1]);
+    }
+
+  // Where the previous samples land: the nearest segment of a current run of their kind.
+  landings_.clear();
+  if (!prev_positions_.empty() && width > 0 && height > 0) {
+    const int gw = static_cast<int>(std::ceil(static_cast<float>(width) / kCell)) + 1;
+    const int gh = static_cast<int>(std::ceil(static_cast<float>(height) / kCell)) + 1;
+    auto cellOf = [&](glm::vec2 p, int& cx, int& cy) {
+      cx = std::clamp(static_cast<int>(std::floor(p.x / kCell)), 0, gw - 1);
+      cy = std::clamp(static_cast<int>(std::floor(p.y / kCell)), 0, gh - 1);
+    };
+    auto inImage = [&](glm::vec2 p) {
+      return std::isfinite(p.x) && std::isfinite(p.y) && p.x > -kCell && p.y > -kCell && p.x < width + kCell &&
+             p.y < height + kCell;
+    };
+    // Segments (point i to i + 1 of one run) binned by the cells their boxes cover.
+    cell_start_.assign(static_cast<size_t>(gw) * gh + 1, 0);
+    auto forCells = [&](uint32_t i, auto&& f) {
+      const glm::vec2 a = runs.points[i], b = runs.points[i + 1];
+      if (!inImage(a) || !inImage(b)) return;
+      int x0, y0, x1, y1;
+      cellOf(glm::min(a, b), x0, y0);
+      cellOf(glm::max(a, b), x1, y1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) f(static_cast<size_t>(y) * gw + x);
+    };
+    for (size_t r = 0; r < nr; ++r)
+      for (uint32_t i = runs.offsets[r]; i + 1 < runs.offsets[r + 1]; ++i)
+        forCells(i, [&](size_t c) { ++cell_start_[c + 1]; });
+    for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+    cell_items_.assign(cell_start_.back(), 0);
+    std::vector<uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (size_t r = 0; r < nr; ++r)
+      for (uint32_t i = runs.offsets[r]; i + 1 < runs.offsets[r + 1]; ++i)
+        forCells(i, [&](size_t c) { cell_items_[fill[c]++] = i; });
+
+    const PixelProjector projector(camera, width, height);
+    // Every run of the sample's kind within match_px: the nearest point of each.
+    candidates_.clear();
+    for (size_t j = 0; j < prev_positions_.size(); ++j) {
+      glm::vec2 px;
+      float depth = 0.0f;
+      if (!projector.project(prev_positions_[j], px, depth) || !inImage(px)) continue;
+      int cx, cy;
+      cellOf(px, cx, cy);
+      const size_t first = candidates_.size();
+      for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, gh - 1); ++y)
+        for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, gw - 1); ++x) {
+          const size_t c = static_cast<size_t>(y) * gw + x;
+          for (uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+            const uint32_t i = cell_items_[k];
+            const uint32_t r = point_run_[i];
+            if (runs.kinds[r] != prev_kinds_[j]) continue;
+            const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
+            const float len2 = glm::dot(ab, ab);
+            const float t = len2 > 0.0f ? std::clamp(glm::dot(px - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+            const float d = glm::length(px - (a + t * ab));
+            if (d > params.match_px) continue;
+            const float s_here = arc_[i] + t * (arc_[i + 1] - arc_[i]);
+            auto same = std::find_if(candidates_.begin() + static_cast<std::ptrdiff_t>(first), candidates_.end(),
+                                     [r](const Candidate& c) { return c.run == r; });
+            if (same == candidates_.end()) candidates_.push_back({static_cast<uint32_t>(j), r, s_here, d});
+            else if (d < same->d) *same = {static_cast<uint32_t>(j), r, s_here, d};
+          }
+        }
+    }
+    // Where a sample could land on several runs (a junction, strokes side by side), it lands
+    // on the run that most samples of its previous run landed on nearest (its successor).
+    successor_keys_.clear();
+    for (size_t g0 = 0; g0 < candidates_.size();) {
+      size_t g1 = g0, nearest = g0;
+      while (g1 < candidates_.size() && candidates_[g1].sample == candidates_[g0].sample) {
+        if (candidates_[g1].d < candidates_[nearest].d) nearest = g1;
+        ++g1;
+      }
+      successor_keys_.push_back((uint64_t(prev_runs_[candidates_[g0].sample]) << 32) | candidates_[nearest].run);
+      g0 = g1;
+    }
+    std::sort(successor_keys_.begin(), successor_keys_.end());
+    successor_.assign(prev_run_count_, UINT32_MAX);
+    std::vector<uint32_t> best_count(prev_run_count_, 0);
+    for (size_t k0 = 0; k0 < successor_keys_.size();) {
+      size_t k1 = k0;
+      while (k1 < successor_keys_.size() && successor_keys_[k1] == successor_keys_[k0]) ++k1;
+      const uint32_t from = static_cast<uint32_t>(successor_keys_[k0] >> 32);
+      if (k1 - k0 > best_count[from]) {
+        best_count[from] = static_cast<uint32_t>(k1 - k0);
+        successor_[from] = static_cast<uint32_t>(successor_keys_[k0] & 0xffffffffu);
+      }
+      k0 = k1;
+    }
+    for (size_t g0 = 0; g0 < candidates_.size();) {
+      size_t g1 = g0, chosen = g0;
+      const uint32_t want = successor_[prev_runs_[candidates_[g0].sample]];
+      bool found = false;
+      while (g1 < candidates_.size() && candidates_[g1].sample == candidates_[g0].sample) {
+        if (candidates_[g1].run == want) chosen = g1, found = true;
+        else if (!found && candidates_[g1].d < candidates_[chosen].d) chosen = g1;
+        ++g1;
+      }
+      const Candidate& c = candidates_[chosen];
+      landings_.push_back({c.run, c.s, prev_u_[c.sample]});
+      g0 = g1;
+    }
+  }
+  std::sort(landings_.begin(), landings_.end(), [](const Landing& a, const Landing& b) { return a.run < b.run; });
+
+  // u = s until a run's votes say otherwise.
+  u_ = arc_;
+  if (coherent)
+    for (size_t g0 = 0; g0 < landings_.size();) {
+      size_t g1 = g0;
+      while (g1 < landings_.size() && landings_[g1].run == landings_[g0].run) ++g1;
+      const uint32_t r = landings_[g0].run;
+      if (static_cast<int>(g1 - g0) >= params.min_votes) {
+        // The direction most votes agree with.
+        float sign = 1.0f;
+        size_t best_inliers = 0;
+        for (float dir : {1.0f, -1.0f}) {
+          votes_.clear();
+          for (size_t k = g0; k < g1; ++k) votes_.push_back(landings_[k].u - dir * landings_[k].s);
+          const float offset = median(votes_);
+          size_t inliers = 0;
+          for (size_t k = g0; k < g1; ++k)
+            inliers += std::abs(landings_[k].u - dir * landings_[k].s - offset) < params.inlier_px;
+          if (inliers > best_inliers) best_inliers = inliers, sign = dir;
+        }
+        // Votes by arc length, then each point's offset: the median of the votes within the
+        // window, else the nearest vote's.
+        std::sort(landings_.begin() + static_cast<std::ptrdiff_t>(g0), landings_.begin() + static_cast<std::ptrdiff_t>(g1),
+                  [](const Landing& a, const Landing& b) { return a.s < b.s; });
+        size_t lo = g0, hi = g0;
+        for (uint32_t i = runs.offsets[r]; i < runs.offsets[r + 1]; ++i) {
+          const float s = arc_[i];
+          while (lo < g1 && landings_[lo].s < s - params.window_px) ++lo;
+          if (hi < lo) hi = lo;
+          while (hi < g1 && landings_[hi].s <= s + params.window_px) ++hi;
+          // Widen the window to the nearest `min_window_votes` votes where it holds fewer
+          // (sparse runs, the ends): one parent's texture wins on each part.
+          size_t a = lo, c = hi;
+          while (c - a < std::min<size_t>(params.min_window_votes, g1 - g0)) {
+            const bool left = a > g0, right = c < g1;
+            if (left && (!right || s - landings_[a - 1].s <= landings_[c].s - s)) --a;
+            else ++c;
+          }
+          window_.clear();
+          for (size_t k = a; k < c; ++k) window_.push_back(landings_[k].u - sign * landings_[k].s);
+          const float offset = median(window_);
+          u_[i] = offset + sign * s;
+        }
+      }
+      g0 = g1;
+    }
+
+  // The texture drift of persisting samples: where each landed, this frame's parameter
+  // (between the run's points) against the one it carried.
+  for (const Landing& l : landings_) {
+    const uint32_t b = runs.offsets[l.run], e = runs.offsets[l.run + 1];
+    if (e - b < 2) {
+      drift_sum_ += std::abs(u_[b] - l.u);
+      continue;
+    }
+    const auto it = std::upper_bound(arc_.begin() + b, arc_.begin() + e, l.s);
+    const uint32_t i1 = std::clamp<uint32_t>(static_cast<uint32_t>(it - arc_.begin()), b + 1, e - 1), i0 = i1 - 1;
+    const float span = arc_[i1] - arc_[i0];
+    const float t = span > 0.0f ? std::clamp((l.s - arc_[i0]) / span, 0.0f, 1.0f) : 0.0f;
+    drift_sum_ += std::abs(u_[i0] + t * (u_[i1] - u_[i0]) - l.u);
+  }
+  persisting_ = landings_.size();
+
+  // This frame's samples, for the next.
+  prev_positions_.clear();
+  prev_u_.clear();
+  prev_kinds_.clear();
+  prev_runs_.clear();
+  prev_run_count_ = nr;
+  if (runs.positions.size() == np)
+    for (size_t r = 0; r < nr; ++r)
+      for (uint32_t i = runs.offsets[r]; i < runs.offsets[r + 1]; ++i) {
+        prev_positions_.push_back(runs.positions[i]);
+        prev_u_.push_back(u_[i]);
+        prev_kinds_.push_back(runs.kinds[r]);
+        prev_runs_.push_back(static_cast<uint32_t>(r));
+      }
+}
+
+}  // namespace lodline

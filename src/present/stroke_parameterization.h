@@ -1,0 +1,95 @@
+// Coherent stroke parameterisation (Kalnins, Davidson, Markosian, Finkelstein, "Coherent
+// stylized silhouettes", SIGGRAPH 2003, §4–5; docs/strokes.md): the arc-length parameter that
+// places a brush texture, dashes and jitter along a stroke is carried from frame to frame,
+// so that they stay on the surface instead of sliding along re-extracted strokes.
+//
+// Each frame, the previous frame's visible samples (their surface points and parameters) are
+// projected into the current image; each lands on a current run of its kind within
+// `match_px` (the nearest, or where several are that close, the one most samples of its
+// previous run landed on: its successor, so samples at junctions stay with their stroke),
+// at some arc length s there, and votes for the offset u − s (or u + s: a run may
+// be chained the other way round; each run takes the direction most of its votes agree
+// with). A run point's parameter is then u = s + the median of the votes within
+// `window_px` of arc length (of the nearest `min_window_votes` where fewer are that close),
+// so a stroke that slides
+// unevenly over the surface keeps its texture on it piece by piece, a stroke that split
+// inherits its parent's parameters on each part, and one that merged two parents keeps
+// each part's with a seam where they meet. A run that no sample reaches starts afresh at u = s.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/camera.h"
+#include "core/line_kind.h"
+#include "export/visibility.h"
+
+namespace lodline {
+
+struct StrokeParameterizationParams {
+  /// Farthest a previous sample may land from a current run to count as on it, px. Default 1.5.
+  float match_px = 1.0f;
+  /// A run needs at least this many landed samples to inherit; else it starts afresh.
+  /// Default 1: even a short run that one sample reaches keeps that sample's texture.
+  int min_votes = 1;
+  /// Votes within this of the median offset agree (choosing the direction), px. Default 3.
+  float inlier_px = 3.0f;
+  /// Half-width of the window of votes whose median sets a point's offset, px of arc length.
+  /// Default 8.
+  float window_px = 8.0f;
+  /// ... widened to the nearest this many votes where it holds fewer. Default 5.
+  size_t min_window_votes = 5;
+};
+
+class StrokeParameterizer {
+ public:
+  /// The parameters of this frame's visible `runs` (one object's, seen by `camera` in a
+  /// `width`×`height` image), carried from the previous update() when `coherent`, else
+  /// u = s (the arc length from each run's first point). Either way the texture drift of
+  /// the frame is measured (below).
+  void update(const StrokeRuns& runs, const Camera& camera, int width, int height, bool coherent,
+              const StrokeParameterizationParams& params = {});
+  /// One per point of the runs of the last update() (indexed like runs.points), px.
+  const std::vector<float>& parameters() const { return u_; }
+  /// Of the last update(): previous samples that landed on a current run of their kind
+  /// (the samples that persist), and the sum over them of |u here − u before|, px: how far
+  /// the texture under a persisting surface point moved along its stroke.
+  size_t persisting() const { return persisting_; }
+  double driftSum() const { return drift_sum_; }
+  /// Forgets the previous frame (a new sequence).
+  void reset();
+
+ private:
+  struct Landing {
+    uint32_t run;
+    float s;  ///< arc length on the run where the previous sample landed
+    float u;  ///< the previous sample's parameter
+  };
+  std::vector<glm::vec3> prev_positions_;
+  std::vector<float> prev_u_;
+  std::vector<LineKind> prev_kinds_;
+  std::vector<uint32_t> prev_runs_;  ///< the run each previous sample was on
+  size_t prev_run_count_ = 0;
+  std::vector<float> u_;
+  size_t persisting_ = 0;
+  double drift_sum_ = 0.0;
+  // Scratch.
+  std::vector<float> arc_;            // per current point, arc length within its run
+  std::vector<uint32_t> point_run_;   // per current point, its run
+  std::vector<uint32_t> cell_start_, cell_items_;  // grid of current segments
+  struct Candidate {
+    uint32_t sample;  ///< previous sample
+    uint32_t run;     ///< a current run within match_px
+    float s, d;       ///< where on it, and how far
+  };
+  std::vector<Candidate> candidates_;
+  std::vector<uint64_t> successor_keys_;
+  std::vector<uint32_t> successor_;  ///< per previous run: the current run most of it landed on
+  std::vector<Landing> landings_;
+  std::vector<float> votes_, window_;
+};
+
+}  // namespace lodline
