@@ -1,7 +1,8 @@
 // The one hash of lodline: a 64-bit FNV-1a variant over 8-byte words, used for the
 // progressive-mesh cache (content hash of the input, file checksum) and for short stable
-// names (sweep runs). Not cryptographic; stable across runs, builds and machines of the
-// same endianness.
+// names (sweep runs); and a mixer of 64-bit keys for deterministic noise (the stroke
+// styles' jitter and the generated brushes). Not cryptographic; stable across runs, builds
+// and machines of the same endianness.
 #pragma once
 
 #include <cstddef>
@@ -21,5 +22,16 @@ uint64_t hashBytes(const void* data, size_t size, uint64_t seed = kHashSeed);
 inline uint64_t hashText(std::string_view text, uint64_t seed = kHashSeed) {
   return hashBytes(text.data(), text.size(), seed);
 }
+
+/// splitmix64's finaliser of `key` (+ the golden-ratio increment): well-spread bits.
+inline uint64_t mixBits(uint64_t key) {
+  uint64_t z = key + 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+/// mixBits() of `key` as a float in [0, 1) (24 bits).
+inline float unitNoise(uint64_t key) { return static_cast<float>(mixBits(key) >> 40) / static_cast<float>(1u << 24); }
 
 }  // namespace lodline

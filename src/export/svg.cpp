@@ -34,6 +34,12 @@ void writePoint(std::ostream& os, glm::vec2 p, int decimals) {
   writeNumber(os, p.y, decimals);
 }
 
+// The opacity of stroke s: the style's × the stroke's own, in [0, 1] (1 when not finite).
+float strokeOpacity(const SvgLineStyle& ls, const SvgStrokes& strokes, size_t s) {
+  const float op = ls.opacity * (strokes.opacity.empty() ? 1.0f : strokes.opacity[s]);
+  return std::isfinite(op) ? std::clamp(op, 0.0f, 1.0f) : 1.0f;
+}
+
 // The strokes of `strokes` that `select` accepts, in one group of class `cls` and style
 // `ls` (dashed by `dash` when given): smooth paths of cubic Béziers (lines/stroke_curve.h),
 // or polylines with curves off; nothing when none is accepted.
@@ -63,9 +69,7 @@ void writeGroup(std::ostream& os, const SvgStrokes& strokes, const char* cls, co
       os << ">\n";
       open = true;
     }
-    float op = ls.opacity * (strokes.opacity.empty() ? 1.0f : strokes.opacity[s]);
-    if (!std::isfinite(op)) op = 1.0f;
-    op = std::clamp(op, 0.0f, 1.0f);
+    const float op = strokeOpacity(ls, strokes, s);
     const auto points = strokes.points.subspan(begin, end - begin);
     chain.clear();
     if (style.curves) fitStrokeCurve(points, style.curve, chain, scratch);
@@ -126,9 +130,7 @@ void writeOutlines(std::ostream& os, const SvgStrokes& strokes, int kind, const 
          << sanitizeColour(ls.colour) << "\" stroke=\"none\">\n";
       open = true;
     }
-    float op = ls.opacity * (strokes.opacity.empty() ? 1.0f : strokes.opacity[s]);
-    if (!std::isfinite(op)) op = 1.0f;
-    op = std::clamp(op, 0.0f, 1.0f);
+    const float op = strokeOpacity(ls, strokes, s);
     os << "<path";
     if (!strokes.ids.empty()) os << " id=\"s" << strokes.ids[s] << '"';
     if (op < 1.0f) {

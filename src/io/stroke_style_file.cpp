@@ -7,21 +7,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/hash.h"
 #include "io/image.h"
 #include "io/input_check.h"
 
 namespace lodline {
 namespace {
 
-// A hash of integer lattice points to [0, 1) (splitmix64's finaliser): the brushes' noise.
+// A hash of integer lattice points to [0, 1): the brushes' noise.
 float lattice(uint32_t seed, int x, int y) {
-  uint64_t z = (static_cast<uint64_t>(seed) << 42) ^ (static_cast<uint64_t>(static_cast<uint32_t>(x)) << 21) ^
-               static_cast<uint64_t>(static_cast<uint32_t>(y));
-  z += 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  z ^= z >> 31;
-  return static_cast<float>(z >> 40) / static_cast<float>(1ull << 24);
+  return unitNoise((static_cast<uint64_t>(seed) << 42) ^ (static_cast<uint64_t>(static_cast<uint32_t>(x)) << 21) ^
+                   static_cast<uint64_t>(static_cast<uint32_t>(y)));
 }
 
 // Value noise with cells of cx × cy px, periodic in x with period `wrap` px (a multiple of

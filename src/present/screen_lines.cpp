@@ -5,18 +5,15 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/hash.h"
+
 namespace lodline {
 namespace {
 
 // Value noise along a line (smooth between integer lattice points), in [−1, 1].
 float noise1(uint32_t seed, float x) {
   auto lattice = [seed](int i) {
-    uint64_t z = (static_cast<uint64_t>(seed) << 32) ^ static_cast<uint32_t>(i);
-    z += 0x9e3779b97f4a7c15ull;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    z ^= z >> 31;
-    return static_cast<float>(z >> 40) / static_cast<float>(1ull << 23) - 1.0f;
+    return 2.0f * unitNoise((static_cast<uint64_t>(seed) << 32) ^ static_cast<uint32_t>(i)) - 1.0f;
   };
   const float f = std::floor(x);
   const int i = static_cast<int>(f);
