@@ -8,7 +8,7 @@
 namespace lodline {
 namespace {
 
-constexpr float kCell = 4.0f;  // grid cell of the current segments, px (≥ 2 × match_px)
+constexpr float kCell = 3.0f;  // grid cell of the current segments, px
 
 float median(std::vector<float>& v) {
   const size_t mid = v.size() / 2;
@@ -81,11 +81,14 @@ void StrokeParameterizer::update(const StrokeRuns& runs, const Camera& camera, i
       glm::vec2 px;
       float depth = 0.0f;
       if (!projector.project(prev_positions_[j], px, depth) || !inImage(px)) continue;
-      int cx, cy;
-      cellOf(px, cx, cy);
+      // The cells the disc of radius match_px around the sample touches (2 × 2 at most for
+      // match_px under half a cell).
+      int x0, y0, x1, y1;
+      cellOf(px - glm::vec2(params.match_px), x0, y0);
+      cellOf(px + glm::vec2(params.match_px), x1, y1);
       const size_t first = candidates_.size();
-      for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, gh - 1); ++y)
-        for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, gw - 1); ++x) {
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
           const size_t c = static_cast<size_t>(y) * gw + x;
           for (uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
             const uint32_t i = cell_items_[k];
