@@ -193,18 +193,118 @@ size_t styledRun(const StrokeRuns& runs, size_t r, float width_px, const StrokeS
 
 }  // namespace
 
+void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, StrokeRuns& out,
+              std::vector<float>& out_u, std::vector<uint32_t>& first_run) {
+  const size_t nr = runs.strokeCount();
+  const bool with_u = !u.empty() && u.size() == runs.points.size();
+  const bool with_pos = runs.positions.size() == runs.points.size();
+  out.clear();
+  out_u.clear();
+  first_run.clear();
+  out.offsets.push_back(0);
+  auto endPoint = [&](size_t end) {
+    const size_t r = end / 2;
+    return end % 2 == 0 ? runs.points[runs.offsets[r]] : runs.points[runs.offsets[r + 1] - 1];
+  };
+  // Ends binned by cells of tol_px; each end links to the nearest free end of another run
+  // of its kind.
+  std::vector<int32_t> link(2 * nr, -1);
+  const float cell = std::max(tol_px, 1e-3f);
+  std::vector<std::pair<uint64_t, uint32_t>> bins;
+  auto key = [&](int x, int y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); };
+  auto cellOf = [&](glm::vec2 p, int& x, int& y) {
+    x = static_cast<int>(std::floor(p.x / cell));
+    y = static_cast<int>(std::floor(p.y / cell));
+  };
+  for (size_t end = 0; end < 2 * nr; ++end) {
+    const size_t r = end / 2;
+    if (runs.offsets[r + 1] <= runs.offsets[r]) continue;
+    const glm::vec2 p = endPoint(end);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || std::abs(p.x) > 1e7f || std::abs(p.y) > 1e7f) continue;
+    int x, y;
+    cellOf(p, x, y);
+    bins.emplace_back(key(x, y), static_cast<uint32_t>(end));
+  }
+  std::sort(bins.begin(), bins.end());
+  for (const auto& [k, e] : bins) {
+    if (link[e] >= 0) continue;
+    const glm::vec2 p = endPoint(e);
+    int x, y;
+    cellOf(p, x, y);
+    float best = tol_px;
+    int32_t best_end = -1;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const uint64_t kk = key(x + dx, y + dy);
+        for (auto it = std::lower_bound(bins.begin(), bins.end(), std::make_pair(kk, 0u));
+             it != bins.end() && it->first == kk; ++it) {
+          const uint32_t o = it->second;
+          if (o / 2 == e / 2 || link[o] >= 0 || runs.kinds[o / 2] != runs.kinds[e / 2]) continue;
+          const float d = glm::length(endPoint(o) - p);
+          if (d <= best) best = d, best_end = static_cast<int32_t>(o);
+        }
+      }
+    if (best_end >= 0) {
+      link[e] = best_end;
+      link[static_cast<size_t>(best_end)] = static_cast<int32_t>(e);
+    }
+  }
+  // Chains: from each run with a free end (then the remaining cycles), run after run.
+  std::vector<uint8_t> done(nr, 0);
+  auto emit = [&](size_t start_run, size_t entry_end) {
+    float length = 0.0f, weighted = 0.0f;
+    size_t r = start_run, entry = entry_end;
+    while (true) {
+      done[r] = 1;
+      const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+      const bool forward = entry % 2 == 0;
+      for (uint32_t k = 0; k < e - b; ++k) {
+        const uint32_t i = forward ? b + k : e - 1 - k;
+        out.points.push_back(runs.points[i]);
+        if (with_pos) out.positions.push_back(runs.positions[i]);
+        out.alpha.push_back(runs.alpha[i]);
+        if (with_u) out_u.push_back(u[i]);
+      }
+      length += runs.length_px[r];
+      weighted += runs.length_px[r] * runs.opacity[r];
+      const size_t exit = forward ? 2 * r + 1 : 2 * r;
+      if (link[exit] < 0) break;
+      const size_t next_entry = static_cast<size_t>(link[exit]);
+      if (done[next_entry / 2]) break;  // a cycle closed
+      r = next_entry / 2;
+      entry = next_entry;
+    }
+    first_run.push_back(static_cast<uint32_t>(start_run));
+    out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
+    out.kinds.push_back(runs.kinds[start_run]);
+    out.strokes.push_back(runs.strokes[start_run]);
+    out.length_px.push_back(length);
+    out.opacity.push_back(length > 0.0f ? weighted / length : runs.opacity[start_run]);
+  };
+  for (size_t r = 0; r < nr; ++r) {
+    if (done[r]) continue;
+    if (link[2 * r] < 0) emit(r, 2 * r);
+    else if (link[2 * r + 1] < 0) emit(r, 2 * r + 1);
+  }
+  for (size_t r = 0; r < nr; ++r)
+    if (!done[r]) emit(r, 2 * r);
+}
+
 void buildScreenLines(const StrokeRuns& visible, const StrokeRuns& hidden, const ObjectStyle& style,
                       const StrokeView& view, std::span<const float> visible_u, ScreenLines& out,
                       ScreenLinesScratch& scratch) {
   out.clear();
+  joinRuns(visible, visible_u, 0.75f, scratch.joined, scratch.joined_u, scratch.joined_first);
+  const StrokeRuns& runs = scratch.joined;
+  const std::span<const float> runs_u = scratch.joined_u;
   for (int k = 0; k < kLineKindCount; ++k) {
     out.first[k] = static_cast<uint32_t>(out.vertices.size());
     const LineStyle& ls = style.lines.kinds[k];
     if (ls.enabled)
-      for (size_t r = 0; r < visible.strokeCount(); ++r)
-        if (static_cast<int>(visible.kinds[r]) == k)
+      for (size_t r = 0; r < runs.strokeCount(); ++r)
+        if (static_cast<int>(runs.kinds[r]) == k)
           out.segments[k] +=
-              static_cast<uint32_t>(styledRun(visible, r, ls.width_px, ls.stroke, view, visible_u, out, scratch));
+              static_cast<uint32_t>(styledRun(runs, r, ls.width_px, ls.stroke, view, runs_u, out, scratch));
     out.count[k] = static_cast<uint32_t>(out.vertices.size()) - out.first[k];
   }
   out.hidden_first = static_cast<uint32_t>(out.vertices.size());

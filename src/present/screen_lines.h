@@ -29,6 +29,9 @@ struct ScreenLinesScratch {
   std::vector<float> alpha, width, arc, u, depth, bend;
   std::vector<glm::vec2> piece;
   std::vector<float> piece_alpha, piece_width, piece_u;
+  StrokeRuns joined;
+  std::vector<float> joined_u;
+  std::vector<uint32_t> joined_first;
   StrokeGeometryScratch geometry;
 };
 
@@ -41,7 +44,18 @@ struct ScreenLinesScratch {
 bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const StrokeStyle& st, const StrokeView& view,
                    std::span<const float> u, ScreenLinesScratch& sc);
 
-/// Fills `out` with the strokes of `visible` (per kind, in style.lines' colours, widths and
+/// Runs of one kind whose ends meet (within `tol_px`) joined into one run each, into `out`
+/// (and their parameters into `out_u` when `u` is given): the visibility test and the
+/// outline's completion cut a line into runs that meet end to end, and drawn apart each
+/// junction would get two caps (a bead where a translucent stroke overlaps itself) and two
+/// tapers. A run is reversed where needed; each end joins at most one other (the nearest),
+/// so a junction of three keeps one run apart. Opacity is the length-weighted mean, length
+/// the sum, the stroke index the first run's (`first_run`: that run's index in `runs`).
+void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, StrokeRuns& out,
+              std::vector<float>& out_u, std::vector<uint32_t>& first_run);
+
+/// Fills `out` with the strokes of `visible` (joined where they meet end to end, joinRuns();
+/// per kind, in style.lines' colours, widths and
 /// stroke styles: profile, dashes, jitter, minimum length; docs/strokes.md) and, when
 /// style.hidden is enabled, of `hidden` in the hidden style (its width and colour, dashes of
 /// hidden.dash_on pixels every dash_on + dash_off pixels, butt ends). Kinds that are not

@@ -68,23 +68,31 @@ void appendOutline(const ScreenLinesScratch& sc, StrokeCap cap, std::vector<glm:
   end_cap(0, glm::normalize(P[0] - P[1]));
 }
 
-void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView& view,
-             std::span<const float> u, const std::vector<uint64_t>* ids, LayerStrokes& out,
-             ScreenLinesScratch& sc) {
+void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView& view, std::span<const float> u,
+             const std::vector<uint64_t>* ids, LayerStrokes& out, ScreenLinesScratch& sc) {
+  // Constant-width strokes: the runs as they are.
   for (size_t r = 0; r < runs.strokeCount(); ++r) {
     const LineStyle& ls = style.lines[runs.kinds[r]];
-    const StrokeStyle& st = ls.stroke;
+    if (variableWidth(ls.stroke)) continue;
+    if (ls.stroke.min_length_px > 0.0f && runs.length_px[r] < ls.stroke.min_length_px) continue;
     const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
-    if (!variableWidth(st)) {
-      if (st.min_length_px > 0.0f && runs.length_px[r] < st.min_length_px) continue;
-      out.points.insert(out.points.end(), runs.points.begin() + b, runs.points.begin() + e);
-      out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
-      out.kinds.push_back(runs.kinds[r]);
-      out.opacity.push_back(runs.opacity[r]);
-      if (ids) out.ids.push_back((*ids)[r]);
-      continue;
-    }
-    if (!strokeProfile(runs, r, ls.width_px, st, view, u, sc) || sc.points.size() < 2) continue;
+    out.points.insert(out.points.end(), runs.points.begin() + b, runs.points.begin() + e);
+    out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
+    out.kinds.push_back(runs.kinds[r]);
+    out.opacity.push_back(runs.opacity[r]);
+    if (ids) out.ids.push_back((*ids)[r]);
+  }
+  // Varying width: the runs joined where they meet, as the renderers draw them, each the
+  // outline of its profile (the id of its first run).
+  StrokeRuns joined;
+  std::vector<float> joined_u;
+  std::vector<uint32_t> first;
+  joinRuns(runs, u, 0.75f, joined, joined_u, first);
+  for (size_t r = 0; r < joined.strokeCount(); ++r) {
+    const LineStyle& ls = style.lines[joined.kinds[r]];
+    const StrokeStyle& st = ls.stroke;
+    if (!variableWidth(st)) continue;
+    if (!strokeProfile(joined, r, ls.width_px, st, view, joined_u, sc) || sc.points.size() < 2) continue;
     StrokeGeometryScratch& g = sc.geometry;
     g.points = sc.points;
     g.width = sc.width;
@@ -97,9 +105,9 @@ void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView&
     for (float a : sc.alpha) mean_alpha += a;
     appendOutline(sc, st.cap, out.outline_points);
     out.outline_offsets.push_back(static_cast<uint32_t>(out.outline_points.size()));
-    out.outline_kinds.push_back(runs.kinds[r]);
+    out.outline_kinds.push_back(joined.kinds[r]);
     out.outline_opacity.push_back(mean_alpha / static_cast<float>(sc.alpha.size()));
-    if (ids) out.outline_ids.push_back((*ids)[r]);
+    if (ids) out.outline_ids.push_back((*ids)[first[r]]);
   }
 }
 

@@ -255,5 +255,60 @@ TEST(StrokeStyles, BrushInkFollowsTheArcLength) {
   }
 }
 
+// Runs from (x0, y) to (x1, y), one point per pixel.
+void addRun(StrokeRuns& r, glm::vec2 a, glm::vec2 b, LineKind kind = LineKind::kContour) {
+  if (r.offsets.empty()) r.offsets.push_back(0);
+  const int n = std::max(1, static_cast<int>(glm::length(b - a)));
+  for (int i = 0; i <= n; ++i) {
+    const float t = static_cast<float>(i) / static_cast<float>(n);
+    r.points.push_back(a + t * (b - a));
+    r.positions.push_back(glm::vec3(a + t * (b - a), 0.0f));
+    r.alpha.push_back(1.0f);
+  }
+  r.offsets.push_back(static_cast<uint32_t>(r.points.size()));
+  r.kinds.push_back(kind);
+  r.strokes.push_back(static_cast<uint32_t>(r.kinds.size() - 1));
+  r.opacity.push_back(1.0f);
+  r.length_px.push_back(glm::length(b - a));
+}
+
+TEST(StrokeStyles, RunsThatMeetAreDrawnAsOneStroke) {
+  StrokeRuns runs;
+  addRun(runs, {20, 40.5f}, {60, 40.5f});   // 0
+  addRun(runs, {100, 60.5f}, {60.3f, 40.7f}); // 1: meets 0's end with its own end (reversed)
+  addRun(runs, {100, 60.5f}, {100, 90.5f}, LineKind::kSuggestive);  // 2: another kind, not joined
+  addRun(runs, {20, 100.5f}, {50, 100.5f});  // 3: alone
+  StrokeRuns joined;
+  std::vector<float> u;
+  std::vector<uint32_t> first;
+  joinRuns(runs, {}, 0.75f, joined, u, first);
+  ASSERT_EQ(joined.strokeCount(), 3u);
+  EXPECT_EQ(first[0], 0u);
+  EXPECT_NEAR(joined.length_px[0], runs.length_px[0] + runs.length_px[1], 1e-3f);
+  // The joined run goes 0 forwards, then 1 backwards, ending at (100, 60.5).
+  const glm::vec2 last = joined.points[joined.offsets[1] - 1];
+  EXPECT_NEAR(last.x, 100.0f, 1e-4f);
+  EXPECT_NEAR(last.y, 60.5f, 1e-4f);
+  // Half-opaque: one stroke blends once, so the junction is no darker than the rest (two
+  // strokes would overlap their round caps there).
+  ObjectStyle style = contourStyle(4.0f);
+  style.lines[LineKind::kContour].color = {0, 0, 0, 0.5f};
+  ScreenLines lines;
+  ScreenLinesScratch scratch;
+  StrokeRuns two;
+  addRun(two, {20, 40.5f}, {60, 40.5f});
+  addRun(two, {60.2f, 40.6f}, {100, 40.5f});
+  buildScreenLines(two, StrokeRuns{}, style, StrokeView{}, {}, lines, scratch);
+  Image img(kW, kH);
+  std::fill(img.rgba.begin(), img.rgba.end(), 255);
+  WorkerPool pool(2);
+  drawStrokeTriangles(std::span(lines.vertices).subspan(lines.first[0], lines.count[0]), style.lines[LineKind::kContour].color,
+                      nullptr, img, pool);
+  int darkest = 255;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) darkest = std::min<int>(darkest, img.pixel(x, y)[0]);
+  EXPECT_GE(darkest, 126);  // 50% black over white: 127.5, never the 64 of a double blend
+}
+
 }  // namespace
 }  // namespace lodline
