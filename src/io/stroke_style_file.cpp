@@ -36,10 +36,20 @@ float valueNoise(uint32_t seed, float x, float y, int cx, int cy, int wrap) {
 
 uint8_t toByte(float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
 
-KindStrokeStyle allKinds(const StrokeStyle& s) {
-  KindStrokeStyle k;
-  k.stroke = s;
-  return k;
+// Every kind drawn with `s`; with a colour and a width scale when a preset sets them.
+std::array<KindStrokeStyle, kLineKindCount> allKinds(const StrokeStyle& s) {
+  std::array<KindStrokeStyle, kLineKindCount> kinds;
+  for (KindStrokeStyle& k : kinds) k.stroke = s;
+  return kinds;
+}
+std::array<KindStrokeStyle, kLineKindCount> allKinds(const StrokeStyle& s, glm::vec4 color, float width_scale) {
+  std::array<KindStrokeStyle, kLineKindCount> kinds = allKinds(s);
+  for (KindStrokeStyle& k : kinds) {
+    k.set_color = true;
+    k.color = color;
+    k.width_scale = width_scale;
+  }
+  return kinds;
 }
 
 std::shared_ptr<const Image> builtinBrush(BrushKind kind) { return std::make_shared<const Image>(makeBrush(kind)); }
@@ -58,12 +68,7 @@ NamedStrokeStyle preset(const std::string& name) {
     s.curvature_thickness = 0.6f;
     s.strength_opacity = 0.4f;
     s.min_length_px = 3.0f;
-    out.kinds.fill(allKinds(s));
-    for (auto& k : out.kinds) {
-      k.set_color = true;
-      k.color = {0.06f, 0.05f, 0.05f, 1.0f};
-      k.width_scale = 1.3f;
-    }
+    out.kinds = allKinds(s, {0.06f, 0.05f, 0.05f, 1.0f}, 1.3f);
   } else if (name == "pencil") {
     // Graphite: grainy, a little unsteady, lighter with distance, soft ends.
     s.taper_in_px = 6.0f;
@@ -76,12 +81,7 @@ NamedStrokeStyle preset(const std::string& name) {
     s.brush = builtinBrush(BrushKind::kPencil);
     s.brush_path = "pencil";
     s.brush_period_px = 48.0f;
-    out.kinds.fill(allKinds(s));
-    for (auto& k : out.kinds) {
-      k.set_color = true;
-      k.color = {0.16f, 0.16f, 0.19f, 1.0f};
-      k.width_scale = 1.15f;
-    }
+    out.kinds = allKinds(s, {0.16f, 0.16f, 0.19f, 1.0f}, 1.15f);
   } else if (name == "marker") {
     // Felt marker: broad, translucent, streaky, square-ish ends.
     s.cap = StrokeCap::kSquare;
@@ -89,14 +89,9 @@ NamedStrokeStyle preset(const std::string& name) {
     s.brush = builtinBrush(BrushKind::kMarker);
     s.brush_path = "marker";
     s.brush_period_px = 96.0f;
-    out.kinds.fill(allKinds(s));
-    for (auto& k : out.kinds) {
-      k.set_color = true;
-      k.color = {0.16f, 0.22f, 0.30f, 0.8f};
-      k.width_scale = 1.6f;
-    }
+    out.kinds = allKinds(s, {0.16f, 0.22f, 0.30f, 0.8f}, 1.6f);
   } else {
-    out.kinds.fill(allKinds(s));  // plain
+    out.kinds = allKinds(s);  // plain
   }
   return out;
 }

@@ -77,16 +77,13 @@ void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
   }
 }
 
-size_t ScenePresenter::persistingSamples() const {
-  size_t n = 0;
-  for (const StrokeParameterizer& p : parameterizers_) n += p.persisting();
-  return n;
-}
-
 double ScenePresenter::textureDrift() const {
   double sum = 0.0;
-  for (const StrokeParameterizer& p : parameterizers_) sum += p.driftSum();
-  const size_t n = persistingSamples();
+  size_t n = 0;
+  for (const StrokeParameterizer& p : parameterizers_) {
+    sum += p.driftSum();
+    n += p.persisting();
+  }
   return n > 0 ? sum / static_cast<double>(n) : 0.0;
 }
 

@@ -83,9 +83,8 @@ class ScenePresenter {
   /// parameterisation, present/stroke_parameterization.h) or start at each visible run's
   /// first point (u = arc length). Default on; a still's single frame is the same either way.
   void setStrokeCoherence(bool on) { stroke_coherence_ = on; }
-  /// Of the last present(), over every object: previous line samples that persist and the
+  /// Of the last present(), over every object's previous line samples that persist: the
   /// mean movement, px, of the texture under them along their strokes (0 when none).
-  size_t persistingSamples() const;
   double textureDrift() const;
   /// The stroke parameter of each point of an object's visible runs in the last present().
   const std::vector<float>& strokeParameters(size_t object) const { return parameterizers_[object].parameters(); }

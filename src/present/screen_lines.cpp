@@ -167,7 +167,8 @@ size_t styledRun(const StrokeRuns& runs, size_t r, float width_px, const StrokeS
       continue;
     }
     // The dashes [d, d + on) meeting [lo, hi], in the segment's t from its first point.
-    std::vector<std::pair<float, float>> spans;
+    auto& spans = sc.dash_spans;
+    spans.clear();
     for (float d = std::floor(lo / period) * period; d < hi; d += period) {
       const float a = std::max(d, lo), c = std::min(d + on, hi);
       if (c <= a) continue;
@@ -193,14 +194,15 @@ size_t styledRun(const StrokeRuns& runs, size_t r, float width_px, const StrokeS
 
 }  // namespace
 
-void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, StrokeRuns& out,
-              std::vector<float>& out_u, std::vector<uint32_t>& first_run) {
+void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, JoinedRuns& joined) {
   const size_t nr = runs.strokeCount();
   const bool with_u = !u.empty() && u.size() == runs.points.size();
   const bool with_pos = runs.positions.size() == runs.points.size();
+  StrokeRuns& out = joined.runs;
+  std::vector<float>& out_u = joined.u;
   out.clear();
   out_u.clear();
-  first_run.clear();
+  joined.first_run.clear();
   out.offsets.push_back(0);
   auto endPoint = [&](size_t end) {
     const size_t r = end / 2;
@@ -208,9 +210,11 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, St
   };
   // Ends binned by cells of tol_px; each end links to the nearest free end of another run
   // of its kind.
-  std::vector<int32_t> link(2 * nr, -1);
+  std::vector<int32_t>& link = joined.link;
+  link.assign(2 * nr, -1);
   const float cell = std::max(tol_px, 1e-3f);
-  std::vector<std::pair<uint64_t, uint32_t>> bins;
+  auto& bins = joined.bins;
+  bins.clear();
   auto key = [&](int x, int y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); };
   auto cellOf = [&](glm::vec2 p, int& x, int& y) {
     x = static_cast<int>(std::floor(p.x / cell));
@@ -250,7 +254,8 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, St
     }
   }
   // Chains: from each run with a free end (then the remaining cycles), run after run.
-  std::vector<uint8_t> done(nr, 0);
+  std::vector<uint8_t>& done = joined.done;
+  done.assign(nr, 0);
   auto emit = [&](size_t start_run, size_t entry_end) {
     float length = 0.0f, weighted = 0.0f;
     size_t r = start_run, entry = entry_end;
@@ -274,7 +279,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, St
       r = next_entry / 2;
       entry = next_entry;
     }
-    first_run.push_back(static_cast<uint32_t>(start_run));
+    joined.first_run.push_back(static_cast<uint32_t>(start_run));
     out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
     out.kinds.push_back(runs.kinds[start_run]);
     out.strokes.push_back(runs.strokes[start_run]);
@@ -294,9 +299,9 @@ void buildScreenLines(const StrokeRuns& visible, const StrokeRuns& hidden, const
                       const StrokeView& view, std::span<const float> visible_u, ScreenLines& out,
                       ScreenLinesScratch& scratch) {
   out.clear();
-  joinRuns(visible, visible_u, 0.75f, scratch.joined, scratch.joined_u, scratch.joined_first);
-  const StrokeRuns& runs = scratch.joined;
-  const std::span<const float> runs_u = scratch.joined_u;
+  joinRuns(visible, visible_u, 0.75f, scratch.joined);
+  const StrokeRuns& runs = scratch.joined.runs;
+  const std::span<const float> runs_u = scratch.joined.u;
   for (int k = 0; k < kLineKindCount; ++k) {
     out.first[k] = static_cast<uint32_t>(out.vertices.size());
     const LineStyle& ls = style.lines.kinds[k];

@@ -23,15 +23,24 @@ struct StrokeView {
   float radius = 1.0f;
 };
 
+/// Runs joined where they meet (joinRuns()), and its scratch; reuse between calls.
+struct JoinedRuns {
+  StrokeRuns runs;
+  std::vector<float> u;             ///< the parameter per point, when one was given
+  std::vector<uint32_t> first_run;  ///< per joined run: the index of its first run in the input
+  std::vector<int32_t> link;        ///< per run end (2r start, 2r + 1 end): the end it joins, or -1
+  std::vector<std::pair<uint64_t, uint32_t>> bins;  ///< run ends by grid cell
+  std::vector<uint8_t> done;        ///< per run: already in a chain
+};
+
 /// Scratch of buildScreenLines(); reuse between calls.
 struct ScreenLinesScratch {
   std::vector<glm::vec2> points;
   std::vector<float> alpha, width, arc, u, depth, bend;
   std::vector<glm::vec2> piece;
   std::vector<float> piece_alpha, piece_width, piece_u;
-  StrokeRuns joined;
-  std::vector<float> joined_u;
-  std::vector<uint32_t> joined_first;
+  std::vector<std::pair<float, float>> dash_spans;
+  JoinedRuns joined;
   StrokeGeometryScratch geometry;
 };
 
@@ -44,15 +53,14 @@ struct ScreenLinesScratch {
 bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const StrokeStyle& st, const StrokeView& view,
                    std::span<const float> u, ScreenLinesScratch& sc);
 
-/// Runs of one kind whose ends meet (within `tol_px`) joined into one run each, into `out`
-/// (and their parameters into `out_u` when `u` is given): the visibility test and the
+/// Runs of one kind whose ends meet (within `tol_px`) joined into one run each, into
+/// out.runs (and their parameters into out.u when `u` is given): the visibility test and the
 /// outline's completion cut a line into runs that meet end to end, and drawn apart each
 /// junction would get two caps (a bead where a translucent stroke overlaps itself) and two
 /// tapers. A run is reversed where needed; each end joins at most one other (the nearest),
 /// so a junction of three keeps one run apart. Opacity is the length-weighted mean, length
-/// the sum, the stroke index the first run's (`first_run`: that run's index in `runs`).
-void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, StrokeRuns& out,
-              std::vector<float>& out_u, std::vector<uint32_t>& first_run);
+/// the sum, the stroke index the first run's (out.first_run: that run's index in `runs`).
+void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, JoinedRuns& out);
 
 /// Fills `out` with the strokes of `visible` (joined where they meet end to end, joinRuns();
 /// per kind, in style.lines' colours, widths and

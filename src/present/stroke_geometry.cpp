@@ -13,20 +13,20 @@ bool finite(glm::vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 // How far point i is from what the chord a-b predicts for it: its distance to the chord in
 // pixels, its width's difference from the width interpolated there, and 5 × its opacity's
 // (so 0.05 of opacity weighs like the 0.25 px tolerance).
-float chordError(const StrokeGeometryScratch& s, uint32_t i, uint32_t a, uint32_t b) {
+float chordError(const StrokeGeometryScratch& s, bool with_u, uint32_t i, uint32_t a, uint32_t b) {
   const glm::vec2 p = s.points[i], pa = s.points[a], ab = s.points[b] - pa;
   const float len2 = glm::dot(ab, ab);
   const float t = len2 > 0.0f ? std::clamp(glm::dot(p - pa, ab) / len2, 0.0f, 1.0f) : 0.0f;
   const float d = glm::length(p - (pa + t * ab));
   const float dw = std::abs(s.width[i] - (s.width[a] + t * (s.width[b] - s.width[a])));
   const float da = std::abs(s.alpha[i] - (s.alpha[a] + t * (s.alpha[b] - s.alpha[a])));
-  const float du = s.simplify_u ? std::abs(s.arc[i] - (s.arc[a] + t * (s.arc[b] - s.arc[a]))) : 0.0f;
+  const float du = with_u ? std::abs(s.u[i] - (s.u[a] + t * (s.u[b] - s.u[a]))) : 0.0f;
   return std::max({d, dw, du, 5.0f * da});
 }
 
 }  // namespace
 
-void simplifyStroke(float tol, StrokeGeometryScratch& s) {
+void simplifyStroke(float tol, bool with_u, StrokeGeometryScratch& s) {
   const uint32_t n = static_cast<uint32_t>(s.points.size());
   if (n < 3 || !(tol > 0.0f)) return;
   s.keep.assign(n, 0);
@@ -39,7 +39,7 @@ void simplifyStroke(float tol, StrokeGeometryScratch& s) {
     float worst = -1.0f;
     uint32_t at = a;
     for (uint32_t i = a + 1; i < b; ++i) {
-      const float e = chordError(s, i, a, b);
+      const float e = chordError(s, with_u, i, a, b);
       if (e > worst) worst = e, at = i;
     }
     if (worst > tol) {
@@ -54,13 +54,13 @@ void simplifyStroke(float tol, StrokeGeometryScratch& s) {
       s.points[m] = s.points[i];
       s.alpha[m] = s.alpha[i];
       s.width[m] = s.width[i];
-      s.arc[m] = s.arc[i];
+      s.u[m] = s.u[i];
       ++m;
     }
   s.points.resize(m);
   s.alpha.resize(m);
   s.width.resize(m);
-  s.arc.resize(m);
+  s.u.resize(m);
 }
 
 namespace {
@@ -68,7 +68,7 @@ namespace {
 glm::vec2 perp(glm::vec2 t) { return {-t.y, t.x}; }
 
 // One point of the stroke as drawn: half width (at least half a pixel), opacity (a width
-// under a pixel fades instead), arc length.
+// under a pixel fades instead), parameter.
 struct Section {
   float half_width, alpha, u;
 };
@@ -110,7 +110,7 @@ size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const f
   auto& P = scratch.points;
   auto& A = scratch.alpha;
   auto& Wd = scratch.width;
-  auto& S = scratch.arc;
+  auto& S = scratch.u;
   P.clear();
   A.clear();
   Wd.clear();
@@ -136,8 +136,8 @@ size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const f
     Wd.push_back(w);
   }
   if (P.empty() || *std::max_element(Wd.begin(), Wd.end()) <= 0.0f) return 0;
-  scratch.simplify_u = !u.empty();  // a given parameter may jump (seams): keep its points
-  simplifyStroke(params.simplify_px, scratch);
+  // A given parameter may jump (seams): its points are kept.
+  simplifyStroke(params.simplify_px, !u.empty(), scratch);
 
   auto section = [&](size_t i) {
     const float w = Wd[i];
@@ -198,12 +198,5 @@ size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const f
   return n - 1;
 }
 
-size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const float> alpha, float width_px,
-                            const StrokeGeometryParams& params, std::vector<StrokeVertex>& out,
-                            StrokeGeometryScratch& scratch) {
-  if (!(width_px > 0.0f) || !std::isfinite(width_px)) return 0;
-  std::vector<float> width(points.size(), width_px);
-  return appendStrokeGeometry(points, alpha, width, {}, params, out, scratch);
-}
 
 }  // namespace lodline

@@ -34,17 +34,16 @@ struct StrokeGeometryParams {
 /// Scratch of appendStrokeGeometry(); reuse between calls.
 struct StrokeGeometryScratch {
   std::vector<glm::vec2> points;
-  std::vector<float> alpha, width, arc;  ///< arc: the parameter u per point
-  bool simplify_u = false;  ///< simplifyStroke() also keeps the points where u bends
+  std::vector<float> alpha, width, u;  ///< per point: opacity, width (px), parameter (px)
   std::vector<uint8_t> keep;
   std::vector<std::pair<uint32_t, uint32_t>> stack;
 };
 
-/// Douglas–Peucker on scratch.points (with .alpha, .width and .arc alongside, all the same
+/// Douglas–Peucker on scratch.points (with .alpha, .width and .u alongside, all the same
 /// size) in place: keeps the ends and every point farther than `tol` px from its section's
-/// chord, or whose width (or parameter, with scratch.simplify_u) differs by more than `tol`
+/// chord, or whose width (or parameter, `with_u`) differs by more than `tol`
 /// px, or opacity by more than tol/5, from the chord's interpolation.
-void simplifyStroke(float tol, StrokeGeometryScratch& scratch);
+void simplifyStroke(float tol, bool with_u, StrokeGeometryScratch& scratch);
 
 /// Appends the triangles of one stroke through `points` (pixels) with opacity `alpha` and
 /// width `width` (pixels) per point; a width under 1 px is drawn 1 px wide with the width as
@@ -58,9 +57,5 @@ size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const f
                             std::span<const float> width, std::span<const float> u,
                             const StrokeGeometryParams& params,
                             std::vector<StrokeVertex>& out, StrokeGeometryScratch& scratch);
-/// The same with one width for the whole stroke, u from 0.
-size_t appendStrokeGeometry(std::span<const glm::vec2> points, std::span<const float> alpha, float width_px,
-                            const StrokeGeometryParams& params, std::vector<StrokeVertex>& out,
-                            StrokeGeometryScratch& scratch);
 
 }  // namespace lodline

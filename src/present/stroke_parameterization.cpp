@@ -69,7 +69,8 @@ void StrokeParameterizer::update(const StrokeRuns& runs, const Camera& camera, i
         forCells(i, [&](size_t c) { ++cell_start_[c + 1]; });
     for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
     cell_items_.assign(cell_start_.back(), 0);
-    std::vector<uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+    cell_fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
+    auto& fill = cell_fill_;
     for (size_t r = 0; r < nr; ++r)
       for (uint32_t i = runs.offsets[r]; i + 1 < runs.offsets[r + 1]; ++i)
         forCells(i, [&](size_t c) { cell_items_[fill[c]++] = i; });
@@ -121,7 +122,8 @@ void StrokeParameterizer::update(const StrokeRuns& runs, const Camera& camera, i
     }
     std::sort(successor_keys_.begin(), successor_keys_.end());
     successor_.assign(prev_run_count_, UINT32_MAX);
-    std::vector<uint32_t> best_count(prev_run_count_, 0);
+    successor_votes_.assign(prev_run_count_, 0);
+    auto& best_count = successor_votes_;
     for (size_t k0 = 0; k0 < successor_keys_.size();) {
       size_t k1 = k0;
       while (k1 < successor_keys_.size() && successor_keys_[k1] == successor_keys_[k0]) ++k1;

@@ -79,7 +79,7 @@ class StrokeParameterizer {
   // Scratch.
   std::vector<float> arc_;            // per current point, arc length within its run
   std::vector<uint32_t> point_run_;   // per current point, its run
-  std::vector<uint32_t> cell_start_, cell_items_;  // grid of current segments
+  std::vector<uint32_t> cell_start_, cell_items_, cell_fill_;  // grid of current segments
   struct Candidate {
     uint32_t sample;  ///< previous sample
     uint32_t run;     ///< a current run within match_px
@@ -88,6 +88,7 @@ class StrokeParameterizer {
   std::vector<Candidate> candidates_;
   std::vector<uint64_t> successor_keys_;
   std::vector<uint32_t> successor_;  ///< per previous run: the current run most of it landed on
+  std::vector<uint32_t> successor_votes_;  ///< ... and how many samples of it landed there
   std::vector<Landing> landings_;
   std::vector<float> votes_, window_;
 };

@@ -84,10 +84,10 @@ void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView&
   }
   // Varying width: the runs joined where they meet, as the renderers draw them, each the
   // outline of its profile (the id of its first run).
-  StrokeRuns joined;
-  std::vector<float> joined_u;
-  std::vector<uint32_t> first;
-  joinRuns(runs, u, 0.75f, joined, joined_u, first);
+  joinRuns(runs, u, 0.75f, sc.joined);
+  const StrokeRuns& joined = sc.joined.runs;
+  const std::vector<float>& joined_u = sc.joined.u;
+  const std::vector<uint32_t>& first = sc.joined.first_run;
   for (size_t r = 0; r < joined.strokeCount(); ++r) {
     const LineStyle& ls = style.lines[joined.kinds[r]];
     const StrokeStyle& st = ls.stroke;
@@ -97,9 +97,8 @@ void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView&
     g.points = sc.points;
     g.width = sc.width;
     g.alpha = sc.alpha;
-    g.arc = sc.arc;
-    g.simplify_u = false;
-    simplifyStroke(0.25f, g);
+    g.u = sc.arc;
+    simplifyStroke(0.25f, false, g);
     if (g.points.size() < 2) continue;
     float mean_alpha = 0.0f;
     for (float a : sc.alpha) mean_alpha += a;

@@ -23,7 +23,8 @@ std::vector<float> draw(const std::vector<glm::vec2>& points, float width, const
   std::vector<StrokeVertex> v;
   StrokeGeometryScratch scratch;
   const std::vector<float> alpha(points.size(), 1.0f);
-  const size_t n = appendStrokeGeometry(points, alpha, width, params, v, scratch);
+  const std::vector<float> widths(points.size(), width);
+  const size_t n = appendStrokeGeometry(points, alpha, widths, {}, params, v, scratch);
   if (segments) *segments = n;
   Image img(kW, kH);
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
@@ -138,12 +139,12 @@ TEST(StrokeGeometry, NonFinitePointsAreDroppedAndNothingIsWrittenForNoWidth) {
   std::vector<StrokeVertex> v;
   StrokeGeometryScratch scratch;
   const std::vector<float> alpha(3, 1.0f);
-  EXPECT_EQ(appendStrokeGeometry(line, alpha, 2.0f, {}, v, scratch), 1u);
+  EXPECT_EQ(appendStrokeGeometry(line, alpha, std::vector<float>(3, 2.0f), {}, {}, v, scratch), 1u);
   for (const StrokeVertex& s : v) ASSERT_TRUE(std::isfinite(s.px.x) && std::isfinite(s.px.y));
   EXPECT_GT(total(draw(line, 2.0f, {})), 80.0);
   v.clear();
-  EXPECT_EQ(appendStrokeGeometry(line, alpha, 0.0f, {}, v, scratch), 0u);
-  EXPECT_EQ(appendStrokeGeometry(line, alpha, nan, {}, v, scratch), 0u);
+  EXPECT_EQ(appendStrokeGeometry(line, alpha, std::vector<float>(3, 0.0f), {}, {}, v, scratch), 0u);
+  EXPECT_EQ(appendStrokeGeometry(line, alpha, std::vector<float>(3, nan), {}, {}, v, scratch), 0u);
   EXPECT_TRUE(v.empty());
 }
 
@@ -278,10 +279,10 @@ TEST(StrokeStyles, RunsThatMeetAreDrawnAsOneStroke) {
   addRun(runs, {100, 60.5f}, {60.3f, 40.7f}); // 1: meets 0's end with its own end (reversed)
   addRun(runs, {100, 60.5f}, {100, 90.5f}, LineKind::kSuggestive);  // 2: another kind, not joined
   addRun(runs, {20, 100.5f}, {50, 100.5f});  // 3: alone
-  StrokeRuns joined;
-  std::vector<float> u;
-  std::vector<uint32_t> first;
-  joinRuns(runs, {}, 0.75f, joined, u, first);
+  JoinedRuns j;
+  joinRuns(runs, {}, 0.75f, j);
+  const StrokeRuns& joined = j.runs;
+  const std::vector<uint32_t>& first = j.first_run;
   ASSERT_EQ(joined.strokeCount(), 3u);
   EXPECT_EQ(first[0], 0u);
   EXPECT_NEAR(joined.length_px[0], runs.length_px[0] + runs.length_px[1], 1e-3f);
