@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 #include "io/stroke_style_file.h"
 
@@ -113,8 +114,15 @@ void strokeStyleSection(ViewerSession& s) {
   int current = -1;
   for (int i = 0; i < 4; ++i)
     if (s.defaultStyle().stroke_style == kStrokeStyles[i]) current = i;
-  if (ImGui::Combo("Stroke style", &current, kStrokeStyles, 4) && current >= 0) {
-    auto preset = loadStrokeStyle(kStrokeStyles[current]);
+  // The preview names an edited style or a style file too.
+  const std::string shown = std::filesystem::path(s.defaultStyle().stroke_style).filename().string();
+  if (ImGui::BeginCombo("Stroke style", shown.c_str())) {
+    for (int i = 0; i < 4; ++i)
+      if (ImGui::Selectable(kStrokeStyles[i], i == current)) current = i + 4;  // + 4: picked now
+    ImGui::EndCombo();
+  }
+  if (current >= 4) {
+    auto preset = loadStrokeStyle(kStrokeStyles[current - 4]);
     if (preset)
       editAllStyles(s, {"stroke-style", "line-style", "line-width"}, [&](ObjectStyle& p) {
         LineStyles fresh;
@@ -126,9 +134,65 @@ void strokeStyleSection(ViewerSession& s) {
   }
 }
 
-void linesSection(ViewerSession& s) {
+// Every field of the stroke style (docs/strokes.md's table), for one line kind or all of
+// them; an edit makes the style an edited one, which "save view" writes as a style file.
+void strokeFieldsSection(ViewerSession& s, PanelState& st) {
+  if (!ImGui::TreeNode("Stroke fields")) return;
+  std::string kinds = std::string("all kinds") + '\0';
+  for (int k = 0; k < kLineKindCount; ++k) kinds += std::string(lineKindName(static_cast<LineKind>(k))) + '\0';
+  int which = st.stroke_kind + 1;
+  if (ImGui::Combo("edit", &which, kinds.c_str())) st.stroke_kind = which - 1;
+  StrokeStyle f = s.defaultStyle().lines.kinds[std::max(st.stroke_kind, 0)].stroke;
+  bool changed = false;
+  int cap = static_cast<int>(f.cap);
+  const char* caps[] = {"butt", "round", "square"};
+  if (ImGui::Combo("cap", &cap, caps, 3)) {
+    f.cap = static_cast<StrokeCap>(cap);
+    changed = true;
+  }
+  changed |= ImGui::SliderFloat("taper in (px)", &f.taper_in_px, 0.0f, 64.0f, "%.1f");
+  changed |= ImGui::SliderFloat("taper out (px)", &f.taper_out_px, 0.0f, 64.0f, "%.1f");
+  changed |= ImGui::SliderFloat("taper min", &f.taper_min, 0.0f, 1.0f, "%.2f");
+  changed |= ImGui::SliderFloat("thickness by depth", &f.depth_thickness, -1.0f, 1.0f, "%.2f");
+  changed |= ImGui::SliderFloat("thickness by strength", &f.strength_thickness, 0.0f, 1.0f, "%.2f");
+  changed |= ImGui::SliderFloat("thickness by bend", &f.curvature_thickness, -1.0f, 4.0f, "%.2f");
+  changed |= ImGui::SliderFloat("opacity by depth", &f.depth_opacity, 0.0f, 1.0f, "%.2f");
+  changed |= ImGui::SliderFloat("opacity by strength", &f.strength_opacity, 0.0f, 1.0f, "%.2f");
+  changed |= ImGui::SliderFloat("opacity by bend", &f.curvature_opacity, 0.0f, 1.0f, "%.2f");
+  changed |= ImGui::SliderFloat("dash on (px)", &f.dash_on, 0.0f, 64.0f, "%.1f");
+  changed |= ImGui::SliderFloat("dash off (px, 0 = solid)", &f.dash_off, 0.0f, 64.0f, "%.1f");
+  changed |= ImGui::SliderFloat("jitter (px)", &f.jitter_px, 0.0f, 8.0f, "%.2f");
+  changed |= ImGui::SliderFloat("jitter period (px)", &f.jitter_period_px, 1.0f, 256.0f, "%.1f",
+                                ImGuiSliderFlags_Logarithmic);
+  changed |= ImGui::InputScalar("seed", ImGuiDataType_U32, &f.seed);
+  changed |= ImGui::SliderFloat("min length (px)", &f.min_length_px, 0.0f, 64.0f, "%.1f");
+  // The brush: none or a built-in one; a brush read from a file is kept until another is
+  // picked.
+  const bool from_file = !f.brush_path.empty() && !parseBrushKind(f.brush_path);
+  const std::string brush_name = f.brush_path.empty() ? "none" : std::filesystem::path(f.brush_path).filename().string();
+  bool brush_changed = false;
+  if (ImGui::BeginCombo("brush", brush_name.c_str())) {
+    for (const char* b : {"none", "pencil", "marker"})
+      if (ImGui::Selectable(b, !from_file && brush_name == b)) {
+        f.brush_path = std::string(b) == "none" ? "" : b;
+        brush_changed = true;
+      }
+    ImGui::EndCombo();
+  }
+  brush_changed |= ImGui::SliderFloat("brush period (px)", &f.brush_period_px, 4.0f, 1024.0f, "%.0f",
+                                      ImGuiSliderFlags_Logarithmic);
+  if (brush_changed) {
+    if (Status r = prepareBrush(f); !r) st.message = r.error().message;
+    changed = true;
+  }
+  if (changed) s.setStrokeStyle(st.stroke_kind, f);
+  ImGui::TreePop();
+}
+
+void linesSection(ViewerSession& s, PanelState& st) {
   if (!ImGui::CollapsingHeader("Lines")) return;
   strokeStyleSection(s);
+  strokeFieldsSection(s, st);
   for (int k = 0; k < kLineKindCount; ++k) {
     ImGui::PushID(k);
     LineStyle ls = s.defaultStyle().lines.kinds[k];
@@ -245,7 +309,7 @@ void drawPanel(ViewerSession& session, PanelState& state, int width, int height)
   statsSection(session, state);
   detailSection(session, state);
   objectsSection(session);
-  linesSection(session);
+  linesSection(session, state);
   smoothingSection(session);
   styleSection(session);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {

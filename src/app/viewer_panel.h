@@ -21,6 +21,7 @@ struct PanelState {
   float detail_map_scale = 8.0f;
   std::array<char, 1024> save_path{};         ///< where "save view" writes
   std::string message;                        ///< last result or error, shown in the panel
+  int stroke_kind = -1;                       ///< line kind the stroke fields edit (-1: all)
   float fps = 0.0f;                           ///< measured by the caller
   /// Screen rectangle of the T slider as last drawn (min x, min y, max x, max y), so tests
   /// and scripted demos can drag it with real mouse input.

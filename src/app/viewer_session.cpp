@@ -8,6 +8,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "io/scene_file.h"
+#include "io/stroke_style_file.h"
 
 namespace lodline {
 
@@ -165,12 +166,32 @@ void ViewerSession::setStyleAll(Style style) {
   dirty_ = true;
 }
 
+void ViewerSession::setStrokeStyle(int kind, const StrokeStyle& style) {
+  auto apply = [&](ObjectStyle& p) {
+    for (int k = 0; k < kLineKindCount; ++k)
+      if (kind < 0 || k == kind) p.lines.kinds[k].stroke = style;
+    p.stroke_style = kEditedStrokeStyle;
+  };
+  apply(loaded_->view.style);
+  for (auto& o : loaded_->drawing.objects()) apply(o.style);
+  for (auto& o : loaded_->scene.objects) o.style.erase("stroke-style");  // the panel's style now holds for all
+  dirty_ = true;
+}
+
 Status ViewerSession::saveView(const std::filesystem::path& path, int width, int height) const {
   FrameParams frame = loaded_->view.frame;
   frame.width = width;
   frame.height = height;
   Scene out = loaded_->scene;
-  out.settings = settingsOf(frame, loaded_->view.style, loaded_->detail, loaded_->view.line_params, path.parent_path());
+  ObjectStyle style = loaded_->view.style;
+  if (style.stroke_style == kEditedStrokeStyle) {
+    // Fields edited in the panel: written as a style file beside the view, which names it.
+    std::filesystem::path strokes = path;
+    strokes.replace_extension(".strokes.json");
+    if (Status st = writeStrokeStyleFile(strokes, style.lines); !st) return st;
+    style.stroke_style = strokes.string();
+  }
+  out.settings = settingsOf(frame, style, loaded_->detail, loaded_->view.line_params, path.parent_path());
   const Camera cam = camera(width, height);
   SceneCamera sc;
   sc.explicit_pose = true;

@@ -65,6 +65,12 @@ class ViewerSession {
   float detailMapScale() const { return loaded_->detail.detail_map_scale; }
   /// Every object's style (the panel's global style control).
   void setStyleAll(Style style);
+  /// Sets line kind `kind`'s stroke fields (every kind's when `kind` < 0) on every object, as
+  /// the panel's stroke fields do; the style is then an edited one (kEditedStrokeStyle),
+  /// which "save view" writes as a style file next to the view.
+  void setStrokeStyle(int kind, const StrokeStyle& style);
+  /// The stroke style's name once its fields were edited in the panel.
+  static constexpr const char* kEditedStrokeStyle = "edited";
   /// True when some object has intersection lines (found when the scene was loaded).
   bool hasIntersectionLines() const;
   SceneDrawing& scene() { return loaded_->drawing; }

@@ -1,13 +1,16 @@
 #include "io/stroke_style_file.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "core/hash.h"
+#include "io/atomic_file.h"
 #include "io/image.h"
 #include "io/input_check.h"
 
@@ -165,6 +168,20 @@ Status readKind(const nlohmann::json& j, const std::filesystem::path& base, cons
   return {};
 }
 
+// `brush` resampled to one period of arc length by 8 px across, the size it is drawn at.
+std::shared_ptr<const Image> periodBrush(const Image& brush, float period_px) {
+  const int period = static_cast<int>(std::lround(std::clamp(period_px, 4.0f, 1024.0f)));
+  return std::make_shared<const Image>(resampleBrush(brush, period, 8));
+}
+
+// The shortest decimal that reads back as `v` (0.15, not 0.15000000596046448).
+double shortest(float v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof(buf) - 1, v);
+  *r.ptr = '\0';
+  return std::strtod(buf, nullptr);
+}
+
 }  // namespace
 
 Image makeBrush(BrushKind kind) {
@@ -278,13 +295,67 @@ void applyStrokeStyle(const NamedStrokeStyle& style, LineStyles& lines) {
     const KindStrokeStyle& ks = style.kinds[k];
     LineStyle& ls = lines.kinds[k];
     ls.stroke = ks.stroke;
-    if (ks.stroke.brush) {
-      const int period = static_cast<int>(std::lround(std::clamp(ks.stroke.brush_period_px, 4.0f, 1024.0f)));
-      ls.stroke.brush = std::make_shared<const Image>(resampleBrush(*ks.stroke.brush, period, 8));
-    }
+    if (ks.stroke.brush) ls.stroke.brush = periodBrush(*ks.stroke.brush, ks.stroke.brush_period_px);
     if (ks.set_color) ls.color = ks.color;
     ls.width_px *= ks.width_scale;
   }
+}
+
+Status prepareBrush(StrokeStyle& s) {
+  if (s.brush_path.empty()) {
+    s.brush.reset();
+    return {};
+  }
+  if (auto kind = parseBrushKind(s.brush_path)) {
+    s.brush = periodBrush(makeBrush(*kind), s.brush_period_px);
+    return {};
+  }
+  auto img = readPng(s.brush_path);
+  if (!img) return img.error();
+  s.brush = periodBrush(*img, s.brush_period_px);
+  return {};
+}
+
+nlohmann::json strokeStyleJson(const LineStyles& lines, const std::filesystem::path& base_dir) {
+  static constexpr const char* kCaps[] = {"butt", "round", "square"};
+  nlohmann::json j = nlohmann::json::object();
+  for (int k = 0; k < kLineKindCount; ++k) {
+    const StrokeStyle& s = lines.kinds[k].stroke;
+    nlohmann::json o;
+    o["cap"] = kCaps[static_cast<int>(s.cap)];
+    o["taper_in"] = shortest(s.taper_in_px);
+    o["taper_out"] = shortest(s.taper_out_px);
+    o["taper_min"] = shortest(s.taper_min);
+    o["depth_thickness"] = shortest(s.depth_thickness);
+    o["strength_thickness"] = shortest(s.strength_thickness);
+    o["curvature_thickness"] = shortest(s.curvature_thickness);
+    o["depth_opacity"] = shortest(s.depth_opacity);
+    o["strength_opacity"] = shortest(s.strength_opacity);
+    o["curvature_opacity"] = shortest(s.curvature_opacity);
+    o["dash"] = {shortest(s.dash_on), shortest(s.dash_off)};
+    o["jitter"] = shortest(s.jitter_px);
+    o["jitter_period"] = shortest(s.jitter_period_px);
+    o["seed"] = s.seed;
+    o["min_length"] = shortest(s.min_length_px);
+    std::string brush = "none";
+    if (!s.brush_path.empty())
+      brush = parseBrushKind(s.brush_path) ? s.brush_path
+                                           : std::filesystem::absolute(s.brush_path)
+                                                 .lexically_relative(std::filesystem::absolute(base_dir))
+                                                 .generic_string();
+    o["brush"] = brush;
+    o["brush_period"] = shortest(s.brush_period_px);
+    j[lineKindName(static_cast<LineKind>(k))] = std::move(o);
+  }
+  return j;
+}
+
+Status writeStrokeStyleFile(const std::filesystem::path& path, const LineStyles& lines) {
+  const nlohmann::json j = strokeStyleJson(lines, path.parent_path());
+  return writeFileAtomically(path, [&](std::ostream& out) -> Status {
+    out << j.dump(2) << "\n";
+    return {};
+  });
 }
 
 }  // namespace lodline

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <string>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "core/image.h"
 #include "core/render_params.h"
 #include "core/result.h"
@@ -50,5 +52,18 @@ Result<NamedStrokeStyle> loadStrokeStyle(const std::string& name_or_path);
 /// Applies `style` to `lines` (stroke fields, colours, width scales) and prepares its brushes
 /// (resampled to their period).
 void applyStrokeStyle(const NamedStrokeStyle& style, LineStyles& lines);
+
+/// (Re)builds `s.brush` from `s.brush_path` ("pencil", "marker", a PNG path, or empty for
+/// none) resampled to `s.brush_period_px`, as applyStrokeStyle leaves it: the viewer panel
+/// calls it when the brush or its period is edited. Errors name the PNG.
+Status prepareBrush(StrokeStyle& s);
+
+/// Every stroke field of every kind of `lines` as a style file (an object per line kind; no
+/// colours or widths, which the scene's `line-style` carries); brush paths relative to
+/// `base_dir`. loadStrokeStyle() of the written file gives back the same fields.
+nlohmann::json strokeStyleJson(const LineStyles& lines, const std::filesystem::path& base_dir);
+/// Writes strokeStyleJson() to `path` (atomically); the viewer's "save view" writes an edited
+/// style next to the view this way.
+Status writeStrokeStyleFile(const std::filesystem::path& path, const LineStyles& lines);
 
 }  // namespace lodline

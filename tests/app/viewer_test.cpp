@@ -18,6 +18,7 @@
 #include "io/generate.h"
 #include "io/image.h"
 #include "io/load_mesh.h"
+#include "io/stroke_style_file.h"
 #include "test_util.h"
 
 #ifdef LODLINE_HAVE_VIEWER
@@ -146,6 +147,59 @@ TEST_F(Viewer, ASavedViewRendersToTheSamePicture) {
   // Up to one level of 255: a stroke's coverage turns a last-bit difference of its position
   // (the saved camera read back in another process) into a level in a few fringe pixels.
   EXPECT_EQ(differing(viewer, *rendered, 1), 0u);
+}
+
+// Stroke fields edited in the panel (one kind, then all of them) are saved as a style file
+// beside the view; a fresh session on it has the same fields and `render` draws the same.
+TEST_F(Viewer, EditedStrokeFieldsAreSavedWithTheView) {
+  auto s = open({(dir_ / "scene.json").string(), "--msaa", "1", "--stroke-style", "pencil"});
+  ASSERT_TRUE(s);
+  StrokeStyle all = s->defaultStyle().lines.kinds[0].stroke;
+  all.taper_in_px = 9.0f;
+  all.dash_on = 12.0f;
+  all.dash_off = 5.0f;
+  all.cap = StrokeCap::kButt;
+  s->setStrokeStyle(-1, all);
+  StrokeStyle suggestive = all;
+  suggestive.brush_path = "marker";
+  suggestive.brush_period_px = 40.0f;
+  suggestive.jitter_px = 1.5f;
+  ASSERT_TRUE(prepareBrush(suggestive).ok());
+  s->setStrokeStyle(static_cast<int>(LineKind::kSuggestive), suggestive);
+  EXPECT_EQ(s->scene()[1].style.lines[LineKind::kContour].stroke.dash_on, 12.0f);  // every object
+  ASSERT_TRUE(s->frame(320, 240, 1.0f / 30.0f).ok());
+  const auto saved = dir_ / "views" / "styled.json";
+  std::filesystem::create_directories(saved.parent_path());
+  ASSERT_TRUE(s->saveView(saved, 320, 240).ok());
+  ASSERT_TRUE(std::filesystem::exists(dir_ / "views" / "styled.strokes.json"));
+  auto t = open({saved.string()});
+  ASSERT_TRUE(t);
+  for (size_t i = 0; i < t->scene().size(); ++i) {
+    const LineStyles& l = t->scene()[i].style.lines;
+    EXPECT_EQ(l[LineKind::kContour].stroke.taper_in_px, 9.0f);
+    EXPECT_EQ(l[LineKind::kContour].stroke.dash_off, 5.0f);
+    EXPECT_EQ(l[LineKind::kContour].stroke.cap, StrokeCap::kButt);
+    EXPECT_EQ(l[LineKind::kContour].stroke.brush_path, "pencil");
+    EXPECT_EQ(l[LineKind::kSuggestive].stroke.brush_path, "marker");
+    EXPECT_EQ(l[LineKind::kSuggestive].stroke.jitter_px, 1.5f);
+    ASSERT_TRUE(l[LineKind::kSuggestive].stroke.brush);
+    EXPECT_EQ(l[LineKind::kSuggestive].stroke.brush->width, 40);
+    // The preset's colours and widths came back through the view's line-style.
+    EXPECT_EQ(l[LineKind::kContour].width_px, s->scene()[i].style.lines[LineKind::kContour].width_px);
+  }
+  ASSERT_TRUE(t->frame(320, 240, 1.0f / 30.0f).ok());
+  const Image viewer = draw(*t, 320, 240);
+  ASSERT_EQ(test::runLodline("render " + saved.string() + " -o " + (dir_ / "styled.png").string()), 0);
+  auto rendered = readPng(dir_ / "styled.png");
+  ASSERT_TRUE(rendered);
+  EXPECT_EQ(differing(viewer, *rendered, 1), 0u);
+  // And the edit shows: the dashed, butt-capped picture is not the preset's.
+  ASSERT_EQ(test::runLodline("render " + (dir_ / "scene.json").string() + " --stroke-style pencil -o " +
+                             (dir_ / "preset.png").string()),
+            0);
+  auto preset = readPng(dir_ / "preset.png");
+  ASSERT_TRUE(preset);
+  EXPECT_GT(differing(*preset, *rendered, 8), 200u);
 }
 
 // One frame, three readers: the viewer's panel (the session's report), `render --stats` and

@@ -114,5 +114,83 @@ TEST(StrokeStyleFile, ErrorsNameTheFileAndTheKey) {
   EXPECT_NE(missing.error().message.find("nope.json"), std::string::npos);
 }
 
+// What the viewer's "save view" writes for a style edited in the panel reads back field for
+// field, brushes (built-in and from a file, relative to the style file) included.
+TEST(StrokeStyleFile, WrittenFilesReadBackTheSameFields) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir / "brushes");
+  Image brush(8, 4);
+  for (size_t i = 0; i < brush.rgba.size(); ++i) brush.rgba[i] = static_cast<uint8_t>(i * 7);
+  ASSERT_TRUE(writePng(dir / "brushes" / "mine.png", brush));
+  LineStyles lines;
+  for (int k = 0; k < kLineKindCount; ++k) {
+    StrokeStyle& s = lines.kinds[k].stroke;
+    s.cap = static_cast<StrokeCap>(k % 3);
+    s.taper_in_px = 1.5f + k;
+    s.taper_out_px = 0.1f * k;
+    s.taper_min = 0.15f;
+    s.depth_thickness = -0.35f;
+    s.strength_thickness = 0.6f;
+    s.curvature_thickness = 3.3f;
+    s.depth_opacity = 0.25f;
+    s.strength_opacity = 0.4f;
+    s.curvature_opacity = 0.7f;
+    s.dash_on = 4.2f;
+    s.dash_off = k == 0 ? 0.0f : 2.5f;
+    s.jitter_px = 0.35f;
+    s.jitter_period_px = 30.0f;
+    s.seed = 4000000000u - k;
+    s.min_length_px = 3.0f;
+    s.brush_period_px = 48.0f + k;
+    s.brush_path = k == 1 ? "pencil" : k == 2 ? (dir / "brushes" / "mine.png").string() : "";
+    ASSERT_TRUE(prepareBrush(s).ok());
+  }
+  std::filesystem::create_directories(dir / "views");
+  const auto path = dir / "views" / "v.strokes.json";
+  ASSERT_TRUE(writeStrokeStyleFile(path, lines).ok());
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"../brushes/mine.png\""), std::string::npos) << text;  // relative to the file
+  EXPECT_NE(text.find("0.15,"), std::string::npos) << "floats written short: " << text;
+  auto loaded = loadStrokeStyle(path.string());
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  LineStyles back;
+  applyStrokeStyle(*loaded, back);
+  for (int k = 0; k < kLineKindCount; ++k) {
+    const StrokeStyle &a = lines.kinds[k].stroke, &b = back.kinds[k].stroke;
+    EXPECT_EQ(a.cap, b.cap) << k;
+    EXPECT_EQ(a.taper_in_px, b.taper_in_px) << k;
+    EXPECT_EQ(a.taper_out_px, b.taper_out_px) << k;
+    EXPECT_EQ(a.taper_min, b.taper_min) << k;
+    EXPECT_EQ(a.depth_thickness, b.depth_thickness) << k;
+    EXPECT_EQ(a.strength_thickness, b.strength_thickness) << k;
+    EXPECT_EQ(a.curvature_thickness, b.curvature_thickness) << k;
+    EXPECT_EQ(a.depth_opacity, b.depth_opacity) << k;
+    EXPECT_EQ(a.strength_opacity, b.strength_opacity) << k;
+    EXPECT_EQ(a.curvature_opacity, b.curvature_opacity) << k;
+    EXPECT_EQ(a.dash_on, b.dash_on) << k;
+    EXPECT_EQ(a.dash_off, b.dash_off) << k;
+    EXPECT_EQ(a.jitter_px, b.jitter_px) << k;
+    EXPECT_EQ(a.jitter_period_px, b.jitter_period_px) << k;
+    EXPECT_EQ(a.seed, b.seed) << k;
+    EXPECT_EQ(a.min_length_px, b.min_length_px) << k;
+    EXPECT_EQ(a.brush_period_px, b.brush_period_px) << k;
+    ASSERT_EQ(static_cast<bool>(a.brush), static_cast<bool>(b.brush)) << k;
+    if (a.brush) {
+      EXPECT_EQ(a.brush->rgba, b.brush->rgba) << k;
+    }
+    // Colours and widths are not the style file's: the scene's line-style keeps them.
+    EXPECT_EQ(back.kinds[k].color, LineStyles().kinds[k].color) << k;
+    EXPECT_EQ(back.kinds[k].width_px, LineStyles().kinds[k].width_px) << k;
+  }
+  EXPECT_TRUE(lines.kinds[1].stroke.brush);
+  EXPECT_EQ(lines.kinds[2].stroke.brush->width, 50);  // resampled to the period
+  StrokeStyle missing;
+  missing.brush_path = (dir / "nope.png").string();
+  const Status st = prepareBrush(missing);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().message.find("nope.png"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace lodline
