@@ -38,6 +38,7 @@ struct CaptureOptions {
   std::string svg;
   std::string context = "auto";
   std::string stroke_coherence = "on";
+  float fade_in = 0.0f;
 };
 
 Result<FrameRange> parseFrames(const std::string& s, int64_t total) {
@@ -109,6 +110,9 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
   if (o.stroke_coherence != "on" && o.stroke_coherence != "off")
     return reportError(Error::usage("--stroke-coherence: expected on or off, got '" + o.stroke_coherence + "'"));
   rq.stroke_coherence = o.stroke_coherence == "on";
+  if (!(o.fade_in >= 0.0f && o.fade_in <= 60.0f))
+    return reportError(Error::usage("--fade-in: must be in [0, 60] seconds"));
+  rq.fade_in = o.fade_in;
   rq.interrupted = &g_interrupted;
   rq.progress = isatty(STDERR_FILENO);
   std::signal(SIGINT, onInterrupt);
@@ -156,6 +160,10 @@ Command addCaptureCommand(CLI::App& parent) {
   cmd->add_option("--stroke-coherence", o->stroke_coherence,
                   "on: brushes, dashes and jitter stay on the surface from frame to frame; off: they start at "
                   "each visible run's first point (docs/strokes.md)")
+      ->capture_default_str();
+  cmd->add_option("--fade-in", o->fade_in,
+                  "Seconds over which a line that appears fades in (0: off); lines that continue one of the "
+                  "previous frame keep their opacity (docs/temporal-coherence.md)")
       ->capture_default_str();
   return {cmd, [o, cmd] { return runCapture(*cmd, *o); }};
 }

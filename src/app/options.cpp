@@ -77,6 +77,10 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
   cmd.add_option("--suggestive-fade", o.suggestive_fade,
                  "Fade of weak suggestive contours (0 = no fading)")
       ->capture_default_str();
+  cmd.add_option("--suggestive-motion-fade", o.suggestive_motion_fade,
+                 "off, or START,END in px/s: in sequences (capture, view) suggestive contours that slide over "
+                 "the surface faster than START fade, gone at END (DeCarlo et al. 2004; docs/temporal-coherence.md)")
+      ->capture_default_str();
   cmd.add_option("--crease-angle", o.crease_angle, "Dihedral angle in degrees above which an edge is a crease line")
       ->capture_default_str();
 }
@@ -203,6 +207,22 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   if (!(o.crease_angle >= 0.0f && o.crease_angle <= 180.0f)) return Error::usage("--crease-angle: must be in [0, 180] degrees");
   r.line_params.suggestive_threshold = o.suggestive_threshold;
   r.line_params.suggestive_fade = o.suggestive_fade;
+  if (o.suggestive_motion_fade == "off") {
+    r.line_params.suggestive_motion_fade_end = 0.0f;
+  } else {
+    const auto bad = Error::usage("--suggestive-motion-fade: expected off or START,END in px/s with 0 <= START < END, got '" +
+                                  o.suggestive_motion_fade + "'");
+    const auto comma = o.suggestive_motion_fade.find(',');
+    if (comma == std::string::npos) return bad;
+    char* end = nullptr;
+    const std::string a = o.suggestive_motion_fade.substr(0, comma), b = o.suggestive_motion_fade.substr(comma + 1);
+    const float start = std::strtof(a.c_str(), &end);
+    if (a.empty() || *end != '\0') return bad;
+    const float stop = std::strtof(b.c_str(), &end);
+    if (b.empty() || *end != '\0' || !(start >= 0.0f && start < stop && stop <= 1e6f)) return bad;
+    r.line_params.suggestive_motion_fade_start = start;
+    r.line_params.suggestive_motion_fade_end = stop;
+  }
   r.line_params.crease_angle_deg = o.crease_angle;
   if (o.outline != "complete" && o.outline != "contour")
     return Error::usage("--outline: expected complete or contour, got '" + o.outline + "'");
@@ -315,6 +335,9 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   s["chamfer-compose"] = ch.compose == ChamferCompose::kAlpha ? "alpha" : "replace";
   s["suggestive-threshold"] = exact(lines.suggestive_threshold);
   s["suggestive-fade"] = exact(lines.suggestive_fade);
+  s["suggestive-motion-fade"] = lines.suggestive_motion_fade_end > 0.0f
+                                    ? exact(lines.suggestive_motion_fade_start) + "," + exact(lines.suggestive_motion_fade_end)
+                                    : std::string("off");
   s["crease-angle"] = exact(lines.crease_angle_deg);
   s["outline"] = lines.complete_outline ? "complete" : "contour";
   s["hidden-lines"] = formatHiddenLines(style.hidden);

@@ -43,6 +43,9 @@ struct ViewOptions {
   // Line thresholds (LineParams).
   float suggestive_threshold = LineParams{}.suggestive_threshold;
   float suggestive_fade = LineParams{}.suggestive_fade;
+  /// "off" or "START,END": fading of fast-sliding suggestive contours, px/s
+  /// (LineParams::suggestive_motion_fade_*).
+  std::string suggestive_motion_fade = "off";
   float crease_angle = LineParams{}.crease_angle_deg;
 };
 

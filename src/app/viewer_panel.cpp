@@ -229,6 +229,8 @@ void linesSection(ViewerSession& s, PanelState& st) {
   bool changed = ImGui::Checkbox("Complete the outline (mesh silhouette where the contour leaves it)", &lp.complete_outline);
   changed |= ImGui::SliderFloat("Suggestive threshold", &lp.suggestive_threshold, 0.0f, 0.2f, "%.4f");
   changed |= ImGui::SliderFloat("Suggestive fade", &lp.suggestive_fade, 0.0f, 0.2f, "%.4f");
+  changed |= ImGui::SliderFloat("Motion fade from (px/s)", &lp.suggestive_motion_fade_start, 0.0f, 200.0f, "%.1f");
+  changed |= ImGui::SliderFloat("Motion fade to (px/s, 0 = off)", &lp.suggestive_motion_fade_end, 0.0f, 400.0f, "%.1f");
   changed |= ImGui::SliderFloat("Crease angle (deg)", &lp.crease_angle_deg, 1.0f, 179.0f, "%.1f");
   if (changed) s.setLineParams(lp);
 }

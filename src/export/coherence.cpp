@@ -25,11 +25,17 @@ uint64_t unmatched(const LineMask& a, const LineMask& b, int r) {
   return n;
 }
 
+// A line pixel of one frame moved into the other, with its opacity (0–255).
+struct MovedPixel {
+  int x, y;
+  uint8_t opacity;
+};
+
 // Moves every line pixel of `from` (frame A) to frame B by its surface point's image motion;
 // `out` gets the moved pixel of each kept line pixel; returns the number dropped.
 uint64_t moveLinePixels(const LineMask& from, const SurfaceImage& surf_a, const PixelProjector& proj_a,
                         const SurfaceImage& surf_b, const PixelProjector& proj_b, const CompensationParams& params,
-                        std::vector<glm::ivec2>& out) {
+                        std::vector<MovedPixel>& out) {
   out.clear();
   uint64_t dropped = 0;
   const int w = from.width, h = from.height, r = params.search_radius;
@@ -85,30 +91,40 @@ uint64_t moveLinePixels(const LineMask& from, const SurfaceImage& surf_a, const 
         ++dropped;
         continue;
       }
-      out.emplace_back(mx, my);
+      out.push_back({mx, my, from.on[static_cast<size_t>(y) * w + x]});
     }
   return dropped;
 }
 
-// Moved pixels with no pixel of `target` within Chebyshev distance r.
-uint64_t unmatchedMoved(const std::vector<glm::ivec2>& moved, const LineMask& target, int r) {
-  uint64_t n = 0;
-  for (const glm::ivec2& p : moved) {
-    bool found = false;
-    for (int yy = std::max(0, p.y - r); yy <= std::min(target.height - 1, p.y + r) && !found; ++yy)
-      for (int xx = std::max(0, p.x - r); xx <= std::min(target.width - 1, p.x + r) && !found; ++xx)
-        found = target.at(xx, yy);
-    n += !found;
+// Moved pixels with no pixel of `target` within Chebyshev distance r (the count), and the sum
+// of how much more opaque each moved pixel is than the most opaque one of `target` within r.
+void unmatchedMoved(const std::vector<MovedPixel>& moved, const LineMask& target, int r, uint64_t& count,
+                    double& weight) {
+  count = 0;
+  uint64_t excess = 0;
+  for (const MovedPixel& p : moved) {
+    uint8_t best = 0;
+    for (int yy = std::max(0, p.y - r); yy <= std::min(target.height - 1, p.y + r) && best < p.opacity; ++yy)
+      for (int xx = std::max(0, p.x - r); xx <= std::min(target.width - 1, p.x + r); ++xx)
+        best = std::max(best, target.on[static_cast<size_t>(yy) * target.width + xx]);
+    count += best == 0;
+    excess += p.opacity > best ? p.opacity - best : 0;
   }
-  return n;
+  weight = static_cast<double>(excess) / 255.0;
 }
 
 }  // namespace
 
 uint64_t LineMask::count() const {
   uint64_t n = 0;
-  for (uint8_t v : on) n += v;
+  for (uint8_t v : on) n += v != 0;
   return n;
+}
+
+double LineMask::weight() const {
+  uint64_t n = 0;
+  for (uint8_t v : on) n += v;
+  return static_cast<double>(n) / 255.0;
 }
 
 CompensatedChange compareMasksCompensated(const LineMask& previous, const SurfaceImage& previous_surface,
@@ -117,21 +133,23 @@ CompensatedChange compareMasksCompensated(const LineMask& previous, const Surfac
                                           const CompensationParams& params) {
   CompensatedChange c;
   c.line_pixels = current.count();
+  c.line_weight = current.weight();
   const int w = current.width, h = current.height;
   auto same = [&](int ow, int oh) { return ow == w && oh == h; };
   if (!same(previous.width, previous.height) || !same(previous_surface.width, previous_surface.height) ||
       !same(current_surface.width, current_surface.height)) {
     c.appeared = c.line_pixels;  // no comparable previous frame: everything is new
+    c.appeared_weight = c.line_weight;
     return c;
   }
   const PixelProjector prev_proj(previous_camera, w, h), cur_proj(current_camera, w, h);
-  std::vector<glm::ivec2> moved;
+  std::vector<MovedPixel> moved;
   // Forward: does each previous line pixel still have a line where its point went?
   c.dropped += moveLinePixels(previous, previous_surface, prev_proj, current_surface, cur_proj, params, moved);
-  c.vanished = unmatchedMoved(moved, current, params.tolerance);
+  unmatchedMoved(moved, current, params.tolerance, c.vanished, c.vanished_weight);
   // Backward: was there a line where each current line pixel's point was before?
   c.dropped += moveLinePixels(current, current_surface, cur_proj, previous_surface, prev_proj, params, moved);
-  c.appeared = unmatchedMoved(moved, previous, params.tolerance);
+  unmatchedMoved(moved, previous, params.tolerance, c.appeared, c.appeared_weight);
   return c;
 }
 
@@ -139,18 +157,27 @@ void rasterizeStrokes(const StrokeRuns& strokes, int width, int height, LineMask
   out.width = width;
   out.height = height;
   out.on.assign(static_cast<size_t>(width) * height, 0);
-  auto mark = [&](glm::vec2 p) {
+  const bool has_alpha = strokes.alpha.size() == strokes.points.size();
+  auto mark = [&](glm::vec2 p, float alpha) {
     const int x = static_cast<int>(std::floor(p.x)), y = static_cast<int>(std::floor(p.y));
-    if (x >= 0 && y >= 0 && x < width && y < height) out.on[static_cast<size_t>(y) * width + x] = 1;
+    if (x < 0 || y < 0 || x >= width || y >= height) return;
+    const uint8_t a = static_cast<uint8_t>(std::clamp(std::lround(alpha * 255.0f), 1L, 255L));
+    uint8_t& v = out.on[static_cast<size_t>(y) * width + x];
+    v = std::max(v, a);
   };
   for (size_t s = 0; s < strokes.strokeCount(); ++s)
     for (uint32_t i = strokes.offsets[s]; i < strokes.offsets[s + 1]; ++i) {
       const glm::vec2 p = strokes.points[i];
-      mark(p);
+      const float ap = has_alpha ? strokes.alpha[i] : 1.0f;
+      mark(p, ap);
       if (i + 1 < strokes.offsets[s + 1]) {
         const glm::vec2 q = strokes.points[i + 1];
+        const float aq = has_alpha ? strokes.alpha[i + 1] : 1.0f;
         const int steps = std::min(4096, static_cast<int>(std::ceil(std::max(std::abs(q.x - p.x), std::abs(q.y - p.y)) * 2.0f)));
-        for (int k = 1; k < steps; ++k) mark(p + (q - p) * (static_cast<float>(k) / static_cast<float>(steps)));
+        for (int k = 1; k < steps; ++k) {
+          const float t = static_cast<float>(k) / static_cast<float>(steps);
+          mark(p + (q - p) * t, ap + (aq - ap) * t);
+        }
       }
     }
 }
@@ -178,6 +205,7 @@ FrameCoherence CoherenceMeter::measure(LineMask& mask, SurfaceImage& surface, co
   } else {
     f.raw.line_pixels = mask.count();
     f.compensated.line_pixels = f.raw.line_pixels;
+    f.compensated.line_weight = mask.weight();
   }
   std::swap(previous_mask_, mask);
   std::swap(previous_surface_, surface);

@@ -22,18 +22,24 @@
 
 namespace lodline {
 
-/// One byte per pixel, 1 where a visible line passes; row 0 = top.
+/// One byte per pixel: the opacity (1–255) of the most opaque visible line passing through
+/// it, 0 where none does; row 0 = top.
 struct LineMask {
   int width = 0;
   int height = 0;
   std::vector<uint8_t> on;
   bool at(int x, int y) const { return on[static_cast<size_t>(y) * width + x] != 0; }
+  /// The pixel's line opacity in [0, 1].
+  float opacity(int x, int y) const { return static_cast<float>(on[static_cast<size_t>(y) * width + x]) / 255.0f; }
   /// Pixels on.
   uint64_t count() const;
+  /// Sum of the pixels' opacities.
+  double weight() const;
 };
 
 /// Marks the pixels under the visible strokes' samples (≤ 1 px apart, so strokes are
-/// continuous) and under the straight pieces between them. `out` is resized to w×h.
+/// continuous) and under the straight pieces between them, each with the stroke's opacity
+/// there (StrokeRuns::alpha, interpolated; at least 1/255). `out` is resized to w×h.
 void rasterizeStrokes(const StrokeRuns& strokes, int width, int height, LineMask& out);
 
 struct MaskChange {
@@ -72,10 +78,20 @@ struct CompensatedChange {
   /// Line pixels not compared because their point is hidden or off-screen in the other
   /// frame (or no surface lies under or next to them): both directions together.
   uint64_t dropped = 0;
-  /// (appeared + vanished) / line_pixels; 0 when there are no line pixels.
-  double churn() const {
+  /// (appeared + vanished) / line_pixels; 0 when there are no line pixels. The binary
+  /// measure: a pixel counts whole, however faint its line.
+  double churnBinary() const {
     return line_pixels ? static_cast<double>(appeared + vanished) / static_cast<double>(line_pixels) : 0.0;
   }
+  /// The same counts weighted by opacity: each compared pixel adds how much more opaque it is
+  /// than the most opaque line within the tolerance of its point in the other frame (a line
+  /// fading in at 20% adds 0.2 where nothing was, and nothing where a stronger line was).
+  double line_weight = 0.0;      ///< sum of the current line pixels' opacities
+  double appeared_weight = 0.0;
+  double vanished_weight = 0.0;
+  /// (appeared_weight + vanished_weight) / line_weight: the churn lodline reports (fading is
+  /// no way to hide popping from it: a half-faded pop counts half).
+  double churn() const { return line_weight > 0.0 ? (appeared_weight + vanished_weight) / line_weight : 0.0; }
 };
 
 /// The motion-compensated comparison of two frames: `previous`/`current` line masks, the

@@ -92,7 +92,8 @@ std::span<const glm::vec3> LineDrawing::normals() const {
   return shading_normals_.size() == mesh_.positions.size() ? shading_normals_ : shape_.normals();
 }
 
-void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled, float smoothing) {
+void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled, float smoothing,
+                         int image_height, float dt) {
   LineParams p = params_;
   p.contours = p.contours && enabled[static_cast<int>(LineKind::kContour)];
   p.suggestive = p.suggestive && enabled[static_cast<int>(LineKind::kSuggestive)];
@@ -148,8 +149,16 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     computeSuggestiveQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, needed_, view_);
     if (smooth) smoother_.blendSuggestive(view_, needed_, smoothing, sc_threshold);
   }
+  // Suggestive contours that slide fast are faded (DeCarlo et al. 2004 §4): their speed
+  // comes from the change of the smoothed kr, so only in smoothed sequences.
+  const bool motion_fade = smooth && p.suggestive && dt > 0.0f && image_height > 0 &&
+                           p.suggestive_motion_fade_end > 0.0f;
+  if (motion_fade)
+    suggestiveMotionGain(mesh_.positions, view_, smoother_.krChange(), camera, image_height, dt,
+                         p.suggestive_motion_fade_start, p.suggestive_motion_fade_end, motion_gain_, pool_.get());
   timings_.view = sw.lap();
-  extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_);
+  extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_,
+               motion_fade ? std::span<const float>(motion_gain_) : std::span<const float>());
   timings_.extract = sw.lap();
   chainStrokes(segments_, strokes_, chain_scratch_);
   timings_.chain = sw.lap();

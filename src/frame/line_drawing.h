@@ -48,7 +48,11 @@ class LineDrawing {
   /// Recomputes the lines for `camera`. Kinds disabled in `enabled` are not extracted.
   /// `smoothing` < 1 blends normals, kr and Dw kr with the previous frames' values by that
   /// weight (Jeong et al. 2005 §3.3, see temporal_smoothing.h); 1 uses this frame's values.
-  void update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled, float smoothing = 1.0f);
+  /// In a sequence (`dt` > 0 seconds since the last frame, an image `image_height` px high)
+  /// with smoothing, suggestive contours that slide fast are faded
+  /// (LineParams::suggestive_motion_fade_*).
+  void update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled, float smoothing = 1.0f,
+              int image_height = 0, float dt = 0.0f);
 
   /// Vertices of the full-detail mesh that lie on a crease there (dihedral angle above
   /// LineParams::crease_angle_deg, marked or non-manifold edges): one byte per input vertex.
@@ -107,6 +111,7 @@ class LineDrawing {
   std::vector<std::array<uint32_t, 3>> faces_in_;  // updateMesh(span): copy, then swap in
   std::vector<uint32_t> needed_;     // vertices whose Dw kr this frame needs (lazy derivatives)
   std::vector<uint8_t> needed_mark_;
+  std::vector<float> motion_gain_;   // per vertex, the suggestive contours' motion fade
   LineScratch scratch_;
   LineSet segments_, silhouette_;
   StrokeSet strokes_, silhouette_strokes_;

@@ -134,7 +134,7 @@ Status LodDrawing::frame(const Camera& camera, int width, int height, const Deta
                          const std::array<bool, kLineKindCount>& enabled, float smoothing) {
   const WorkerPool::Awake awake(&drawing_.workers());  // the stages' loops come back to back
   if (Status s = adaptStep(camera, width, height, detail, dt); !s) return s;
-  drawing_.update(camera, enabled, smoothing);
+  drawing_.update(camera, enabled, smoothing, height, dt);
   return {};
 }
 

@@ -128,14 +128,18 @@ void TemporalSmoother::blendView(ViewQuantities& view, float w, float sc_thresho
   }
   kr_.resize(n, 0.0f);
   dwkr_.resize(n, 0.0f);
+  kr_change_.assign(n, 0.0f);
   const bool has_dw = view.dwkr.size() == n;
   fresh_.resize(n, 1);
   dwkr_frame_.resize(n, 0);
   for (size_t i = 0; i < n; ++i) {
     const float wi = fresh_[i] ? 1.0f : w;  // fresh vertices start from this frame's values
+    const bool fresh = fresh_[i] != 0;
     if (fresh_[i]) dwkr_frame_[i] = 0;
     fresh_[i] = 0;
+    const float before = kr_[i];
     kr_[i] = (1.0f - wi) * kr_[i] + wi * view.kr[i];
+    if (!fresh) kr_change_[i] = kr_[i] - before;
     view.kr[i] = kr_[i];
     if (has_dw) {
       dwkr_[i] = (1.0f - wi) * dwkr_[i] + wi * view.dwkr[i];

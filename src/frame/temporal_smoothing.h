@@ -47,6 +47,10 @@ class TemporalSmoother {
   /// `view`, recomputing the suggestive-contour test from them (sc_num = sinθ·Dw kr −
   /// threshold·cosθ, sc_den = cosθ, as computeViewQuantities does). `sc_threshold` as there.
   void blendView(ViewQuantities& view, float w, float sc_threshold);
+  /// Per vertex, how much the smoothed kr (kr·sin²θ, as ViewQuantities holds it) changed in
+  /// the last blendView(): what moves the smoothed zero sets across the surface (0 for
+  /// vertices without history).
+  std::span<const float> krChange() const { return kr_change_; }
 
   /// Blends Dw kr at `vertices` only (when it is computed only next to kr zero crossings,
   /// see ShapeParams::lazy_derivatives) and recomputes the suggestive-contour test there. A
@@ -60,6 +64,7 @@ class TemporalSmoother {
   bool view_initialized_ = false;
   std::vector<glm::vec3> normals_;
   std::vector<float> kr_, dwkr_;
+  std::vector<float> kr_change_;  // blendView: new − old smoothed kr per slot
   // blendSuggestive: per slot, the call (dw_frame_) that last blended its Dw kr (0: never).
   std::vector<uint32_t> dwkr_frame_;
   uint32_t dw_frame_ = 0;

@@ -54,6 +54,7 @@ void extractZeroSet(std::span<const glm::vec3> positions,
   const bool has_test = in.test_num.size() == nv;
   const bool has_den = has_test && in.test_den.size() == nv;
   const bool has_gate = in.gate.size() == nv;
+  const bool has_gain = has_test && in.gain.size() == nv;
   const std::span<const float> val = in.value;
 
   // Pass 1, per edge: where does the value change sign, and what is the test there.
@@ -63,6 +64,7 @@ void extractZeroSet(std::span<const glm::vec3> positions,
     scratch.cross_num.resize(ne);
     scratch.cross_den.resize(ne);
   }
+  if (has_gain) scratch.cross_gain.resize(ne);
   auto crossings = [&](size_t begin, size_t end) {
     for (size_t e = begin; e < end; ++e) {
       const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
@@ -78,6 +80,7 @@ void extractZeroSet(std::span<const glm::vec3> positions,
         scratch.cross_num[e] = s * in.test_num[a] + t * in.test_num[b];
         scratch.cross_den[e] = has_den ? s * in.test_den[a] + t * in.test_den[b] : 1.0f;
       }
+      if (has_gain) scratch.cross_gain[e] = s * in.gain[a] + t * in.gain[b];
     }
   };
   if (scratch.pool) {
@@ -134,8 +137,14 @@ void extractZeroSet(std::span<const glm::vec3> positions,
         const glm::vec3 pb = k + 2 == nz ? p2 : (1.0f - zb) * p1 + zb * p2;
         const uint32_t ida = k == 0 ? e1 : interior_id++;
         const uint32_t idb = k + 2 == nz ? e2 : interior_id++;
-        pushSegment(dst, type, static_cast<uint32_t>(f), pa, ida, fadeAlpha(na, da, in.fade), pb,
-                    idb, fadeAlpha(nb, db, in.fade));
+        float ga = 1.0f, gb = 1.0f;
+        if (has_gain) {
+          const float g1 = scratch.cross_gain[e1], g2 = scratch.cross_gain[e2];
+          ga = std::clamp((1.0f - za) * g1 + za * g2, 0.0f, 1.0f);
+          gb = std::clamp((1.0f - zb) * g1 + zb * g2, 0.0f, 1.0f);
+        }
+        pushSegment(dst, type, static_cast<uint32_t>(f), pa, ida, ga * fadeAlpha(na, da, in.fade), pb,
+                    idb, gb * fadeAlpha(nb, db, in.fade));
       }
     }
   };
@@ -245,7 +254,8 @@ void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adj, std::s
 void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
                   std::span<const glm::vec3> face_normals, const ViewQuantities& view,
                   const LineParams& params, float feature_size, LineScratch& scratch,
-                  LineSet& out, std::span<const uint8_t> crease_vertices) {
+                  LineSet& out, std::span<const uint8_t> crease_vertices,
+                  std::span<const float> suggestive_gain) {
   out.clear();
   scratch.next_interior_id = 0;
   const float fs = feature_size > 0.0f && std::isfinite(feature_size) ? feature_size : 1.0f;
@@ -263,6 +273,7 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
     in.gate = view.ndotv;
     in.gate_min = params.suggestive_min_ndotv;
     in.fade = params.suggestive_fade / (fs * fs);
+    in.gain = suggestive_gain;
     extractZeroSet(mesh.positions, mesh.faces, adj, in, LineKind::kSuggestive, scratch, out);
   }
   extractEdgeLines(mesh, adj, face_normals, params, scratch, out, crease_vertices);

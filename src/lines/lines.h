@@ -43,6 +43,15 @@ struct LineParams {
   /// q = sinθ·Dw kr − threshold·cosθ, i.e. alpha → 0 where the test is barely passed.
   /// 0 disables fading (alpha 1). Default 0.03 (rtsc's "faded" style).
   float suggestive_fade = 0.03f;
+  /// Fading of suggestive contours that slide fast over the surface (DeCarlo, Finkelstein,
+  /// Rusinkiewicz 2004, §4; docs/temporal-coherence.md): a line's alpha is multiplied by
+  /// 1 − smoothstep(start, end, speed), speed being how fast the line crosses the surface in
+  /// the image, px/s, estimated per vertex from the frame-to-frame change of the smoothed kr:
+  /// |Δkr| / (Dw kr·Δt), seen foreshortened. Only in sequences (capture, the viewer) with
+  /// temporal smoothing on; a still has no motion. end ≤ 0: off. Default off (it did not
+  /// lower the churn of the captures measured; `--suggestive-motion-fade START,END`).
+  float suggestive_motion_fade_start = 0.0f;
+  float suggestive_motion_fade_end = 0.0f;
   /// Rejection near contours: faces with any vertex with n·v below this get no suggestive
   /// contour. 0 rejects back-facing and contour-straddling faces; larger values also drop
   /// suggestive lines within acos(value) of grazing. Default 0.
@@ -85,12 +94,14 @@ struct ZeroSetInput {
   std::span<const float> gate;      ///< optional: skip faces with any vertex gate < gate_min
   float gate_min = 0.0f;
   float fade = 0.0f;  ///< > 0: endpoint alpha = num/(num + fade·den), clamped; 0: alpha 1
+  /// Optional: per-vertex factor in [0, 1] on the alpha (interpolated like the test).
+  std::span<const float> gain;
 };
 
 /// Scratch buffers of the extractors (per-edge crossings, marks); reuse between calls.
 struct LineScratch {
   std::vector<glm::vec3> cross_point;
-  std::vector<float> cross_num, cross_den;
+  std::vector<float> cross_num, cross_den, cross_gain;
   std::vector<uint8_t> crosses;
   std::vector<uint8_t> edge_mark;
   uint32_t next_interior_id = 0;
@@ -130,10 +141,13 @@ void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adjacency,
 
 /// Clears `out` and extracts every enabled line type from precomputed view quantities.
 /// `feature_size` (model units, > 0) scales the suggestive thresholds by 1/fs².
+/// `suggestive_gain` (optional, vertexCount entries in [0, 1]) multiplies the suggestive
+/// contours' alpha (the motion fade, suggestiveMotionGain()).
 void extractLines(const TriMesh& mesh, const MeshAdjacency& adjacency,
                   std::span<const glm::vec3> face_normals, const ViewQuantities& view,
                   const LineParams& params, float feature_size, LineScratch& scratch,
-                  LineSet& out, std::span<const uint8_t> crease_vertices = {});
+                  LineSet& out, std::span<const uint8_t> crease_vertices = {},
+                  std::span<const float> suggestive_gain = {});
 
 /// Stateful convenience: view quantities + extraction with reused buffers.
 ///

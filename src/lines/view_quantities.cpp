@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 namespace lodline {
 
@@ -99,6 +100,46 @@ void computeSuggestiveQuantities(const SurfaceFields& s, const ViewSpec& view, f
     out.sc_num[i] = sin_dwkr - sc_threshold * va.ndotv;
     out.sc_den[i] = va.ndotv;
   }
+}
+
+void suggestiveMotionGain(std::span<const glm::vec3> positions, const ViewQuantities& view,
+                          std::span<const float> kr_change, const Camera& camera, int image_height, float dt,
+                          float start_px_s, float end_px_s, std::vector<float>& out, WorkerPool* pool) {
+  const size_t n = positions.size();
+  out.assign(n, 1.0f);
+  if (view.dwkr.size() != n || view.ndotv.size() != n || kr_change.size() != n || image_height <= 0 ||
+      !(dt > 0.0f) || !(end_px_s > 0.0f))
+    return;
+  const float start = std::min(start_px_s, end_px_s);
+  const glm::vec3 eye = camera.eye, fwd = camera.forward();
+  // Pixels per model unit: the image height over the visible height at the vertex's depth.
+  const float half_h = 0.5f * static_cast<float>(image_height);
+  const float ortho_scale = static_cast<float>(image_height) / std::max(camera.ortho_height, 1e-12f);
+  const float tan_half = std::tan(glm::radians(camera.fov_deg) * 0.5f);
+  auto run = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const float c = view.ndotv[i], dw = view.dwkr[i], change = kr_change[i];
+      const float sin2 = 1.0f - c * c;
+      if (change == 0.0f || !(dw > 0.0f) || !(sin2 > 1e-6f)) continue;
+      float px_per_unit = ortho_scale;
+      if (!camera.orthographic) {
+        const float z = glm::dot(positions[i] - eye, fwd);
+        if (!(z > 0.0f)) continue;
+        px_per_unit = half_h / (z * tan_half);
+      }
+      // The zero set moves |Δkr| / Dw kr along ŵ (kr here is kr·sin²θ), seen × cosθ.
+      const float speed = std::abs(change) / (sin2 * dw) * std::abs(c) * px_per_unit / dt;
+      if (!std::isfinite(speed) || speed >= end_px_s) {
+        out[i] = 0.0f;
+        continue;
+      }
+      if (speed <= start) continue;
+      const float t = (speed - start) / (end_px_s - start);
+      out[i] = 1.0f - t * t * (3.0f - 2.0f * t);
+    }
+  };
+  if (pool) pool->forRange(n, 8192, run);
+  else run(0, n);
 }
 
 }  // namespace lodline

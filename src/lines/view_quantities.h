@@ -65,6 +65,19 @@ void computeViewQuantities(const SurfaceFields& fields, const ViewSpec& view, fl
 void computeSuggestiveQuantities(const SurfaceFields& fields, const ViewSpec& view, float sc_threshold,
                                  std::span<const uint32_t> vertices, ViewQuantities& out);
 
+/// The motion fade of suggestive contours (DeCarlo, Finkelstein, Rusinkiewicz 2004, §4): a
+/// suggestive contour moves across the surface as the view changes, at a speed of
+/// |∂kr/∂t| / Dw kr along ŵ (the zero set of kr moves where kr changes, slowly where kr
+/// rises steeply), which the image shows foreshortened by cosθ. Per vertex, `out` gets
+/// 1 − smoothstep(start_px_s, end_px_s, that speed in px/s), with ∂kr/∂t from `kr_change`
+/// (the change of the smoothed kr·sin²θ over the last `dt` seconds, TemporalSmoother::
+/// krChange()) and the pixels per model unit at the vertex's depth for an image
+/// `image_height` px high. 1 where the speed is unknown (no change recorded, Dw kr ≤ 0,
+/// sinθ ≈ 0). `view` must hold this frame's (smoothed) n·v, kr and Dw kr.
+void suggestiveMotionGain(std::span<const glm::vec3> positions, const ViewQuantities& view,
+                          std::span<const float> kr_change, const Camera& camera, int image_height, float dt,
+                          float start_px_s, float end_px_s, std::vector<float>& out, WorkerPool* pool = nullptr);
+
 /// The suggestive-contour test from n·v and Dw kr (as computeViewQuantities forms it).
 inline void suggestiveTest(float ndotv, float dwkr, float sc_threshold, float& num, float& den) {
   num = std::sqrt(std::max(0.0f, 1.0f - ndotv * ndotv)) * dwkr - sc_threshold * ndotv;

@@ -82,7 +82,7 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
   SurfaceImage surface;
   std::ostringstream csv;
   csv << metricsCsvHeader();
-  std::vector<double> churns, raw_churns, specks_per_frame, frame_ms, drifts;
+  std::vector<double> churns, binary_churns, raw_churns, specks_per_frame, frame_ms, drifts;
 
   // Smoothing at the capture's frame rate (Jeong §3.3: f is the capture rate when capturing).
   const float smoothing_w = detail.smoothing.enabled
@@ -113,6 +113,7 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
     const Camera c0 = rq.path.at(t0, scene.bounds()), c1 = rq.path.at(t0 + 1.0 / rq.fps, scene.bounds());
     p.startSequence(c0.eye != c1.eye || c0.target != c1.target || c0.up != c1.up || c0.fov_deg != c1.fov_deg);
     p.setStrokeCoherence(rq.stroke_coherence);
+    p.setFadeStep(rq.fade_in > 0.0f ? std::min(1.0f, dt / rq.fade_in) : 0.0f);
   }
   for (int64_t k = 0; k < rq.range.first; ++k) {
     const Camera cam = simulate(k);
@@ -155,6 +156,7 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
       writeMetricsRow(csv, k, report, c, frame_clock.elapsed());
       if (c.compared) {
         churns.push_back(c.compensated.churn());
+        binary_churns.push_back(c.compensated.churnBinary());
         raw_churns.push_back(c.raw.churn());
         drifts.push_back(report.texture_drift);
       }
@@ -176,6 +178,7 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
   out.churn_mean = mean(churns);
   out.churn_p95 = percentile(churns, 0.95);
   out.churn_raw_mean = mean(raw_churns);
+  out.churn_binary_mean = mean(binary_churns);
   out.texture_drift_mean = mean(drifts);
   out.specks_mean = mean(specks_per_frame);
   if (!rq.stats.empty()) {
@@ -185,7 +188,7 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
     j["image"] = {{"width", frame.width}, {"height", frame.height}};
     j["capture"] = {{"path", rq.path_name}, {"fps", rq.fps}, {"first_frame", rq.range.first},
                     {"frames", out.frames}, {"interrupted", out.interrupted}};
-    j["coherence"] = {{"churn_mean", out.churn_mean}, {"churn_p95", out.churn_p95},
+    j["coherence"] = {{"churn_mean", out.churn_mean}, {"churn_p95", out.churn_p95}, {"churn_binary_mean", out.churn_binary_mean},
                       {"churn_raw_mean", out.churn_raw_mean}, {"churn_raw_p95", percentile(raw_churns, 0.95)},
                       {"specks_mean", out.specks_mean}, {"texture_drift_mean", out.texture_drift_mean}};
     j["ms"] = {{"frame_mean", mean(frame_ms)}, {"frame_p95", percentile(frame_ms, 0.95)}, {"total", wall.elapsed()}};

@@ -45,12 +45,17 @@ struct CaptureRequest {
   bool progress = false;  ///< a progress bar on stderr
   /// Coherent stroke parameterisation (present/stroke_parameterization.h). Default on.
   bool stroke_coherence = true;
+  /// Seconds over which a line that appears fades in (present/stroke_fade.h); 0: off (the
+  /// default: it did not lower the churn of the captures measured).
+  float fade_in = 0.0f;
 };
 
 struct CaptureOutcome {
   int64_t frames = 0;  ///< frames written
   bool interrupted = false;
-  double churn_mean = 0.0, churn_p95 = 0.0, churn_raw_mean = 0.0, specks_mean = 0.0;
+  /// Means over the frames after the first: churn (opacity-weighted, export/coherence.h),
+  /// its 95th percentile, the binary churn and the uncompensated one; visible strokes.
+  double churn_mean = 0.0, churn_p95 = 0.0, churn_binary_mean = 0.0, churn_raw_mean = 0.0, specks_mean = 0.0;
   double texture_drift_mean = 0.0;  ///< mean of the frames' texture_drift (frames after the first)
   bool measured = false;  ///< metrics were computed (metrics or stats requested)
 };

@@ -193,7 +193,7 @@ nlohmann::json frameStatsJson(const FrameReport& report) {
 
 std::string metricsCsvHeader() {
   return "frame,line_pixels,appeared,vanished,churn,dropped,appeared_raw,vanished_raw,churn_raw,strokes,specks,"
-         "active_faces,splits,collapses,ms_total,texture_drift\n";
+         "active_faces,splits,collapses,ms_total,texture_drift,churn_binary\n";
 }
 
 void writeMetricsRow(std::ostream& out, int64_t frame, const FrameReport& report, const FrameCoherence& c,
@@ -203,7 +203,8 @@ void writeMetricsRow(std::ostream& out, int64_t frame, const FrameReport& report
   out << frame << ',' << c.compensated.line_pixels << ',' << c.compensated.appeared << ',' << c.compensated.vanished
       << ',' << c.compensated.churn() << ',' << c.compensated.dropped << ',' << c.raw.appeared << ','
       << c.raw.vanished << ',' << c.raw.churn() << ',' << t.strokes << ',' << t.specks << ',' << t.active_faces << ','
-      << splits << ',' << collapses << ',' << ms_total << ',' << report.texture_drift << '\n';
+      << splits << ',' << collapses << ',' << ms_total << ',' << report.texture_drift << ','
+      << c.compensated.churnBinary() << '\n';
 }
 
 }  // namespace lodline

@@ -31,7 +31,9 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
   times_.visibility = sw.lap();
   times_.strokes = 0.0;
   parameterizers_.resize(scene.size());
+  faders_.resize(scene.size());
   for (size_t i = 0; i < scene.size(); ++i) {
+    faders_[i].update(visible_[i], camera, frame.width, frame.height, fade_);
     parameterizers_[i].update(visible_[i], camera, frame.width, frame.height, stroke_coherence_);
     const Bounds& b = scene[i].drawing->bounds();
     const StrokeView view{camera.eye, camera.forward(), b.center, b.radius};
@@ -75,6 +77,12 @@ void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
     else
       outline_history_[i].fill.clear();
   }
+}
+
+size_t ScenePresenter::fadingSamples() const {
+  size_t n = 0;
+  for (const StrokeFader& f : faders_) n += f.fading();
+  return n;
 }
 
 double ScenePresenter::textureDrift() const {

@@ -29,6 +29,7 @@
 #include "gl/context.h"
 #include "present/outline.h"
 #include "present/screen_lines.h"
+#include "present/stroke_fade.h"
 #include "present/stroke_parameterization.h"
 
 namespace lodline {
@@ -78,7 +79,14 @@ class ScenePresenter {
     outline_history_.clear();
     sequence_in_motion_ = in_motion;
     for (StrokeParameterizer& p : parameterizers_) p.reset();
+    for (StrokeFader& f : faders_) f.reset();
   }
+  /// Lines that appear fade in (present/stroke_fade.h) gaining `step` of their opacity per
+  /// frame (frame time / fade-in time; the viewer sets it every frame from its frame time).
+  /// Default 0: off, as a still is drawn.
+  void setFadeStep(float step) { fade_.step = step; }
+  /// Of the last present(), visible line samples still fading in, over all objects.
+  size_t fadingSamples() const;
   /// Whether brushes, dashes and jitter follow the surface from frame to frame (coherent
   /// parameterisation, present/stroke_parameterization.h) or start at each visible run's
   /// first point (u = arc length). Default on; a still's single frame is the same either way.
@@ -149,6 +157,8 @@ class ScenePresenter {
   ScreenLinesScratch stroke_scratch_;
   std::vector<StrokeParameterizer> parameterizers_;
   bool stroke_coherence_ = true;
+  std::vector<StrokeFader> faders_;
+  StrokeFadeParams fade_;
 };
 
 /// A presenter for `scene` on `backend`: OpenGL through a headless context of kind

@@ -103,11 +103,11 @@ TEST_F(Capture, MetricsCsvHasHeaderAndOneRowPerFrame) {
   std::getline(in, line);
   EXPECT_EQ(line,
             "frame,line_pixels,appeared,vanished,churn,dropped,appeared_raw,vanished_raw,churn_raw,strokes,specks,"
-            "active_faces,splits,collapses,ms_total,texture_drift");
+            "active_faces,splits,collapses,ms_total,texture_drift,churn_binary");
   int rows = 0;
   while (std::getline(in, line)) {
     ++rows;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 15) << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 16) << line;
   }
   EXPECT_EQ(rows, 6);
 }

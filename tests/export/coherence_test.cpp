@@ -19,8 +19,9 @@ LineMask empty(int w, int h) {
   return m;
 }
 
-void hline(LineMask& m, int y, int x0, int x1) {
-  for (int x = x0; x < x1; ++x) m.on[static_cast<size_t>(y) * m.width + x] = 1;
+// A line of opacity `a` (of 255) along row y.
+void hline(LineMask& m, int y, int x0, int x1, uint8_t a = 255) {
+  for (int x = x0; x < x1; ++x) m.on[static_cast<size_t>(y) * m.width + x] = a;
 }
 
 TEST(Coherence, IdenticalMasksHaveNoChurn) {
@@ -67,9 +68,8 @@ TEST(Coherence, RasterizeStrokesIsContinuous) {
   s.length_px = {17.0f};
   LineMask m;
   rasterizeStrokes(s, 20, 20, m);
-  size_t on = 0;
-  for (uint8_t v : m.on) on += v;
-  EXPECT_EQ(on, 11u + 7u);  // 11 px along y = 2, 7 more down x = 12
+  EXPECT_EQ(m.count(), 11u + 7u);  // 11 px along y = 2, 7 more down x = 12
+  EXPECT_DOUBLE_EQ(m.weight(), 18.0);  // no alpha given: opaque
   EXPECT_TRUE(m.at(7, 2));
   EXPECT_TRUE(m.at(12, 6));
   EXPECT_FALSE(m.at(7, 6));
@@ -123,7 +123,7 @@ LineMask rim(const SurfaceImage& s) {
     for (int x = 1; x < kW - 1; ++x)
       if (s.at(x, y).w > 0.0f && (s.at(x - 1, y).w == 0.0f || s.at(x + 1, y).w == 0.0f || s.at(x, y - 1).w == 0.0f ||
                                   s.at(x, y + 1).w == 0.0f))
-        m.on[static_cast<size_t>(y) * kW + x] = 1;
+        m.on[static_cast<size_t>(y) * kW + x] = 255;
   return m;
 }
 
@@ -163,7 +163,7 @@ TEST(CompensatedCoherence, ALineRemovedInOneFrameCountsOnce) {
   for (int x = kW / 2 - 20; x < kW / 2 + 20; ++x) {
     const glm::vec3 p(s.at(x, kH / 2));
     const glm::vec2 px = projectToPixels(moved, p, kW, kH);
-    moved_with.on[static_cast<size_t>(std::floor(px.y)) * kW + static_cast<size_t>(std::floor(px.x))] = 1;
+    moved_with.on[static_cast<size_t>(std::floor(px.y)) * kW + static_cast<size_t>(std::floor(px.x))] = 255;
   }
   const CompensatedChange kept = compareMasksCompensated(with, s, cam, moved_with, s2, moved);
   EXPECT_EQ(kept.appeared + kept.vanished, 0u);
@@ -226,6 +226,39 @@ TEST(CompensatedCoherence, AStaticCameraGivesTheRawMeasure) {
   EXPECT_EQ(comp.dropped, 0u);
   EXPECT_GT(raw.appeared, 0u);
   EXPECT_DOUBLE_EQ(comp.churn(), raw.churn());
+}
+
+// The churn counts opacity: a line fading in at 20% adds 0.2 per pixel where nothing was, a
+// line that fades from full to half adds 0.5 as vanished, and one that keeps its opacity adds
+// nothing; the binary measure counts the first whole and the others not at all.
+TEST(CompensatedCoherence, ChurnIsWeightedByOpacity) {
+  const Camera cam = lookAt({0, 0, 8}, {0, 0, 0});
+  const SurfaceImage s = raycastSphere(cam, {0, 0, 0}, 1.5f);
+  LineMask a = empty(kW, kH), b = empty(kW, kH);
+  hline(a, kH / 2, kW / 2 - 20, kW / 2 + 20);        // 40 px, opaque, kept
+  hline(b, kH / 2, kW / 2 - 20, kW / 2 + 20);
+  hline(a, kH / 2 + 10, kW / 2 - 10, kW / 2 + 10);   // 20 px fading from 255 to 128
+  hline(b, kH / 2 + 10, kW / 2 - 10, kW / 2 + 10, 128);
+  hline(b, kH / 2 - 10, kW / 2 - 25, kW / 2 + 25, 51);  // 50 px appearing at 20%
+  const CompensatedChange c = compareMasksCompensated(a, s, cam, b, s, cam);
+  EXPECT_EQ(c.appeared, 50u);
+  EXPECT_EQ(c.vanished, 0u);
+  EXPECT_NEAR(c.appeared_weight, 50 * 0.2, 1e-9);
+  EXPECT_NEAR(c.vanished_weight, 20 * 127 / 255.0, 1e-9);
+  EXPECT_NEAR(c.line_weight, 40 + 20 * 128 / 255.0 + 50 * 0.2, 1e-9);
+  EXPECT_NEAR(c.churn(), (10.0 + 20 * 127 / 255.0) / c.line_weight, 1e-12);
+  EXPECT_NEAR(c.churnBinary(), 50.0 / 110.0, 1e-12);
+  // Strokes carry their opacity into the mask (StrokeRuns::alpha, interpolated).
+  StrokeRuns runs;
+  runs.points = {{2.5f, 2.5f}, {12.5f, 2.5f}};
+  runs.alpha = {0.2f, 1.0f};
+  runs.offsets = {0, 2};
+  runs.kinds = {LineKind::kSuggestive};
+  LineMask m;
+  rasterizeStrokes(runs, 20, 20, m);
+  EXPECT_NEAR(m.opacity(2, 2), 0.2f, 0.01f);
+  EXPECT_NEAR(m.opacity(7, 2), 0.6f, 0.06f);
+  EXPECT_EQ(m.opacity(12, 2), 1.0f);
 }
 
 TEST(CompensatedCoherence, PointsHiddenOrOffScreenInTheOtherFrameAreDropped) {

@@ -456,6 +456,62 @@ TEST(ZeroSet, TestSplitsSegmentsInsideFaces) {
   EXPECT_EQ(out.segmentCount(), 0u);
 }
 
+// A per-vertex gain (the suggestive contours' motion fade) scales the alpha, interpolated
+// along the edges like the test: gain = 1 − x on the grid halves the alpha on the line x = ½.
+TEST(ZeroSet, GainScalesTheAlpha) {
+  const TriMesh g = makeGrid(2.0f, 9);
+  MeshAdjacency adj;
+  buildAdjacency(g, adj);
+  std::vector<float> value(g.vertexCount()), num(g.vertexCount(), 1.0f), gain(g.vertexCount());
+  for (size_t v = 0; v < g.vertexCount(); ++v) {
+    value[v] = g.positions[v].x - 0.5f;
+    gain[v] = std::clamp(1.0f - g.positions[v].x, 0.0f, 1.0f);
+  }
+  ZeroSetInput in;
+  in.value = value;
+  in.test_num = num;
+  LineScratch scratch;
+  LineSet plain, faded;
+  extractZeroSet(g.positions, g.faces, adj, in, LineKind::kSuggestive, scratch, plain);
+  in.gain = gain;
+  extractZeroSet(g.positions, g.faces, adj, in, LineKind::kSuggestive, scratch, faded);
+  ASSERT_GT(plain.segmentCount(), 0u);
+  ASSERT_EQ(plain.points.size(), faded.points.size());
+  for (size_t i = 0; i < plain.points.size(); ++i) {
+    EXPECT_EQ(plain.alpha[i], 1.0f);
+    EXPECT_NEAR(faded.alpha[i], 0.5f, 1e-5f);
+  }
+}
+
+// The motion fade's speed: |Δkr| / (sin²θ·Dw kr) along ŵ, × cosθ on screen, × px per unit,
+// / dt; the gain is 1 below `start`, 0 above `end` and a smoothstep between.
+TEST(ViewQuantities, SuggestiveMotionGainFollowsTheSpeed) {
+  Camera cam;
+  cam.orthographic = true;
+  cam.ortho_height = 2.0f;  // 100 px per unit in a 200-px-high image
+  ViewQuantities view;
+  view.ndotv = {0.6f, 0.6f, 0.6f, 0.6f, 0.6f};
+  view.dwkr = {2.0f, 2.0f, 2.0f, -1.0f, 2.0f};
+  const std::vector<glm::vec3> positions(5, glm::vec3(0.0f));
+  // Speeds 0.01/(0.64·2)·0.6·100·30 = 14.06 px/s, a tenth of it, ten times it; Dw kr < 0
+  // (no suggestive contour: unknown speed); no change recorded.
+  const std::vector<float> change = {0.01f, 0.001f, 0.1f, 0.01f, 0.0f};
+  std::vector<float> gain;
+  suggestiveMotionGain(positions, view, change, cam, 200, 1.0f / 30.0f, 10.0f, 20.0f, gain);
+  ASSERT_EQ(gain.size(), 5u);
+  const float t = (0.01f / (0.64f * 2.0f) * 0.6f * 100.0f * 30.0f - 10.0f) / 10.0f;
+  EXPECT_NEAR(gain[0], 1.0f - t * t * (3.0f - 2.0f * t), 1e-4f);
+  EXPECT_EQ(gain[1], 1.0f);
+  EXPECT_EQ(gain[2], 0.0f);
+  EXPECT_EQ(gain[3], 1.0f);
+  EXPECT_EQ(gain[4], 1.0f);
+  // Off (end 0), or a still (dt 0): every gain 1.
+  suggestiveMotionGain(positions, view, change, cam, 200, 1.0f / 30.0f, 10.0f, 0.0f, gain);
+  EXPECT_EQ(std::count(gain.begin(), gain.end(), 1.0f), 5);
+  suggestiveMotionGain(positions, view, change, cam, 200, 0.0f, 10.0f, 20.0f, gain);
+  EXPECT_EQ(std::count(gain.begin(), gain.end(), 1.0f), 5);
+}
+
 TEST(LineExtractor, NoReallocationAfterWarmUp) {
   const TriMesh m = makeTorusKnot(3, 2, 1.0f, 0.25f, 200, 16, 0.1f);
   ShapeCache shape;
