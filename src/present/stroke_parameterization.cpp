@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 namespace lodline {
 namespace {
@@ -76,6 +77,11 @@ void StrokeParameterizer::update(const StrokeRuns& runs, const Camera& camera, i
         forCells(i, [&](size_t c) { cell_items_[fill[c]++] = i; });
 
     const PixelProjector projector(camera, width, height);
+    const bool has_positions = runs.positions.size() == np && params.surface_px > 0.0f;
+    const bool ortho = camera.orthographic;
+    // Model units per pixel: at unit eye depth (perspective), or everywhere (orthographic).
+    const float world_per_px = (ortho ? camera.ortho_height : 2.0f * std::tan(glm::radians(camera.fov_deg) * 0.5f)) /
+                               static_cast<float>(height);
     // Every run of the sample's kind within match_px: the nearest point of each.
     candidates_.clear();
     for (size_t j = 0; j < prev_positions_.size(); ++j) {
@@ -100,6 +106,14 @@ void StrokeParameterizer::update(const StrokeRuns& runs, const Camera& camera, i
             const float t = len2 > 0.0f ? std::clamp(glm::dot(px - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
             const float d = glm::length(px - (a + t * ab));
             if (d > params.match_px) continue;
+            // And on the surface: the run's own point there must be the sample's, within
+            // surface_px pixels' worth at its depth (else another piece of line lies over it
+            // in the image, e.g. the other sheet of a fold: the sample did not persist).
+            if (has_positions) {
+              const glm::vec3 q = runs.positions[i] + t * (runs.positions[i + 1] - runs.positions[i]);
+              if (glm::length(q - prev_positions_[j]) > params.surface_px * world_per_px * (ortho ? 1.0f : depth))
+                continue;
+            }
             const float s_here = arc_[i] + t * (arc_[i + 1] - arc_[i]);
             auto same = std::find_if(candidates_.begin() + static_cast<std::ptrdiff_t>(first), candidates_.end(),
                                      [r](const Candidate& c) { return c.run == r; });

@@ -32,6 +32,10 @@ namespace lodline {
 struct StrokeParameterizationParams {
   /// Farthest a previous sample may land from a current run to count as on it, px. Default 1.5.
   float match_px = 1.0f;
+  /// ... and lie within this many pixels' worth (at its depth) of the run's own surface point
+  /// there, else it does not persist (another piece of line lies over it in the image). 0:
+  /// no such test. Default 8.
+  float surface_px = 8.0f;
   /// A run needs at least this many landed samples to inherit; else it starts afresh.
   /// Default 1: even a short run that one sample reaches keeps that sample's texture.
   int min_votes = 1;

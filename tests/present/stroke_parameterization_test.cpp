@@ -109,5 +109,28 @@ TEST(StrokeParameterization, FirstFrameAndUnmatchedRunsStartAtTheirFirstPoint) {
   EXPECT_EQ(p.persisting(), 0u);
 }
 
+// A previous sample that lands on a run in the image but not on its surface (another sheet
+// of the surface behind the same pixels) does not persist: it neither votes nor counts in
+// the drift.
+TEST(StrokeParameterization, SamplesOfAnotherSurfaceDoNotPersist) {
+  StrokeParameterizer p;
+  const StrokeRuns first = contour(0.0f, {{0.3f, 2.0f}});
+  p.update(first, rolled(0.0f), kSize, kSize, true);
+  // The same arc in the image, but each point pushed 0.5 units along its view ray: the same
+  // pixels, surface points ~40 px' worth away.
+  const Camera cam = rolled(0.0f);
+  StrokeRuns behind = first;
+  for (glm::vec3& q : behind.positions) q += 0.5f * glm::normalize(q - cam.eye);
+  p.update(behind, cam, kSize, kSize, true);
+  EXPECT_EQ(p.persisting(), 0u);
+  // Without the surface test they would all persist.
+  StrokeParameterizer loose;
+  StrokeParameterizationParams params;
+  params.surface_px = 0.0f;
+  loose.update(first, cam, kSize, kSize, true, params);
+  loose.update(behind, cam, kSize, kSize, true, params);
+  EXPECT_GT(loose.persisting(), behind.points.size() / 2);
+}
+
 }  // namespace
 }  // namespace lodline
