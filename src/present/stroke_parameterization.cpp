@@ -24,13 +24,59 @@ void StrokeParameterizer::reset() {
   prev_u_.clear();
   prev_kinds_.clear();
   prev_runs_.clear();
+  prev_fraction_.clear();
+  prev_seams_.clear();
+  prev_seam_kinds_.clear();
   prev_run_count_ = 0;
 }
 
-void StrokeParameterizer::update(const StrokeRuns& runs, const Camera& camera, int width, int height, bool coherent,
+void StrokeParameterizer::update(StrokeRuns& runs, const Camera& camera, int width, int height, bool coherent,
                                  const StrokeParameterizationParams& params) {
   const size_t nr = runs.strokeCount();
   const size_t np = runs.points.size();
+  closed_.assign(nr, 0);
+  for (size_t r = 0; r < nr; ++r) {
+    const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+    closed_[r] = e - b >= 4 && glm::length(runs.points[b] - runs.points[e - 1]) < 0.5f;
+  }
+  // Closed runs start where a closed run of their kind started before (the seam stays put).
+  if (coherent && !prev_seams_.empty() && runs.positions.size() == np && width > 0 && height > 0) {
+    const PixelProjector projector(camera, width, height);
+    seam_px_.clear();
+    for (const glm::vec3& p : prev_seams_) {
+      glm::vec2 px;
+      float depth = 0.0f;
+      seam_px_.push_back(projector.project(p, px, depth) ? px : glm::vec2(-1e9f));
+    }
+    const bool has_alpha = runs.alpha.size() == np;
+    for (size_t r = 0; r < nr; ++r) {
+      if (!closed_[r]) continue;
+      const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+      float best = params.match_px;
+      uint32_t start = b;
+      glm::vec2 lo = runs.points[b], hi = runs.points[b];
+      for (uint32_t i = b + 1; i < e; ++i) lo = glm::min(lo, runs.points[i]), hi = glm::max(hi, runs.points[i]);
+      lo -= params.match_px, hi += params.match_px;
+      for (size_t k = 0; k < seam_px_.size(); ++k) {
+        if (prev_seam_kinds_[k] != runs.kinds[r]) continue;
+        const glm::vec2 q = seam_px_[k];
+        if (q.x < lo.x || q.y < lo.y || q.x > hi.x || q.y > hi.y) continue;  // too far from this loop
+        for (uint32_t i = b; i + 1 < e; ++i) {
+          const float d = glm::length(runs.points[i] - seam_px_[k]);
+          if (d < best) best = d, start = i;
+        }
+      }
+      if (start == b) continue;
+      // The loop without its repeated last point, rotated, then closed again.
+      auto rotate = [&](auto& v) {
+        std::rotate(v.begin() + b, v.begin() + start, v.begin() + (e - 1));
+        v[e - 1] = v[b];
+      };
+      rotate(runs.points);
+      rotate(runs.positions);
+      if (has_alpha) rotate(runs.alpha);
+    }
+  }
   persisting_ = 0;
   drift_sum_ = 0.0;
   arc_.assign(np, 0.0f);
@@ -117,8 +163,18 @@ void StrokeParameterizer::update(const StrokeRuns& runs, const Camera& camera, i
             const float s_here = arc_[i] + t * (arc_[i + 1] - arc_[i]);
             auto same = std::find_if(candidates_.begin() + static_cast<std::ptrdiff_t>(first), candidates_.end(),
                                      [r](const Candidate& c) { return c.run == r; });
-            if (same == candidates_.end()) candidates_.push_back({static_cast<uint32_t>(j), r, s_here, d});
-            else if (d < same->d) *same = {static_cast<uint32_t>(j), r, s_here, d};
+            if (same == candidates_.end()) {
+              candidates_.push_back({static_cast<uint32_t>(j), r, s_here, d});
+              continue;
+            }
+            // Near both ends of a closed run: the end the sample was nearer to on its loop.
+            const float length = arc_[runs.offsets[r + 1] - 1];
+            if (closed_[r] && prev_fraction_[j] >= 0.0f && std::abs(s_here - same->s) > 0.5f * length) {
+              if (std::abs(s_here / length - prev_fraction_[j]) < std::abs(same->s / length - prev_fraction_[j]))
+                *same = {static_cast<uint32_t>(j), r, s_here, d};
+            } else if (d < same->d) {
+              *same = {static_cast<uint32_t>(j), r, s_here, d};
+            }
           }
         }
     }
@@ -232,15 +288,26 @@ void StrokeParameterizer::update(const StrokeRuns& runs, const Camera& camera, i
   prev_u_.clear();
   prev_kinds_.clear();
   prev_runs_.clear();
+  prev_fraction_.clear();
+  prev_seams_.clear();
+  prev_seam_kinds_.clear();
   prev_run_count_ = nr;
   if (runs.positions.size() == np)
-    for (size_t r = 0; r < nr; ++r)
+    for (size_t r = 0; r < nr; ++r) {
+      const float length = arc_[runs.offsets[r + 1] - 1];
+      const bool loop = closed_[r] && length > 0.0f;
+      if (loop) {
+        prev_seams_.push_back(runs.positions[runs.offsets[r]]);
+        prev_seam_kinds_.push_back(runs.kinds[r]);
+      }
       for (uint32_t i = runs.offsets[r]; i < runs.offsets[r + 1]; ++i) {
+        prev_fraction_.push_back(loop ? arc_[i] / length : -1.0f);
         prev_positions_.push_back(runs.positions[i]);
         prev_u_.push_back(u_[i]);
         prev_kinds_.push_back(runs.kinds[r]);
         prev_runs_.push_back(static_cast<uint32_t>(r));
       }
+    }
 }
 
 }  // namespace lodline

@@ -54,7 +54,12 @@ class StrokeParameterizer {
   /// `width`×`height` image), carried from the previous update() when `coherent`, else
   /// u = s (the arc length from each run's first point). Either way the texture drift of
   /// the frame is measured (below).
-  void update(const StrokeRuns& runs, const Camera& camera, int width, int height, bool coherent,
+  /// A closed run (a loop seen whole, its last point its first) has an arbitrary first point;
+  /// when coherent it is rotated to start where a closed run of its kind started in the
+  /// previous frame (within match_px of that point's projection), and a sample that lands
+  /// near both of its ends takes the end it was nearer to before, so the loop's seam — the
+  /// one place its parameter jumps — stays on the surface.
+  void update(StrokeRuns& runs, const Camera& camera, int width, int height, bool coherent,
               const StrokeParameterizationParams& params = {});
   /// One per point of the runs of the last update() (indexed like runs.points), px.
   const std::vector<float>& parameters() const { return u_; }
@@ -73,6 +78,9 @@ class StrokeParameterizer {
     float u;  ///< the previous sample's parameter
   };
   std::vector<glm::vec3> prev_positions_;
+  std::vector<float> prev_fraction_;       ///< on a closed run: arc length / its length; else −1
+  std::vector<glm::vec3> prev_seams_;      ///< first points of the previous closed runs
+  std::vector<LineKind> prev_seam_kinds_;
   std::vector<float> prev_u_;
   std::vector<LineKind> prev_kinds_;
   std::vector<uint32_t> prev_runs_;  ///< the run each previous sample was on
@@ -94,6 +102,8 @@ class StrokeParameterizer {
   std::vector<uint32_t> successor_;  ///< per previous run: the current run most of it landed on
   std::vector<uint32_t> successor_votes_;  ///< ... and how many samples of it landed there
   std::vector<Landing> landings_;
+  std::vector<glm::vec2> seam_px_;
+  std::vector<uint8_t> closed_;  ///< per current run
   std::vector<float> votes_, window_;
 };
 

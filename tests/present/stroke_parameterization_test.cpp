@@ -66,7 +66,7 @@ double meanDrift(bool coherent) {
     // Frames 6 and 7: the arc splits in two, then is chained the other way round.
     std::vector<std::pair<float, float>> pieces{{0.3f, 5.0f}};
     if (k == 6) pieces = {{0.3f, 2.5f}, {2.6f, 5.0f}};
-    const StrokeRuns runs = contour(kRoll * static_cast<float>(k), pieces, k == 7);
+    StrokeRuns runs = contour(kRoll * static_cast<float>(k), pieces, k == 7);
     p.update(runs, rolled(kRoll * static_cast<float>(k)), kSize, kSize, coherent);
     EXPECT_EQ(p.parameters().size(), runs.points.size());
     if (k == 0) {
@@ -91,7 +91,7 @@ TEST(StrokeParameterization, TextureStaysOnARollingSphere) {
 
 TEST(StrokeParameterization, FirstFrameAndUnmatchedRunsStartAtTheirFirstPoint) {
   StrokeParameterizer p;
-  const StrokeRuns runs = contour(0.0f, {{0.3f, 2.0f}});
+  StrokeRuns runs = contour(0.0f, {{0.3f, 2.0f}});
   p.update(runs, rolled(0.0f), kSize, kSize, true);
   ASSERT_EQ(p.parameters().size(), runs.points.size());
   float arc = 0.0f;  // u = the arc length from the run's first point
@@ -100,7 +100,8 @@ TEST(StrokeParameterization, FirstFrameAndUnmatchedRunsStartAtTheirFirstPoint) {
     EXPECT_NEAR(p.parameters()[i], arc, 1e-3f);
   }
   // A run on the far side of the circle, where nothing was before: afresh.
-  p.update(contour(0.0f, {{3.5f, 5.0f}}), rolled(0.0f), kSize, kSize, true);
+  StrokeRuns far = contour(0.0f, {{3.5f, 5.0f}});
+  p.update(far, rolled(0.0f), kSize, kSize, true);
   EXPECT_EQ(p.persisting(), 0u);
   EXPECT_EQ(p.parameters()[0], 0.0f);
   // After a reset nothing persists.
@@ -114,7 +115,7 @@ TEST(StrokeParameterization, FirstFrameAndUnmatchedRunsStartAtTheirFirstPoint) {
 // the drift.
 TEST(StrokeParameterization, SamplesOfAnotherSurfaceDoNotPersist) {
   StrokeParameterizer p;
-  const StrokeRuns first = contour(0.0f, {{0.3f, 2.0f}});
+  StrokeRuns first = contour(0.0f, {{0.3f, 2.0f}});
   p.update(first, rolled(0.0f), kSize, kSize, true);
   // The same arc in the image, but each point pushed 0.5 units along its view ray: the same
   // pixels, surface points ~40 px' worth away.
@@ -130,6 +131,32 @@ TEST(StrokeParameterization, SamplesOfAnotherSurfaceDoNotPersist) {
   loose.update(first, cam, kSize, kSize, true, params);
   loose.update(behind, cam, kSize, kSize, true, params);
   EXPECT_GT(loose.persisting(), behind.points.size() / 2);
+}
+
+// A closed loop is chained from an arbitrary point each frame; it is rotated to start where
+// it started before, so its seam stays on the surface and the samples beside it keep their
+// texture (a loop that starts elsewhere would move the seam across them).
+TEST(StrokeParameterization, ClosedLoopsKeepTheirSeamOnTheSurface) {
+  constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
+  for (bool coherent : {true, false}) {
+    StrokeParameterizer p;
+    StrokeRuns a = contour(0.0f, {{0.3f, 0.3f + kTwoPi}});
+    ASSERT_LT(glm::length(a.points.front() - a.points.back()), 0.5f);  // closed
+    p.update(a, rolled(0.0f), kSize, kSize, coherent);
+    const glm::vec3 seam = a.positions.front();
+    // Next frame: rolled by 1°, chained from screen angle 2.0.
+    StrokeRuns b = contour(kRoll, {{2.0f, 2.0f + kTwoPi}});
+    p.update(b, rolled(kRoll), kSize, kSize, coherent);
+    ASSERT_GT(p.persisting(), a.points.size() / 2);
+    const double drift = p.driftSum() / static_cast<double>(p.persisting());
+    if (coherent) {
+      EXPECT_LT(glm::length(b.positions.front() - seam), 0.02f);  // starts where it started
+      EXPECT_LT(glm::length(b.points.front() - b.points.back()), 0.5f);  // and is still closed
+      EXPECT_LT(drift, 0.5);
+    } else {
+      EXPECT_GT(drift, 1.8);  // u = s from the new start: the texture slides
+    }
+  }
 }
 
 }  // namespace
