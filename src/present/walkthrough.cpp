@@ -73,6 +73,7 @@ Result<std::vector<WalkthroughResult>> runWalkthrough(const SceneInput& input, c
                                   input.detail.max_adapt_frames);
         !st)
       return st.error();
+    presenter->startSequence(false);  // each mode starts afresh: its first frame is render's still
     if (Status st = presenter->present(*scene, first, frame, true); !st) return st.error();
     r.setup_s = sw.lap() / 1000.0;
     if (!rq.snapshot_prefix.empty())
