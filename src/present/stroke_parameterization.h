@@ -30,7 +30,7 @@
 namespace lodline {
 
 struct StrokeParameterizationParams {
-  /// Farthest a previous sample may land from a current run to count as on it, px. Default 1.5.
+  /// Farthest a previous sample may land from a current run to count as on it, px. Default 1.
   float match_px = 1.0f;
   /// ... and lie within this many pixels' worth (at its depth) of the run's own surface point
   /// there, else it does not persist (another piece of line lies over it in the image). 0:
