@@ -69,11 +69,18 @@ def dark(pixels, w, h):
 
 
 def read_gray(path):
-    out = subprocess.run(["convert", path, "-background", "white", "-flatten", "-colorspace", "gray", "pgm:-"],
-                         capture_output=True, check=True).stdout
-    parts = out.split(maxsplit=4)
-    w, h = int(parts[1]), int(parts[2])
-    return w, h, parts[4][: w * h]
+    """A PNG as grey levels over white (ffmpeg decodes it: scripts/setup.sh installs it)."""
+    with open(path, "rb") as f:
+        head = f.read(24)
+    w, h = int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
+    rgba = subprocess.run(["ffmpeg", "-v", "error", "-i", path, "-f", "rawvideo", "-pix_fmt", "rgba", "-"],
+                          capture_output=True, check=True).stdout
+    grey = bytearray(w * h)
+    for i in range(w * h):
+        r, g, b, a = rgba[4 * i: 4 * i + 4]
+        v = (299 * r + 587 * g + 114 * b) // 1000
+        grey[i] = (a * v + (255 - a) * 255) // 255
+    return w, h, bytes(grey)
 
 
 def near(a, b):
@@ -83,7 +90,7 @@ def near(a, b):
     return hit / len(a)
 
 
-rsvg = shutil.which("rsvg-convert") and shutil.which("convert")
+rsvg = shutil.which("rsvg-convert") and shutil.which("ffmpeg")
 print("| mesh | strokes' length px | coordinate pairs | px per pair | SVG near PNG | PNG near SVG |")
 print("|---|---:|---:|---:|---:|---:|")
 with tempfile.TemporaryDirectory() as tmp:
