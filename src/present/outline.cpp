@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -109,6 +111,81 @@ void copyRun(const StrokeRuns& from, size_t r, StrokeRuns& to) {
   to.strokes.push_back(from.strokes[r]);
   to.opacity.push_back(from.opacity[r]);
   to.length_px.push_back(from.length_px[r]);
+}
+
+// The point of run r within `reach_px` of arc length from its start (from its end when
+// `at_end`) nearest to `target`: its segment (the index of the segment's point nearer the
+// run's inside) and the distance.
+struct EndHit {
+  uint32_t inner = 0;
+  float distance = std::numeric_limits<float>::infinity();
+};
+EndHit nearestNearEnd(const StrokeRuns& runs, size_t r, bool at_end, float reach_px, glm::vec2 target) {
+  const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+  EndHit hit;
+  float walked = 0.0f;
+  for (uint32_t k = 0; k + 1 < e - b && walked <= reach_px; ++k) {
+    const uint32_t outer = at_end ? e - 1 - k : b + k, inner = at_end ? outer - 1 : outer + 1;
+    const glm::vec2 a = runs.points[outer], ab = runs.points[inner] - a;
+    const float len2 = glm::dot(ab, ab);
+    const float t = len2 > 0.0f ? std::clamp(glm::dot(target - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+    const float d = glm::length(target - (a + t * ab));
+    const float len = std::sqrt(len2);
+    if (d < hit.distance && walked + t * len <= reach_px) hit = {inner, d};  // only near the end
+    walked += len;
+  }
+  return hit;
+}
+
+// Completing pieces were grown along the silhouette over the contour's ends so that the two
+// meet; drawn as they are, each junction would be two overlapping strokes (two caps, a bead
+// where the style is translucent; two tapers, a pinch in the outline). A piece end that
+// passes within `radius_px` of a contour run's end is cut back to that end instead, so that
+// the two join into one stroke where the strokes are built (joinRuns(), screen_lines.h).
+void stitchToContourEnds(const StrokeRuns& contours, const StrokeRuns& fill, float reach_px, float radius_px,
+                         StrokeRuns& out) {
+  out.clear();
+  out.offsets.push_back(0);
+  for (size_t r = 0; r < fill.strokeCount(); ++r) {
+    const uint32_t b = fill.offsets[r], e = fill.offsets[r + 1];
+    // Per end of the piece: the contour end it meets (point index into `contours`), if any.
+    uint32_t meets[2] = {UINT32_MAX, UINT32_MAX};
+    EndHit hits[2];
+    for (int side = 0; side < 2 && e - b >= 2; ++side)
+      for (size_t c = 0; c < contours.strokeCount(); ++c) {
+        if (contours.kinds[c] != LineKind::kContour || contours.offsets[c + 1] - contours.offsets[c] < 2) continue;
+        for (uint32_t end : {contours.offsets[c], contours.offsets[c + 1] - 1}) {
+          const EndHit h = nearestNearEnd(fill, r, side == 1, reach_px, contours.points[end]);
+          if (h.distance <= radius_px && h.distance < hits[side].distance) hits[side] = h, meets[side] = end;
+        }
+      }
+    // The piece's points between its (possibly new) ends.
+    uint32_t first = b, last = e - 1;
+    if (meets[0] != UINT32_MAX) first = hits[0].inner;
+    if (meets[1] != UINT32_MAX) last = hits[1].inner;
+    // Kept as it is: a piece whose two ends meet the same contour end, or that would lose
+    // all its points to one end.
+    const bool both = meets[0] != UINT32_MAX && meets[1] != UINT32_MAX;
+    if ((both && meets[0] == meets[1]) || (!both && first > last)) {
+      first = b, last = e - 1, meets[0] = meets[1] = UINT32_MAX;
+    }
+    auto push = [&](glm::vec2 px, glm::vec3 p, float alpha) {
+      out.points.push_back(px);
+      out.positions.push_back(p);
+      out.alpha.push_back(alpha);
+    };
+    const size_t start = out.points.size();
+    if (meets[0] != UINT32_MAX) push(contours.points[meets[0]], contours.positions[meets[0]], fill.alpha[first]);
+    for (uint32_t i = first; i <= last && i < e; ++i) push(fill.points[i], fill.positions[i], fill.alpha[i]);
+    if (meets[1] != UINT32_MAX) push(contours.points[meets[1]], contours.positions[meets[1]], fill.alpha[last]);
+    float length = 0.0f;
+    for (size_t i = start + 1; i < out.points.size(); ++i) length += glm::length(out.points[i] - out.points[i - 1]);
+    out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
+    out.kinds.push_back(fill.kinds[r]);
+    out.strokes.push_back(fill.strokes[r]);
+    out.opacity.push_back(fill.opacity[r]);
+    out.length_px.push_back(length);
+  }
 }
 
 }  // namespace
@@ -251,9 +328,12 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
       i = j;
     }
   }
-  appendStrokes(fill, out);
+  // 5. Pieces end where the contour they meet ends, so that the two join into one stroke.
+  stitchToContourEnds(out, fill, params.extend_px + 2.0f, static_cast<float>(params.contour_radius_px) + 0.5f,
+                      scratch.stitched);
+  appendStrokes(scratch.stitched, out);
   std::swap(visible, out);
-  return fill.totalLength();
+  return scratch.stitched.totalLength();
 }
 
 }  // namespace lodline

@@ -73,7 +73,7 @@ struct OutlineHistory {
 
 /// Scratch of completeOutline(); reuse between calls.
 struct OutlineScratch {
-  StrokeRuns silhouette, rebuilt;
+  StrokeRuns silhouette, rebuilt, stitched;
   LineMask outline, contours, fill, previous;
   std::vector<uint8_t> flags, grown;
   std::vector<glm::vec3> fill_samples;  ///< every sample of this frame's completing pieces

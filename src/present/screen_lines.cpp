@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "core/hash.h"
 
@@ -194,7 +196,7 @@ size_t styledRun(const StrokeRuns& runs, size_t r, float width_px, const StrokeS
 
 }  // namespace
 
-void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, JoinedRuns& joined) {
+void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams& params, JoinedRuns& joined) {
   const size_t nr = runs.strokeCount();
   const bool with_u = !u.empty() && u.size() == runs.points.size();
   const bool with_pos = runs.positions.size() == runs.points.size();
@@ -208,11 +210,129 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, Jo
     const size_t r = end / 2;
     return end % 2 == 0 ? runs.points[runs.offsets[r]] : runs.points[runs.offsets[r + 1] - 1];
   };
-  // Ends binned by cells of tol_px; each end links to the nearest free end of another run
-  // of its kind.
+  // The direction leaving run r's end (2r: its start, 2r + 1: its end), from the point about
+  // 2 px inside it; zero for a run of no length.
+  auto outward = [&](size_t end) {
+    const size_t r = end / 2;
+    const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+    const glm::vec2 p = endPoint(end);
+    glm::vec2 d(0.0f);
+    for (uint32_t k = 1; k < e - b; ++k) {
+      d = p - runs.points[end % 2 == 0 ? b + k : e - 1 - k];
+      if (glm::dot(d, d) >= 4.0f) break;
+    }
+    const float l = glm::length(d);
+    return l > 0.0f && std::isfinite(l) ? d / l : glm::vec2(0.0f);
+  };
+  const float min_cos = std::cos(glm::radians(std::clamp(params.max_turn_deg, 0.0f, 180.0f)));
+  // Whether the line goes on from end e through the gap into end o.
+  auto continues = [&](size_t e, size_t o) {
+    const glm::vec2 te = outward(e), to = outward(o);
+    if (glm::dot(te, -to) < min_cos) return false;
+    const glm::vec2 gap = endPoint(o) - endPoint(e);
+    const float g = glm::length(gap);
+    return g <= params.touch_px || (glm::dot(te, gap / g) >= min_cos && glm::dot(-to, gap / g) >= min_cos);
+  };
+  // Runs lying along longer runs of their kind: every point of theirs, and every 2 px
+  // between, within along_px of one of those.
+  std::vector<uint8_t>& covered = joined.covered;
+  covered.assign(nr, 0);
+  if (params.along_px > 0.0f && nr > 1) {
+    auto finite = [](glm::vec2 p) {
+      return std::isfinite(p.x) && std::isfinite(p.y) && std::abs(p.x) < 1e7f && std::abs(p.y) < 1e7f;
+    };
+    // Segments binned (counting sort) by the cells of a grid over the points that their
+    // boxes cover; the cells at least along_px wide, at most 2^20 of them.
+    glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec2& p : runs.points)
+      if (finite(p)) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    float cell_px = std::max(8.0f, params.along_px);
+    int gw = 1, gh = 1;
+    if (lo.x <= hi.x) {
+      while (true) {
+        gw = static_cast<int>((hi.x - lo.x) / cell_px) + 1;
+        gh = static_cast<int>((hi.y - lo.y) / cell_px) + 1;
+        if (static_cast<int64_t>(gw) * gh <= (int64_t(1) << 20)) break;
+        cell_px *= 2.0f;
+      }
+    }
+    auto cellOfPoint = [&](glm::vec2 p, int& x, int& y) {
+      x = std::clamp(static_cast<int>((p.x - lo.x) / cell_px), 0, gw - 1);
+      y = std::clamp(static_cast<int>((p.y - lo.y) / cell_px), 0, gh - 1);
+    };
+    std::vector<uint32_t>& start = joined.cell_start;
+    std::vector<uint32_t>& items = joined.cell_items;
+    start.assign(static_cast<size_t>(gw) * gh + 1, 0);
+    auto forCells = [&](uint32_t i, auto&& f) {
+      const glm::vec2 a = runs.points[i], b = runs.points[i + 1];
+      if (!finite(a) || !finite(b)) return;
+      int x0, y0, x1, y1;
+      cellOfPoint(glm::min(a, b), x0, y0);
+      cellOfPoint(glm::max(a, b), x1, y1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) f(static_cast<size_t>(y) * gw + x);
+    };
+    for (size_t r = 0; r < nr; ++r)
+      for (uint32_t i = runs.offsets[r]; i + 1 < runs.offsets[r + 1]; ++i) forCells(i, [&](size_t c) { ++start[c + 1]; });
+    for (size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+    items.assign(start.back(), 0);
+    std::vector<uint32_t>& fill = joined.cell_fill;
+    fill.assign(start.begin(), start.end() - 1);
+    for (size_t r = 0; r < nr; ++r)
+      for (uint32_t i = runs.offsets[r]; i + 1 < runs.offsets[r + 1]; ++i) forCells(i, [&](size_t c) { items[fill[c]++] = i; });
+    std::vector<uint32_t>& run_of = joined.run_of;
+    run_of.assign(runs.points.size(), 0);
+    for (size_t r = 0; r < nr; ++r)
+      for (uint32_t i = runs.offsets[r]; i < runs.offsets[r + 1]; ++i) run_of[i] = static_cast<uint32_t>(r);
+    // Whether `p` lies within along_px of a segment of a longer run of run r's kind.
+    const float reach2 = params.along_px * params.along_px;
+    auto along = [&](glm::vec2 p, size_t r) {
+      int x0, y0, x1, y1;
+      cellOfPoint(p - glm::vec2(params.along_px), x0, y0);
+      cellOfPoint(p + glm::vec2(params.along_px), x1, y1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const size_t c = static_cast<size_t>(y) * gw + x;
+          for (uint32_t k = start[c]; k < start[c + 1]; ++k) {
+            const uint32_t i = items[k], q = run_of[i];
+            if (q == r || runs.kinds[q] != runs.kinds[r] || covered[q] ||
+                runs.length_px[q] < runs.length_px[r] || (runs.length_px[q] == runs.length_px[r] && q > r))
+              continue;
+            const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
+            const float l2 = glm::dot(ab, ab);
+            const float t = l2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / l2, 0.0f, 1.0f) : 0.0f;
+            const glm::vec2 d = p - (a + t * ab);
+            if (glm::dot(d, d) <= reach2) return true;
+          }
+        }
+      return false;
+    };
+    // Shortest first: of two runs along each other, the shorter goes.
+    std::vector<uint32_t>& order = joined.order;
+    order.resize(nr);
+    for (uint32_t r = 0; r < nr; ++r) order[r] = r;
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+      return runs.length_px[a] != runs.length_px[b] ? runs.length_px[a] < runs.length_px[b] : a > b;
+    });
+    for (const uint32_t r : order) {
+      const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+      if (e - b < 1 || !finite(runs.points[b])) continue;
+      bool all = along(runs.points[b], r);
+      for (uint32_t i = b; all && i + 1 < e; ++i) {
+        const glm::vec2 p = runs.points[i], q = runs.points[i + 1];
+        if (!finite(q)) { all = false; break; }
+        const int steps = std::clamp(static_cast<int>(std::ceil(glm::length(q - p) / 2.0f)), 1, 4096);
+        for (int k = 1; all && k <= steps; ++k) all = along(p + (q - p) * (static_cast<float>(k) / steps), r);
+      }
+      covered[r] = all;
+    }
+  }
+  // Ends binned by cells of the farthest join; each end links to the nearest free end of
+  // another run of its kind: first those that touch, then those a gap apart on one line.
   std::vector<int32_t>& link = joined.link;
   link.assign(2 * nr, -1);
-  const float cell = std::max(tol_px, 1e-3f);
+  const float reach = std::max(params.touch_px, params.bridge_px);
+  const float cell = std::max(reach, 1e-3f);
   auto& bins = joined.bins;
   bins.clear();
   auto key = [&](int x, int y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); };
@@ -222,7 +342,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, Jo
   };
   for (size_t end = 0; end < 2 * nr; ++end) {
     const size_t r = end / 2;
-    if (runs.offsets[r + 1] <= runs.offsets[r]) continue;
+    if (runs.offsets[r + 1] <= runs.offsets[r] || covered[r]) continue;
     const glm::vec2 p = endPoint(end);
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || std::abs(p.x) > 1e7f || std::abs(p.y) > 1e7f) continue;
     int x, y;
@@ -230,32 +350,36 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, Jo
     bins.emplace_back(key(x, y), static_cast<uint32_t>(end));
   }
   std::sort(bins.begin(), bins.end());
-  for (const auto& [k, e] : bins) {
-    if (link[e] >= 0) continue;
-    const glm::vec2 p = endPoint(e);
-    int x, y;
-    cellOf(p, x, y);
-    float best = tol_px;
-    int32_t best_end = -1;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const uint64_t kk = key(x + dx, y + dy);
-        for (auto it = std::lower_bound(bins.begin(), bins.end(), std::make_pair(kk, 0u));
-             it != bins.end() && it->first == kk; ++it) {
-          const uint32_t o = it->second;
-          if (o / 2 == e / 2 || link[o] >= 0 || runs.kinds[o / 2] != runs.kinds[e / 2]) continue;
-          const float d = glm::length(endPoint(o) - p);
-          if (d <= best) best = d, best_end = static_cast<int32_t>(o);
+  for (int pass = 0; pass < 2; ++pass) {
+    const bool bridging = pass == 1;
+    if (bridging && params.bridge_px <= params.touch_px) break;
+    for (const auto& [k, e] : bins) {
+      if (link[e] >= 0) continue;
+      const glm::vec2 p = endPoint(e);
+      int x, y;
+      cellOf(p, x, y);
+      float best = bridging ? params.bridge_px : params.touch_px;
+      int32_t best_end = -1;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const uint64_t kk = key(x + dx, y + dy);
+          for (auto it = std::lower_bound(bins.begin(), bins.end(), std::make_pair(kk, 0u));
+               it != bins.end() && it->first == kk; ++it) {
+            const uint32_t o = it->second;
+            if (o / 2 == e / 2 || link[o] >= 0 || runs.kinds[o / 2] != runs.kinds[e / 2]) continue;
+            const float d = glm::length(endPoint(o) - p);
+            if (d <= best && (!bridging || continues(e, o))) best = d, best_end = static_cast<int32_t>(o);
+          }
         }
+      if (best_end >= 0) {
+        link[e] = best_end;
+        link[static_cast<size_t>(best_end)] = static_cast<int32_t>(e);
       }
-    if (best_end >= 0) {
-      link[e] = best_end;
-      link[static_cast<size_t>(best_end)] = static_cast<int32_t>(e);
     }
   }
   // Chains: from each run with a free end (then the remaining cycles), run after run.
   std::vector<uint8_t>& done = joined.done;
-  done.assign(nr, 0);
+  done.assign(covered.begin(), covered.end());  // covered runs are left out
   auto emit = [&](size_t start_run, size_t entry_end) {
     float length = 0.0f, weighted = 0.0f;
     size_t r = start_run, entry = entry_end;
@@ -276,6 +400,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, Jo
       if (link[exit] < 0) break;
       const size_t next_entry = static_cast<size_t>(link[exit]);
       if (done[next_entry / 2]) break;  // a cycle closed
+      length += glm::length(endPoint(next_entry) - endPoint(exit));  // the bridge
       r = next_entry / 2;
       entry = next_entry;
     }
@@ -299,7 +424,7 @@ void buildScreenLines(const StrokeRuns& visible, const StrokeRuns& hidden, const
                       const StrokeView& view, std::span<const float> visible_u, ScreenLines& out,
                       ScreenLinesScratch& scratch) {
   out.clear();
-  joinRuns(visible, visible_u, 0.75f, scratch.joined);
+  joinRuns(visible, visible_u, JoinParams{}, scratch.joined);
   const StrokeRuns& runs = scratch.joined.runs;
   const std::span<const float> runs_u = scratch.joined.u;
   for (int k = 0; k < kLineKindCount; ++k) {

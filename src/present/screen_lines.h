@@ -31,6 +31,10 @@ struct JoinedRuns {
   std::vector<int32_t> link;        ///< per run end (2r start, 2r + 1 end): the end it joins, or -1
   std::vector<std::pair<uint64_t, uint32_t>> bins;  ///< run ends by grid cell
   std::vector<uint8_t> done;        ///< per run: already in a chain
+  std::vector<uint8_t> covered;     ///< per run: lies along longer runs (JoinParams::along_px)
+  std::vector<uint32_t> cell_start, cell_items, cell_fill;  ///< segments (first point) by grid cell
+  std::vector<uint32_t> run_of;     ///< per point: its run
+  std::vector<uint32_t> order;      ///< runs, shortest first
 };
 
 /// Scratch of buildScreenLines(); reuse between calls.
@@ -53,14 +57,35 @@ struct ScreenLinesScratch {
 bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const StrokeStyle& st, const StrokeView& view,
                    std::span<const float> u, ScreenLinesScratch& sc);
 
-/// Runs of one kind whose ends meet (within `tol_px`) joined into one run each, into
-/// out.runs (and their parameters into out.u when `u` is given): the visibility test and the
+/// When runs' ends are joined (joinRuns()).
+struct JoinParams {
+  /// Ends this close meet, whatever their directions, px. Default 0.75.
+  float touch_px = 0.75f;
+  /// Ends still free that are this close are bridged by a straight piece when the line
+  /// goes on through the gap: each end's outward direction turns by at most `max_turn_deg`
+  /// into the other's inward direction and into the gap, px. Default 3 (the visibility
+  /// test and the outline's completion leave gaps of a pixel or two between pieces of one
+  /// line; 0: no bridging).
+  float bridge_px = 3.0f;
+  /// Default 60°.
+  float max_turn_deg = 60.0f;
+  /// A run lying within this many pixels of longer runs of its kind all along is not drawn:
+  /// it would only thicken that line, or darken it where translucent (on coarse meshes a
+  /// short piece of interpolated contour lies along the outline's completing piece). Default
+  /// 1.5; 0: every run is drawn.
+  float along_px = 1.5f;
+};
+
+/// Runs of one kind whose ends meet (JoinParams) joined into one run each, into out.runs
+/// (and their parameters into out.u when `u` is given): the visibility test and the
 /// outline's completion cut a line into runs that meet end to end, and drawn apart each
 /// junction would get two caps (a bead where a translucent stroke overlaps itself) and two
-/// tapers. A run is reversed where needed; each end joins at most one other (the nearest),
-/// so a junction of three keeps one run apart. Opacity is the length-weighted mean, length
-/// the sum, the stroke index the first run's (out.first_run: that run's index in `runs`).
-void joinRuns(const StrokeRuns& runs, std::span<const float> u, float tol_px, JoinedRuns& out);
+/// tapers (a pinch). A run is reversed where needed; each end joins at most one other (the
+/// nearest), so a junction of three keeps one run apart; a run lying along longer ones is
+/// left out. Opacity is the length-weighted
+/// mean, length the sum (bridges included), the stroke index the first run's
+/// (out.first_run: that run's index in `runs`).
+void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams& params, JoinedRuns& out);
 
 /// Fills `out` with the strokes of `visible` (joined where they meet end to end, joinRuns();
 /// per kind, in style.lines' colours, widths and

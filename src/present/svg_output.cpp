@@ -84,7 +84,7 @@ void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView&
   }
   // Varying width: the runs joined where they meet, as the renderers draw them, each the
   // outline of its profile (the id of its first run).
-  joinRuns(runs, u, 0.75f, sc.joined);
+  joinRuns(runs, u, JoinParams{}, sc.joined);
   const StrokeRuns& joined = sc.joined.runs;
   const std::vector<float>& joined_u = sc.joined.u;
   const std::vector<uint32_t>& first = sc.joined.first_run;

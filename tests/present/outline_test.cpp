@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "present/outline.h"
+#include "present/screen_lines.h"
 
 namespace lodline {
 namespace {
@@ -110,6 +111,39 @@ TEST(Outline, APieceThatContinuesThePreviousFramesGoesOnWhateverItsLength) {
   EXPECT_NEAR(complete(kShort, &h), 20.0, 3.0);  // shrunk to 20 px: it continues the 80-px one
   EXPECT_NEAR(complete(kShort, &h), 20.0, 3.0);
   EXPECT_NEAR(complete(topEdge(0.5f, 0.9f), &h), 0.0, 0.0);  // elsewhere on the edge: new, short
+}
+
+// A completing piece grown over the end of the contour it continues is cut back to start
+// exactly there, so that the two are drawn as one stroke (no overlap: no bead, no pinch).
+TEST(Outline, APieceStartsWhereTheContourItContinuesEnds) {
+  // The contour draws the top edge's left part, px x 60..90.5 (model x -0.8..-0.19), 0.6 px
+  // inside it: the piece grown over its end starts at px 90, beside it.
+  StrokeRuns visible;
+  visible.offsets = {0};
+  for (int i = 0; i <= 30; ++i) {
+    const float x = -0.8f + 0.61f * static_cast<float>(i) / 30.0f;
+    visible.points.push_back({100.0f + 50.0f * x, 100.0f - 50.0f * 0.978f});
+    visible.positions.push_back({x, 0.978f, 0.0f});
+    visible.alpha.push_back(1.0f);
+  }
+  visible.offsets.push_back(static_cast<uint32_t>(visible.points.size()));
+  visible.kinds.push_back(LineKind::kContour);
+  visible.strokes.push_back(0);
+  visible.opacity.push_back(1.0f);
+  visible.length_px.push_back(30.5f);
+  const glm::vec2 contour_end = visible.points.back();
+  OutlineScratch scratch;
+  const double len = completeOutline(kLong, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{},
+                                     visible, scratch);
+  // The rest of the edge, to px 140, completed from the contour's end.
+  EXPECT_NEAR(len, 49.5, 1.0);
+  ASSERT_EQ(visible.strokeCount(), 2u);
+  const glm::vec2 piece_start = visible.points[visible.offsets[1]];
+  EXPECT_EQ(piece_start, contour_end);
+  JoinedRuns joined;
+  joinRuns(visible, {}, JoinParams{}, joined);
+  EXPECT_EQ(joined.runs.strokeCount(), 1u);
+  EXPECT_NEAR(joined.runs.length_px[0], 80.0f, 1.0f);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // pixel once where its joins are mitred.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -280,12 +281,14 @@ TEST(StrokeStyles, RunsThatMeetAreDrawnAsOneStroke) {
   addRun(runs, {100, 60.5f}, {100, 90.5f}, LineKind::kSuggestive);  // 2: another kind, not joined
   addRun(runs, {20, 100.5f}, {50, 100.5f});  // 3: alone
   JoinedRuns j;
-  joinRuns(runs, {}, 0.75f, j);
+  joinRuns(runs, {}, JoinParams{}, j);
   const StrokeRuns& joined = j.runs;
   const std::vector<uint32_t>& first = j.first_run;
   ASSERT_EQ(joined.strokeCount(), 3u);
   EXPECT_EQ(first[0], 0u);
-  EXPECT_NEAR(joined.length_px[0], runs.length_px[0] + runs.length_px[1], 1e-3f);
+  // Both runs and the step between their ends.
+  EXPECT_NEAR(joined.length_px[0],
+              runs.length_px[0] + runs.length_px[1] + glm::length(glm::vec2(60.3f, 40.7f) - glm::vec2(60, 40.5f)), 1e-3f);
   // The joined run goes 0 forwards, then 1 backwards, ending at (100, 60.5).
   const glm::vec2 last = joined.points[joined.offsets[1] - 1];
   EXPECT_NEAR(last.x, 100.0f, 1e-4f);
@@ -309,6 +312,64 @@ TEST(StrokeStyles, RunsThatMeetAreDrawnAsOneStroke) {
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) darkest = std::min<int>(darkest, img.pixel(x, y)[0]);
   EXPECT_GE(darkest, 126);  // 50% black over white: 127.5, never the 64 of a double blend
+}
+
+// Pieces of one line a gap of a pixel or two apart (the visibility test and the outline's
+// completion leave such gaps) are bridged into one stroke when the line goes on through the
+// gap; ends that turn away from each other, or lie farther apart, are not.
+TEST(StrokeStyles, GapsAlongOneLineAreBridged) {
+  StrokeRuns runs;
+  addRun(runs, {20, 40.5f}, {60, 40.5f});    // 0
+  addRun(runs, {62.5f, 40.5f}, {100, 41.5f});  // 1: 2.5 px on along the same line: bridged
+  addRun(runs, {20, 80.5f}, {60, 80.5f});    // 2
+  addRun(runs, {61.5f, 82.5f}, {61.5f, 120.5f});  // 3: 2.5 px away but turning 90°: apart
+  addRun(runs, {20, 140.5f}, {60, 140.5f});  // 4
+  addRun(runs, {64.5f, 140.5f}, {100, 140.5f});  // 5: 4.5 px on: too far
+  JoinedRuns j;
+  joinRuns(runs, {}, JoinParams{}, j);
+  ASSERT_EQ(j.runs.strokeCount(), 5u);
+  EXPECT_EQ(j.first_run[0], 0u);
+  EXPECT_EQ(j.runs.offsets[1] - j.runs.offsets[0], (runs.offsets[2] - runs.offsets[0]));
+  EXPECT_NEAR(j.runs.length_px[0], runs.length_px[0] + runs.length_px[1] + 2.5f, 1e-3f);
+  // Without bridging every run stays apart but the touching ones.
+  JoinParams no_bridge;
+  no_bridge.bridge_px = 0.0f;
+  joinRuns(runs, {}, no_bridge, j);
+  EXPECT_EQ(j.runs.strokeCount(), 6u);
+}
+
+// A short run lying along a longer one of its kind (within along_px) is left out: drawn, a
+// translucent line would be darker there. One 3 px away, or of another kind, is drawn.
+TEST(StrokeStyles, RunsLyingAlongALongerOneAreLeftOut) {
+  StrokeRuns runs;
+  addRun(runs, {20, 40.5f}, {100, 40.5f});  // 0: the line
+  addRun(runs, {40, 41.5f}, {55, 41.0f});   // 1: along it, 1 px off: left out
+  addRun(runs, {60, 43.5f}, {80, 43.5f});   // 2: 3 px off: drawn
+  addRun(runs, {40, 40.5f}, {55, 40.5f}, LineKind::kSuggestive);  // 3: another kind: drawn
+  JoinedRuns j;
+  joinRuns(runs, {}, JoinParams{}, j);
+  ASSERT_EQ(j.runs.strokeCount(), 3u);
+  std::vector<uint32_t> firsts(j.first_run.begin(), j.first_run.end());
+  std::sort(firsts.begin(), firsts.end());
+  EXPECT_EQ(firsts, (std::vector<uint32_t>{0, 2, 3}));
+  // Drawn half-opaque, the line is no darker where the short run lay.
+  ObjectStyle style = contourStyle(4.0f);
+  style.lines[LineKind::kContour].color = {0, 0, 0, 0.5f};
+  StrokeRuns two;
+  addRun(two, {20, 40.5f}, {100, 40.5f});
+  addRun(two, {40, 41.5f}, {55, 41.0f});
+  ScreenLines lines;
+  ScreenLinesScratch scratch;
+  buildScreenLines(two, StrokeRuns{}, style, StrokeView{}, {}, lines, scratch);
+  Image img(kW, kH);
+  std::fill(img.rgba.begin(), img.rgba.end(), 255);
+  WorkerPool pool(2);
+  drawStrokeTriangles(std::span(lines.vertices).subspan(lines.first[0], lines.count[0]), style.lines[LineKind::kContour].color,
+                      nullptr, img, pool);
+  int darkest = 255;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) darkest = std::min<int>(darkest, img.pixel(x, y)[0]);
+  EXPECT_GE(darkest, 126);
 }
 
 }  // namespace
