@@ -274,6 +274,25 @@ void addRun(StrokeRuns& r, glm::vec2 a, glm::vec2 b, LineKind kind = LineKind::k
   r.length_px.push_back(glm::length(b - a));
 }
 
+// The darkest red level of `runs` drawn as contours 4 px wide in half-opaque black over
+// white (127.5 where strokes blend once, about 64 where two overlap).
+int darkestHalfOpaque(const StrokeRuns& runs) {
+  ObjectStyle style = contourStyle(4.0f);
+  style.lines[LineKind::kContour].color = {0, 0, 0, 0.5f};
+  ScreenLines lines;
+  ScreenLinesScratch scratch;
+  buildScreenLines(runs, StrokeRuns{}, style, StrokeView{}, {}, lines, scratch);
+  Image img(kW, kH);
+  std::fill(img.rgba.begin(), img.rgba.end(), 255);
+  WorkerPool pool(2);
+  drawStrokeTriangles(std::span(lines.vertices).subspan(lines.first[0], lines.count[0]), style.lines[LineKind::kContour].color,
+                      nullptr, img, pool);
+  int darkest = 255;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) darkest = std::min<int>(darkest, img.pixel(x, y)[0]);
+  return darkest;
+}
+
 TEST(StrokeStyles, RunsThatMeetAreDrawnAsOneStroke) {
   StrokeRuns runs;
   addRun(runs, {20, 40.5f}, {60, 40.5f});   // 0
@@ -295,23 +314,10 @@ TEST(StrokeStyles, RunsThatMeetAreDrawnAsOneStroke) {
   EXPECT_NEAR(last.y, 60.5f, 1e-4f);
   // Half-opaque: one stroke blends once, so the junction is no darker than the rest (two
   // strokes would overlap their round caps there).
-  ObjectStyle style = contourStyle(4.0f);
-  style.lines[LineKind::kContour].color = {0, 0, 0, 0.5f};
-  ScreenLines lines;
-  ScreenLinesScratch scratch;
   StrokeRuns two;
   addRun(two, {20, 40.5f}, {60, 40.5f});
   addRun(two, {60.2f, 40.6f}, {100, 40.5f});
-  buildScreenLines(two, StrokeRuns{}, style, StrokeView{}, {}, lines, scratch);
-  Image img(kW, kH);
-  std::fill(img.rgba.begin(), img.rgba.end(), 255);
-  WorkerPool pool(2);
-  drawStrokeTriangles(std::span(lines.vertices).subspan(lines.first[0], lines.count[0]), style.lines[LineKind::kContour].color,
-                      nullptr, img, pool);
-  int darkest = 255;
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) darkest = std::min<int>(darkest, img.pixel(x, y)[0]);
-  EXPECT_GE(darkest, 126);  // 50% black over white: 127.5, never the 64 of a double blend
+  EXPECT_GE(darkestHalfOpaque(two), 126);  // 50% black over white: 127.5, never the 64 of a double blend
 }
 
 // Pieces of one line a gap of a pixel or two apart (the visibility test and the outline's
@@ -353,23 +359,10 @@ TEST(StrokeStyles, RunsLyingAlongALongerOneAreLeftOut) {
   std::sort(firsts.begin(), firsts.end());
   EXPECT_EQ(firsts, (std::vector<uint32_t>{0, 2, 3}));
   // Drawn half-opaque, the line is no darker where the short run lay.
-  ObjectStyle style = contourStyle(4.0f);
-  style.lines[LineKind::kContour].color = {0, 0, 0, 0.5f};
   StrokeRuns two;
   addRun(two, {20, 40.5f}, {100, 40.5f});
   addRun(two, {40, 41.5f}, {55, 41.0f});
-  ScreenLines lines;
-  ScreenLinesScratch scratch;
-  buildScreenLines(two, StrokeRuns{}, style, StrokeView{}, {}, lines, scratch);
-  Image img(kW, kH);
-  std::fill(img.rgba.begin(), img.rgba.end(), 255);
-  WorkerPool pool(2);
-  drawStrokeTriangles(std::span(lines.vertices).subspan(lines.first[0], lines.count[0]), style.lines[LineKind::kContour].color,
-                      nullptr, img, pool);
-  int darkest = 255;
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) darkest = std::min<int>(darkest, img.pixel(x, y)[0]);
-  EXPECT_GE(darkest, 126);
+  EXPECT_GE(darkestHalfOpaque(two), 126);
 }
 
 }  // namespace
