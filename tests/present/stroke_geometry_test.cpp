@@ -166,17 +166,23 @@ StrokeRuns straightRun(LineKind kind = LineKind::kContour, float length = 100.0f
   return r;
 }
 
-// Ink per column of `runs` drawn in `style` (contours only, in black).
-std::vector<double> columnInk(const StrokeRuns& runs, const ObjectStyle& style, Image* brushless = nullptr) {
+// `runs` as contours in `style`, drawn in `colour` (with the style's brush when `brushed`)
+// over white by the software renderer.
+Image drawContours(const StrokeRuns& runs, const ObjectStyle& style, glm::vec4 colour, bool brushed) {
   ScreenLines lines;
   ScreenLinesScratch scratch;
   buildScreenLines(runs, StrokeRuns{}, style, StrokeView{}, {}, lines, scratch);
   Image img(kW, kH);
   std::fill(img.rgba.begin(), img.rgba.end(), 255);
   WorkerPool pool(2);
-  const LineStyle& ls = style.lines[LineKind::kContour];
-  drawStrokeTriangles(std::span(lines.vertices).subspan(lines.first[0], lines.count[0]), glm::vec4(0, 0, 0, 1),
-                      ls.stroke.brush.get(), img, pool);
+  drawStrokeTriangles(std::span(lines.vertices).subspan(lines.first[0], lines.count[0]), colour,
+                      brushed ? style.lines[LineKind::kContour].stroke.brush.get() : nullptr, img, pool);
+  return img;
+}
+
+// Ink per column of `runs` drawn in `style` (contours only, in black).
+std::vector<double> columnInk(const StrokeRuns& runs, const ObjectStyle& style, Image* brushless = nullptr) {
+  const Image img = drawContours(runs, style, glm::vec4(0, 0, 0, 1), true);
   if (brushless) *brushless = img;
   std::vector<double> ink(kW, 0.0);
   for (int x = 0; x < kW; ++x)
@@ -279,14 +285,7 @@ void addRun(StrokeRuns& r, glm::vec2 a, glm::vec2 b, LineKind kind = LineKind::k
 int darkestHalfOpaque(const StrokeRuns& runs) {
   ObjectStyle style = contourStyle(4.0f);
   style.lines[LineKind::kContour].color = {0, 0, 0, 0.5f};
-  ScreenLines lines;
-  ScreenLinesScratch scratch;
-  buildScreenLines(runs, StrokeRuns{}, style, StrokeView{}, {}, lines, scratch);
-  Image img(kW, kH);
-  std::fill(img.rgba.begin(), img.rgba.end(), 255);
-  WorkerPool pool(2);
-  drawStrokeTriangles(std::span(lines.vertices).subspan(lines.first[0], lines.count[0]), style.lines[LineKind::kContour].color,
-                      nullptr, img, pool);
+  const Image img = drawContours(runs, style, style.lines[LineKind::kContour].color, false);
   int darkest = 255;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) darkest = std::min<int>(darkest, img.pixel(x, y)[0]);
