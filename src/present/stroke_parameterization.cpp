@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -260,7 +261,24 @@ void StrokeParameterizer::update(StrokeRuns& runs, const Camera& camera, int wid
           }
           window_.clear();
           for (size_t k = a; k < c; ++k) window_.push_back(landings_[k].u - sign * landings_[k].s);
-          const float offset = median(window_);
+          float offset = median(window_);
+          // Where the window holds two sides of a seam (two parents' textures), the point
+          // takes its nearest vote's side, moved toward the window's median by at most
+          // heal_px: a seam stays where it was on the surface and closes a little every
+          // frame, instead of jumping by a sample or two with the median (docs/strokes.md).
+          if (c > a && params.heal_px < std::numeric_limits<float>::infinity()) {
+            size_t nearest = a;
+            for (size_t k = a + 1; k < c; ++k)
+              if (std::abs(landings_[k].s - s) < std::abs(landings_[nearest].s - s)) nearest = k;
+            const float o_n = landings_[nearest].u - sign * landings_[nearest].s;
+            votes_.clear();
+            for (size_t k = a; k < c; ++k) {
+              const float o = landings_[k].u - sign * landings_[k].s;
+              if (std::abs(o - o_n) < params.inlier_px) votes_.push_back(o);
+            }
+            const float side = median(votes_);
+            offset = side + std::clamp(offset - side, -params.heal_px, params.heal_px);
+          }
           u_[i] = offset + sign * s;
         }
       }

@@ -11,7 +11,8 @@
 // be chained the other way round; each run takes the direction most of its votes agree
 // with). A run point's parameter is then u = s + the median of the votes within
 // `window_px` of arc length (of the nearest `min_window_votes` where fewer are that close),
-// so a stroke that slides
+// or, where those votes straddle a seam, the offset of its nearest vote's side moved toward
+// that median by at most `heal_px` per frame, so a stroke that slides
 // unevenly over the surface keeps its texture on it piece by piece, a stroke that split
 // inherits its parent's parameters on each part, and one that merged two parents keeps
 // each part's with a seam where they meet. A run that no sample reaches starts afresh at u = s.
@@ -46,6 +47,11 @@ struct StrokeParameterizationParams {
   float window_px = 8.0f;
   /// ... widened to the nearest this many votes where it holds fewer. Default 5.
   size_t min_window_votes = 5;
+  /// Seams (where two parents' textures meet on a run): a point takes the offset of the
+  /// votes on its nearest vote's side (within inlier_px of it), moved toward the window's
+  /// median by at most this many pixels per frame, so a seam stays put on the surface and
+  /// closes gradually. Default 2 (measured: docs/strokes.md); infinity: the median alone.
+  float heal_px = 2.0f;
 };
 
 class StrokeParameterizer {
