@@ -151,14 +151,18 @@ void stitchToContourEnds(const StrokeRuns& contours, const StrokeRuns& fill, flo
     // Per end of the piece: the contour end it meets (point index into `contours`), if any.
     uint32_t meets[2] = {UINT32_MAX, UINT32_MAX};
     EndHit hits[2];
-    for (int side = 0; side < 2 && e - b >= 2; ++side)
+    for (int side = 0; side < 2 && e - b >= 2; ++side) {
+      // A point within reach_px of arc length from the piece's end lies that close to it.
+      const glm::vec2 piece_end = fill.points[side == 1 ? e - 1 : b];
       for (size_t c = 0; c < contours.strokeCount(); ++c) {
         if (contours.kinds[c] != LineKind::kContour || contours.offsets[c + 1] - contours.offsets[c] < 2) continue;
         for (uint32_t end : {contours.offsets[c], contours.offsets[c + 1] - 1}) {
+          if (glm::length(contours.points[end] - piece_end) > reach_px + radius_px) continue;
           const EndHit h = nearestNearEnd(fill, r, side == 1, reach_px, contours.points[end]);
           if (h.distance <= radius_px && h.distance < hits[side].distance) hits[side] = h, meets[side] = end;
         }
       }
+    }
     // The piece's points between its (possibly new) ends.
     uint32_t first = b, last = e - 1;
     if (meets[0] != UINT32_MAX) first = hits[0].inner;

@@ -241,8 +241,8 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     auto finite = [](glm::vec2 p) {
       return std::isfinite(p.x) && std::isfinite(p.y) && std::abs(p.x) < 1e7f && std::abs(p.y) < 1e7f;
     };
-    // Segments binned (counting sort) by the cells of a grid over the points that their
-    // boxes cover; the cells at least along_px wide, at most 2^20 of them.
+    // The segments on a grid over the points, its cells at least along_px wide, at most
+    // 2^20 of them.
     glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (const glm::vec2& p : runs.points)
       if (finite(p)) lo = glm::min(lo, p), hi = glm::max(hi, p);
@@ -256,30 +256,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
         cell_px *= 2.0f;
       }
     }
-    auto cellOfPoint = [&](glm::vec2 p, int& x, int& y) {
-      x = std::clamp(static_cast<int>((p.x - lo.x) / cell_px), 0, gw - 1);
-      y = std::clamp(static_cast<int>((p.y - lo.y) / cell_px), 0, gh - 1);
-    };
-    std::vector<uint32_t>& start = joined.cell_start;
-    std::vector<uint32_t>& items = joined.cell_items;
-    start.assign(static_cast<size_t>(gw) * gh + 1, 0);
-    auto forCells = [&](uint32_t i, auto&& f) {
-      const glm::vec2 a = runs.points[i], b = runs.points[i + 1];
-      if (!finite(a) || !finite(b)) return;
-      int x0, y0, x1, y1;
-      cellOfPoint(glm::min(a, b), x0, y0);
-      cellOfPoint(glm::max(a, b), x1, y1);
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) f(static_cast<size_t>(y) * gw + x);
-    };
-    for (size_t r = 0; r < nr; ++r)
-      for (uint32_t i = runs.offsets[r]; i + 1 < runs.offsets[r + 1]; ++i) forCells(i, [&](size_t c) { ++start[c + 1]; });
-    for (size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
-    items.assign(start.back(), 0);
-    std::vector<uint32_t>& fill = joined.cell_fill;
-    fill.assign(start.begin(), start.end() - 1);
-    for (size_t r = 0; r < nr; ++r)
-      for (uint32_t i = runs.offsets[r]; i + 1 < runs.offsets[r + 1]; ++i) forCells(i, [&](size_t c) { items[fill[c]++] = i; });
+    joined.grid.build(runs, lo, cell_px, gw, gh, finite);
     std::vector<uint32_t>& run_of = joined.run_of;
     run_of.assign(runs.points.size(), 0);
     for (size_t r = 0; r < nr; ++r)
@@ -287,25 +264,19 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     // Whether `p` lies within along_px of a segment of a longer run of run r's kind.
     const float reach2 = params.along_px * params.along_px;
     auto along = [&](glm::vec2 p, size_t r) {
-      int x0, y0, x1, y1;
-      cellOfPoint(p - glm::vec2(params.along_px), x0, y0);
-      cellOfPoint(p + glm::vec2(params.along_px), x1, y1);
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const size_t c = static_cast<size_t>(y) * gw + x;
-          for (uint32_t k = start[c]; k < start[c + 1]; ++k) {
-            const uint32_t i = items[k], q = run_of[i];
-            if (q == r || runs.kinds[q] != runs.kinds[r] || covered[q] ||
-                runs.length_px[q] < runs.length_px[r] || (runs.length_px[q] == runs.length_px[r] && q > r))
-              continue;
-            const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
-            const float l2 = glm::dot(ab, ab);
-            const float t = l2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / l2, 0.0f, 1.0f) : 0.0f;
-            const glm::vec2 d = p - (a + t * ab);
-            if (glm::dot(d, d) <= reach2) return true;
-          }
-        }
-      return false;
+      bool found = false;
+      joined.grid.forEachNear(p, params.along_px, [&](uint32_t i) {
+        const uint32_t q = run_of[i];
+        if (found || q == r || runs.kinds[q] != runs.kinds[r] || covered[q] || runs.length_px[q] < runs.length_px[r] ||
+            (runs.length_px[q] == runs.length_px[r] && q > r))
+          return;
+        const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
+        const float l2 = glm::dot(ab, ab);
+        const float t = l2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / l2, 0.0f, 1.0f) : 0.0f;
+        const glm::vec2 d = p - (a + t * ab);
+        found = glm::dot(d, d) <= reach2;
+      });
+      return found;
     };
     // Shortest first: of two runs along each other, the shorter goes.
     std::vector<uint32_t>& order = joined.order;

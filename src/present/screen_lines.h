@@ -10,6 +10,7 @@
 #include "core/mesh.h"
 #include "core/render_params.h"
 #include "export/visibility.h"
+#include "present/segment_grid.h"
 #include "present/stroke_geometry.h"
 
 namespace lodline {
@@ -32,7 +33,7 @@ struct JoinedRuns {
   std::vector<std::pair<uint64_t, uint32_t>> bins;  ///< run ends by grid cell
   std::vector<uint8_t> done;        ///< per run: already in a chain
   std::vector<uint8_t> covered;     ///< per run: lies along longer runs (JoinParams::along_px)
-  std::vector<uint32_t> cell_start, cell_items, cell_fill;  ///< segments (first point) by grid cell
+  SegmentGrid grid;                 ///< the runs' segments (runs lying along others)
   std::vector<uint32_t> run_of;     ///< per point: its run
   std::vector<uint32_t> order;      ///< runs, shortest first
 };

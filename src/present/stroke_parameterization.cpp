@@ -93,35 +93,11 @@ void StrokeParameterizer::update(StrokeRuns& runs, const Camera& camera, int wid
   if (!prev_positions_.empty() && width > 0 && height > 0) {
     const int gw = static_cast<int>(std::ceil(static_cast<float>(width) / kCell)) + 1;
     const int gh = static_cast<int>(std::ceil(static_cast<float>(height) / kCell)) + 1;
-    auto cellOf = [&](glm::vec2 p, int& cx, int& cy) {
-      cx = std::clamp(static_cast<int>(std::floor(p.x / kCell)), 0, gw - 1);
-      cy = std::clamp(static_cast<int>(std::floor(p.y / kCell)), 0, gh - 1);
-    };
     auto inImage = [&](glm::vec2 p) {
       return std::isfinite(p.x) && std::isfinite(p.y) && p.x > -kCell && p.y > -kCell && p.x < width + kCell &&
              p.y < height + kCell;
     };
-    // Segments (point i to i + 1 of one run) binned by the cells their boxes cover.
-    cell_start_.assign(static_cast<size_t>(gw) * gh + 1, 0);
-    auto forCells = [&](uint32_t i, auto&& f) {
-      const glm::vec2 a = runs.points[i], b = runs.points[i + 1];
-      if (!inImage(a) || !inImage(b)) return;
-      int x0, y0, x1, y1;
-      cellOf(glm::min(a, b), x0, y0);
-      cellOf(glm::max(a, b), x1, y1);
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) f(static_cast<size_t>(y) * gw + x);
-    };
-    for (size_t r = 0; r < nr; ++r)
-      for (uint32_t i = runs.offsets[r]; i + 1 < runs.offsets[r + 1]; ++i)
-        forCells(i, [&](size_t c) { ++cell_start_[c + 1]; });
-    for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
-    cell_items_.assign(cell_start_.back(), 0);
-    cell_fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
-    auto& fill = cell_fill_;
-    for (size_t r = 0; r < nr; ++r)
-      for (uint32_t i = runs.offsets[r]; i + 1 < runs.offsets[r + 1]; ++i)
-        forCells(i, [&](size_t c) { cell_items_[fill[c]++] = i; });
+    grid_.build(runs, glm::vec2(0.0f), kCell, gw, gh, inImage);
 
     const PixelProjector projector(camera, width, height);
     const bool has_positions = runs.positions.size() == np && params.surface_px > 0.0f;
@@ -135,49 +111,40 @@ void StrokeParameterizer::update(StrokeRuns& runs, const Camera& camera, int wid
       glm::vec2 px;
       float depth = 0.0f;
       if (!projector.project(prev_positions_[j], px, depth) || !inImage(px)) continue;
-      // The cells the disc of radius match_px around the sample touches (2 × 2 at most for
-      // match_px under half a cell).
-      int x0, y0, x1, y1;
-      cellOf(px - glm::vec2(params.match_px), x0, y0);
-      cellOf(px + glm::vec2(params.match_px), x1, y1);
+      // The segments near the sample (in the 2 × 2 cells at most that the disc of radius
+      // match_px touches, match_px being under half a cell).
       const size_t first = candidates_.size();
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const size_t c = static_cast<size_t>(y) * gw + x;
-          for (uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-            const uint32_t i = cell_items_[k];
-            const uint32_t r = point_run_[i];
-            if (runs.kinds[r] != prev_kinds_[j]) continue;
-            const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
-            const float len2 = glm::dot(ab, ab);
-            const float t = len2 > 0.0f ? std::clamp(glm::dot(px - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
-            const float d = glm::length(px - (a + t * ab));
-            if (d > params.match_px) continue;
-            // And on the surface: the run's own point there must be the sample's, within
-            // surface_px pixels' worth at its depth (else another piece of line lies over it
-            // in the image, e.g. the other sheet of a fold: the sample did not persist).
-            if (has_positions) {
-              const glm::vec3 q = runs.positions[i] + t * (runs.positions[i + 1] - runs.positions[i]);
-              if (glm::length(q - prev_positions_[j]) > params.surface_px * world_per_px * (ortho ? 1.0f : depth))
-                continue;
-            }
-            const float s_here = arc_[i] + t * (arc_[i + 1] - arc_[i]);
-            auto same = std::find_if(candidates_.begin() + static_cast<std::ptrdiff_t>(first), candidates_.end(),
-                                     [r](const Candidate& c) { return c.run == r; });
-            if (same == candidates_.end()) {
-              candidates_.push_back({static_cast<uint32_t>(j), r, s_here, d});
-              continue;
-            }
-            // Near both ends of a closed run: the end the sample was nearer to on its loop.
-            const float length = arc_[runs.offsets[r + 1] - 1];
-            if (closed_[r] && prev_fraction_[j] >= 0.0f && std::abs(s_here - same->s) > 0.5f * length) {
-              if (std::abs(s_here / length - prev_fraction_[j]) < std::abs(same->s / length - prev_fraction_[j]))
-                *same = {static_cast<uint32_t>(j), r, s_here, d};
-            } else if (d < same->d) {
-              *same = {static_cast<uint32_t>(j), r, s_here, d};
-            }
-          }
+      grid_.forEachNear(px, params.match_px, [&](uint32_t i) {
+        const uint32_t r = point_run_[i];
+        if (runs.kinds[r] != prev_kinds_[j]) return;
+        const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
+        const float len2 = glm::dot(ab, ab);
+        const float t = len2 > 0.0f ? std::clamp(glm::dot(px - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+        const float d = glm::length(px - (a + t * ab));
+        if (d > params.match_px) return;
+        // And on the surface: the run's own point there must be the sample's, within
+        // surface_px pixels' worth at its depth (else another piece of line lies over it
+        // in the image, e.g. the other sheet of a fold: the sample did not persist).
+        if (has_positions) {
+          const glm::vec3 q = runs.positions[i] + t * (runs.positions[i + 1] - runs.positions[i]);
+          if (glm::length(q - prev_positions_[j]) > params.surface_px * world_per_px * (ortho ? 1.0f : depth)) return;
         }
+        const float s_here = arc_[i] + t * (arc_[i + 1] - arc_[i]);
+        auto same = std::find_if(candidates_.begin() + static_cast<std::ptrdiff_t>(first), candidates_.end(),
+                                 [r](const Candidate& c) { return c.run == r; });
+        if (same == candidates_.end()) {
+          candidates_.push_back({static_cast<uint32_t>(j), r, s_here, d});
+          return;
+        }
+        // Near both ends of a closed run: the end the sample was nearer to on its loop.
+        const float length = arc_[runs.offsets[r + 1] - 1];
+        if (closed_[r] && prev_fraction_[j] >= 0.0f && std::abs(s_here - same->s) > 0.5f * length) {
+          if (std::abs(s_here / length - prev_fraction_[j]) < std::abs(same->s / length - prev_fraction_[j]))
+            *same = {static_cast<uint32_t>(j), r, s_here, d};
+        } else if (d < same->d) {
+          *same = {static_cast<uint32_t>(j), r, s_here, d};
+        }
+      });
     }
     // Where a sample could land on several runs (a junction, strokes side by side), it lands
     // on the run that most samples of its previous run landed on nearest (its successor).

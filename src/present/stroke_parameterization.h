@@ -27,6 +27,7 @@
 #include "core/camera.h"
 #include "core/line_kind.h"
 #include "export/visibility.h"
+#include "present/segment_grid.h"
 
 namespace lodline {
 
@@ -97,7 +98,7 @@ class StrokeParameterizer {
   // Scratch.
   std::vector<float> arc_;            // per current point, arc length within its run
   std::vector<uint32_t> point_run_;   // per current point, its run
-  std::vector<uint32_t> cell_start_, cell_items_, cell_fill_;  // grid of current segments
+  SegmentGrid grid_;  // the current runs' segments
   struct Candidate {
     uint32_t sample;  ///< previous sample
     uint32_t run;     ///< a current run within match_px
