@@ -30,10 +30,12 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
   splitObjectLines(scene);
   times_.visibility = sw.lap();
   times_.strokes = 0.0;
+  times_.fade = 0.0;
   parameterizers_.resize(scene.size());
   faders_.resize(scene.size());
   for (size_t i = 0; i < scene.size(); ++i) {
     faders_[i].update(visible_[i], camera, frame.width, frame.height, fade_);
+    times_.fade += sw.elapsed();
     parameterizers_[i].update(visible_[i], camera, frame.width, frame.height, stroke_coherence_);
     const Bounds& b = scene[i].drawing->bounds();
     const StrokeView view{camera.eye, camera.forward(), b.center, b.radius};

@@ -47,8 +47,10 @@ struct PresentTimes {
   double readback = 0.0;    ///< the colour image (readImage())
   /// Depth readback, the strokes' visible and hidden runs and the outline's completion.
   double visibility = 0.0;
-  /// The runs made stroke geometry (present/stroke_geometry.h), every object.
+  /// The runs made stroke geometry (present/stroke_geometry.h), every object; includes `fade`.
   double strokes = 0.0;
+  /// Of `strokes`: fading new lines in (present/stroke_fade.h), every object; ~0 when off.
+  double fade = 0.0;
 };
 
 class ScenePresenter {

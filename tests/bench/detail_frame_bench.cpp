@@ -7,6 +7,9 @@
 //               visibility (depth readback, visible/hidden runs, outline completion)
 //   static:     drawing the same adapted mesh and lines again (no CPU stages)
 //   full:       full-detail mesh: lines (view, extract, chain) + draw
+// The `/fades` cases add issue 20's sequence options (docs/temporal-coherence.md): suggestive
+// contours faded by their motion (3 -> 12 px/s, in lines_ms) and new lines faded in over
+// 0.25 s (fade_ms, part of strokes_ms); compare them with the case above them.
 //   ./build/tests/bench/detail_frame_bench --benchmark_counters_tabular=true
 // (armadillo and the 1.1M knot at T = 16 px², and the knot at T = 7 px², ~100k faces)
 #include <benchmark/benchmark.h>
@@ -96,7 +99,7 @@ Stages stagesOf(const SceneDrawing& scene) {
   return st;
 }
 
-void detailFrame(benchmark::State& state, const std::string& name, float target_area) {
+void detailFrame(benchmark::State& state, const std::string& name, float target_area, bool fades) {
   auto model = loadModel(name);
   if (!model) {
     state.SkipWithError(("cannot load " + name + " (run scripts/setup.sh)").c_str());
@@ -116,7 +119,14 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
     state.SkipWithError("presenter set-up failed");
     return;
   }
-  SceneDrawing controlled = sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm), name);
+  LineParams line_params;
+  if (fades) {
+    line_params.suggestive_motion_fade_start = 3.0f;
+    line_params.suggestive_motion_fade_end = 12.0f;
+    (*controlled_presenter)->setFadeStep((1.0f / 30.0f) / 0.25f);
+  }
+  SceneDrawing controlled =
+      sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm, line_params), name);
   SceneDrawing full = sceneOf(std::make_unique<LodDrawing>(model->mesh), name);
   DetailParams detail;
   detail.target_area = target_area;
@@ -124,7 +134,7 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   // Converge at the first camera, as captures do.
   (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width,
                             frame.height, detail, 1.0f / 30.0f, 300);
-  std::vector<double> adapt, shape, lines, upload, draw, visibility, strokes, static_draw, full_lines, full_draw, faces;
+  std::vector<double> adapt, shape, lines, upload, draw, visibility, strokes, fade, static_draw, full_lines, full_draw, faces;
   float az = 0.0f;
   bool first = true;
   for (auto _ : state) {
@@ -140,6 +150,7 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
     draw.push_back((*controlled_presenter)->times().render);
     visibility.push_back((*controlled_presenter)->times().visibility);
     strokes.push_back((*controlled_presenter)->times().strokes);
+    fade.push_back((*controlled_presenter)->times().fade);
     faces.push_back(st.faces);
     // The same adapted mesh drawn again: the static cost of what controlled detail draws.
     (void)(*controlled_presenter)->present(controlled, cam, frame, false);
@@ -164,6 +175,7 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   state.counters["draw_ms"] = bench::median(draw);
   state.counters["visibility_ms"] = bench::median(visibility);
   state.counters["strokes_ms"] = bench::median(strokes);
+  state.counters["fade_ms"] = bench::median(fade);
   state.counters["controlled_ms"] = controlled_total;
   state.counters["static_ms"] = bench::median(static_draw);
   state.counters["full_lines_ms"] = bench::median(full_lines);
@@ -297,10 +309,15 @@ int main(int argc, char** argv) {
   // (the size of the CPU-stage figure in docs/performance.md).
   const std::pair<const char*, float> cases[] = {{"armadillo.off", 16.0f}, {"knot1m", 16.0f}, {"knot1m", 7.0f}};
   for (const auto& [name, t] : cases)
-    benchmark::RegisterBenchmark((std::string("detail_frame/") + name + "/T:" + std::to_string(static_cast<int>(t))).c_str(),
-                                 [name, t](benchmark::State& s) { lodline::detailFrame(s, name, t); })
-        ->Iterations(30)
-        ->Unit(benchmark::kMillisecond);
+    for (const bool fades : {false, true}) {
+      if (fades && t != 16.0f) continue;
+      const std::string label = std::string("detail_frame/") + name + "/T:" + std::to_string(static_cast<int>(t)) +
+                                (fades ? "/fades" : "");
+      benchmark::RegisterBenchmark(label.c_str(),
+                                   [name, t, fades](benchmark::State& s) { lodline::detailFrame(s, name, t, fades); })
+          ->Iterations(30)
+          ->Unit(benchmark::kMillisecond);
+    }
   benchmark::RegisterBenchmark("detail_frame/scene3_vs_knot1m/T:16",
                                [](benchmark::State& s) { lodline::sceneFrame(s, 16.0f); })
       ->Iterations(30)
