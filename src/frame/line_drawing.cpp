@@ -120,9 +120,8 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   if (smooth) smoother_.blendView(view_, smoothing, sc_threshold);
   if (lazy) {
     // Dw kr where a suggestive contour can be: at the corners of every face that the kr
-    // zero set crosses and whose corners all pass the n·v gate — the only places
-    // extractZeroSet reads the test (pass 1 also forms it on other crossed edges, but only
-    // such faces use it).
+    // zero set crosses and whose corners all pass the n·v gate — the only faces whose test
+    // extractZeroSets() uses (its per-vertex codes read the others' stale values, unused).
     const MeshAdjacency& adj = shape_.adjacency();
     const size_t nv = mesh_.positions.size();
     needed_mark_.resize(nv, 0);

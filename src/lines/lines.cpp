@@ -44,142 +44,217 @@ inline bool passes(float num, float den) { return (num > 0.0f && den > 0.0f) || 
 
 }  // namespace
 
-void extractZeroSet(std::span<const glm::vec3> positions,
-                    std::span<const std::array<uint32_t, 3>> faces,
-                    const MeshAdjacency& adj, const ZeroSetInput& in, LineKind type,
-                    LineScratch& scratch, LineSet& out) {
-  const size_t ne = adj.edges.size();
-  const size_t nv = positions.size();
-  if (in.value.size() != nv || adj.vertex_count != nv || adj.face_count != faces.size()) return;
+namespace {
+
+// What the face pass asks of a corner, per zero set: bit 0 the value is negative, bit 1 the
+// test passes, bit 2 the gate is shut. Zero set k uses bits 3k..3k+2 of a vertex's code.
+constexpr uint8_t kNegative = 1, kPasses = 2, kGated = 4;
+
+// Per vertex, the code bits of zero set `k`. Branch-free: the signs are as good as random
+// from one vertex to the next, and a mispredicted branch per vertex would cost more than the
+// whole test.
+void vertexCodes(const ZeroSetInput& in, int k, size_t begin, size_t end, uint8_t* code) {
+  const size_t nv = in.value.size();
   const bool has_test = in.test_num.size() == nv;
   const bool has_den = has_test && in.test_den.size() == nv;
   const bool has_gate = in.gate.size() == nv;
-  const bool has_gain = has_test && in.gain.size() == nv;
-  const std::span<const float> val = in.value;
-
-  // Pass 1, per edge: where does the value change sign, and what is the test there.
-  scratch.crosses.resize(ne);
-  scratch.cross_point.resize(ne);
-  if (has_test) {
-    scratch.cross_num.resize(ne);
-    scratch.cross_den.resize(ne);
+  const float* val = in.value.data();
+  const float* num = in.test_num.data();
+  const float* den = in.test_den.data();
+  const float* gate = in.gate.data();
+  const int shift = 3 * k;
+  for (size_t v = begin; v < end; ++v) {
+    const float n = has_test ? num[v] : 1.0f, d = has_den ? den[v] : 1.0f;
+    const bool pass = ((n > 0.0f) & (d > 0.0f)) | ((n < 0.0f) & (d < 0.0f));
+    const bool gated = has_gate && gate[v] < in.gate_min;
+    const int c = static_cast<int>(val[v] < 0.0f) | (pass ? kPasses : 0) | (gated ? kGated : 0);
+    code[v] = static_cast<uint8_t>(k == 0 ? c : (code[v] | (c << shift)));
   }
-  if (has_gain) scratch.cross_gain.resize(ne);
-  auto crossings = [&](size_t begin, size_t end) {
-    for (size_t e = begin; e < end; ++e) {
-      const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
-      const float va = val[a], vb = val[b];
-      const bool c = (va < 0.0f) != (vb < 0.0f);
-      scratch.crosses[e] = c;
-      if (!c) continue;
-      float t = va / (va - vb);
-      if (!(t >= 0.0f && t <= 1.0f)) t = 0.5f;  // NaN input
-      const float s = 1.0f - t;
-      scratch.cross_point[e] = s * positions[a] + t * positions[b];
-      if (has_test) {
-        scratch.cross_num[e] = s * in.test_num[a] + t * in.test_num[b];
-        scratch.cross_den[e] = has_den ? s * in.test_den[a] + t * in.test_den[b] : 1.0f;
-      }
-      if (has_gain) scratch.cross_gain[e] = s * in.gain[a] + t * in.gain[b];
-    }
-  };
-  if (scratch.pool) {
-    scratch.pool->forRange(ne, 8192, crossings);
-  } else {
-    crossings(0, ne);
-  }
+}
 
-  // Pass 2, per face: join the two crossings, keeping the pieces that pass the test. Points
-  // inside a face get ids from `interior` up, in face order.
-  auto faces_pass = [&](size_t begin, size_t end, LineSet& dst, uint32_t& interior_id) {
-    for (size_t f = begin; f < end; ++f) {
-      if (!adj.face_valid[f]) continue;
-      const auto& t = faces[f];
-      const bool s0 = val[t[0]] < 0.0f, s1 = val[t[1]] < 0.0f, s2 = val[t[2]] < 0.0f;
-      if (s0 == s1 && s1 == s2) continue;
-      if (has_gate && (in.gate[t[0]] < in.gate_min || in.gate[t[1]] < in.gate_min ||
-                       in.gate[t[2]] < in.gate_min))
-        continue;
-      if (has_test) {  // quick reject: the test fails at all three vertices
-        bool all_fail = true;
-        for (uint32_t v : t)
-          if (passes(in.test_num[v], has_den ? in.test_den[v] : 1.0f)) { all_fail = false; break; }
-        if (all_fail) continue;
-      }
-      // The lone corner i has the other sign; its two sides i and i-1 cross.
-      const int i = (s0 == s1) ? 2 : (s0 == s2 ? 1 : 0);
-      const uint32_t e1 = adj.face_edges[f][i];
-      const uint32_t e2 = adj.face_edges[f][(i + 2) % 3];
-      const glm::vec3& p1 = scratch.cross_point[e1];
-      const glm::vec3& p2 = scratch.cross_point[e2];
-      if (!has_test) {
-        pushSegment(dst, type, static_cast<uint32_t>(f), p1, e1, 1.0f, p2, e2, 1.0f);
-        continue;
-      }
-      const float n1 = scratch.cross_num[e1], n2 = scratch.cross_num[e2];
-      const float d1 = scratch.cross_den[e1], d2 = scratch.cross_den[e2];
-      // Breakpoints where num or den change sign along p1→p2 (linear interpolation).
-      float z[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-      int nz = 1;
-      if ((n1 >= 0.0f) != (n2 >= 0.0f)) z[nz++] = n1 / (n1 - n2);
-      if ((d1 >= 0.0f) != (d2 >= 0.0f)) z[nz++] = d1 / (d1 - d2);
-      z[nz++] = 1.0f;
-      if (nz == 4 && z[2] < z[1]) std::swap(z[1], z[2]);
-      for (int k = 0; k + 1 < nz; ++k) {
-        const float za = z[k], zb = z[k + 1];
-        if (!(zb > za)) continue;
-        const float zm = 0.5f * (za + zb);
-        const float nm = (1.0f - zm) * n1 + zm * n2, dm = (1.0f - zm) * d1 + zm * d2;
-        if (!passes(nm, dm)) continue;
-        const float na = (1.0f - za) * n1 + za * n2, da = (1.0f - za) * d1 + za * d2;
-        const float nb = (1.0f - zb) * n1 + zb * n2, db = (1.0f - zb) * d1 + zb * d2;
-        const glm::vec3 pa = k == 0 ? p1 : (1.0f - za) * p1 + za * p2;
-        const glm::vec3 pb = k + 2 == nz ? p2 : (1.0f - zb) * p1 + zb * p2;
-        const uint32_t ida = k == 0 ? e1 : interior_id++;
-        const uint32_t idb = k + 2 == nz ? e2 : interior_id++;
-        float ga = 1.0f, gb = 1.0f;
-        if (has_gain) {
-          const float g1 = scratch.cross_gain[e1], g2 = scratch.cross_gain[e2];
-          ga = std::clamp((1.0f - za) * g1 + za * g2, 0.0f, 1.0f);
-          gb = std::clamp((1.0f - zb) * g1 + zb * g2, 0.0f, 1.0f);
-        }
-        pushSegment(dst, type, static_cast<uint32_t>(f), pa, ida, ga * fadeAlpha(na, da, in.fade), pb,
-                    idb, gb * fadeAlpha(nb, db, in.fade));
-      }
-    }
+// Appends to `dst` the segments of zero set `in` in face f, whose corners are `corner` with
+// the codes c[3] (this zero set's bits), ids inside the face from `interior_id` up.
+void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_t, 3>& corner,
+                  const std::array<uint32_t, 3>& face_edges, uint32_t f, const uint8_t (&c)[3],
+                  const ZeroSetInput& in, bool has_test, bool has_den, bool has_gain, LineKind type, LineSet& dst,
+                  uint32_t& interior_id) {
+  // The crossing on the edge (a, b), always interpolated from its lower vertex index to its
+  // higher, so the two faces of an edge compute bit-identical points (and share the edge's
+  // id: exact chaining).
+  struct Crossing {
+    glm::vec3 p;
+    float num, den, gain;
   };
-  uint32_t interior_id = std::max(scratch.next_interior_id, static_cast<uint32_t>(ne));
+  auto crossingOf = [&](uint32_t a, uint32_t b) {
+    if (b < a) std::swap(a, b);  // as MeshAdjacency::edges stores it
+    const float va = in.value[a], vb = in.value[b];
+    float t = va / (va - vb);
+    if (!(t >= 0.0f && t <= 1.0f)) t = 0.5f;  // NaN input
+    const float s = 1.0f - t;
+    Crossing x{s * positions[a] + t * positions[b], 0.0f, 1.0f, 1.0f};
+    if (has_test) {
+      x.num = s * in.test_num[a] + t * in.test_num[b];
+      x.den = has_den ? s * in.test_den[a] + t * in.test_den[b] : 1.0f;
+    }
+    if (has_gain) x.gain = s * in.gain[a] + t * in.gain[b];
+    return x;
+  };
+  // The lone corner i has the other sign; its two sides i and i-1 cross.
+  const bool s0 = c[0] & kNegative, s1 = c[1] & kNegative, s2 = c[2] & kNegative;
+  const int i = (s0 == s1) ? 2 : (s0 == s2 ? 1 : 0);
+  const int i2 = (i + 2) % 3;
+  const uint32_t e1 = face_edges[i];   // joins corners i and i + 1
+  const uint32_t e2 = face_edges[i2];  // joins corners i + 2 and i
+  const Crossing x1 = crossingOf(corner[i], corner[(i + 1) % 3]), x2 = crossingOf(corner[i2], corner[i]);
+  const glm::vec3& p1 = x1.p;
+  const glm::vec3& p2 = x2.p;
+  if (!has_test) {
+    pushSegment(dst, type, f, p1, e1, 1.0f, p2, e2, 1.0f);
+    return;
+  }
+  const float n1 = x1.num, n2 = x2.num;
+  const float d1 = x1.den, d2 = x2.den;
+  // Breakpoints where num or den change sign along p1→p2 (linear interpolation).
+  float z[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+  int nz = 1;
+  if ((n1 >= 0.0f) != (n2 >= 0.0f)) z[nz++] = n1 / (n1 - n2);
+  if ((d1 >= 0.0f) != (d2 >= 0.0f)) z[nz++] = d1 / (d1 - d2);
+  z[nz++] = 1.0f;
+  if (nz == 4 && z[2] < z[1]) std::swap(z[1], z[2]);
+  for (int k = 0; k + 1 < nz; ++k) {
+    const float za = z[k], zb = z[k + 1];
+    if (!(zb > za)) continue;
+    const float zm = 0.5f * (za + zb);
+    const float nm = (1.0f - zm) * n1 + zm * n2, dm = (1.0f - zm) * d1 + zm * d2;
+    if (!passes(nm, dm)) continue;
+    const float na = (1.0f - za) * n1 + za * n2, da = (1.0f - za) * d1 + za * d2;
+    const float nb = (1.0f - zb) * n1 + zb * n2, db = (1.0f - zb) * d1 + zb * d2;
+    const glm::vec3 pa = k == 0 ? p1 : (1.0f - za) * p1 + za * p2;
+    const glm::vec3 pb = k + 2 == nz ? p2 : (1.0f - zb) * p1 + zb * p2;
+    const uint32_t ida = k == 0 ? e1 : interior_id++;
+    const uint32_t idb = k + 2 == nz ? e2 : interior_id++;
+    float ga = 1.0f, gb = 1.0f;
+    if (has_gain) {
+      const float g1 = x1.gain, g2 = x2.gain;
+      ga = std::clamp((1.0f - za) * g1 + za * g2, 0.0f, 1.0f);
+      gb = std::clamp((1.0f - zb) * g1 + zb * g2, 0.0f, 1.0f);
+    }
+    pushSegment(dst, type, f, pa, ida, ga * fadeAlpha(na, da, in.fade), pb, idb, gb * fadeAlpha(nb, db, in.fade));
+  }
+}
+
+}  // namespace
+
+void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
+                     const MeshAdjacency& adj, std::span<const ZeroSetInput> inputs, std::span<const LineKind> types,
+                     LineScratch& scratch, LineSet& out) {
+  const size_t ne = adj.edges.size();
+  const size_t nv = positions.size();
   const size_t nf = faces.size();
-  if (!scratch.pool || nf < 16384) {
-    faces_pass(0, nf, out, interior_id);
+  if (adj.vertex_count != nv || adj.face_count != nf || types.size() != inputs.size()) return;
+  // Two zero sets a pass (their codes share a byte); the ones whose value is missing drop out.
+  std::array<const ZeroSetInput*, 2> in{};
+  std::array<LineKind, 2> type{};
+  size_t count = 0;
+  for (size_t k = 0; k < inputs.size(); ++k) {
+    if (inputs[k].value.size() != nv) continue;
+    if (count == 2) {  // flush the first two, then go on with the rest
+      extractZeroSets(positions, faces, adj, std::span(inputs.data(), k), std::span(types.data(), k), scratch, out);
+      extractZeroSets(positions, faces, adj, inputs.subspan(k), types.subspan(k), scratch, out);
+      return;
+    }
+    in[count] = &inputs[k];
+    type[count++] = types[k];
+  }
+  if (count == 0) return;
+  bool has_test[2], has_den[2], has_gain[2];
+  for (size_t k = 0; k < count; ++k) {
+    has_test[k] = in[k]->test_num.size() == nv;
+    has_den[k] = has_test[k] && in[k]->test_den.size() == nv;
+    has_gain[k] = has_test[k] && in[k]->gain.size() == nv;
+  }
+
+  // Pass 1, per vertex: a byte of what the face pass asks of each corner (signs, tests,
+  // gates), so the face pass reads three bytes of a small array instead of up to five floats
+  // per corner and zero set, scattered over the mesh.
+  scratch.vertex_code.resize(nv);
+  uint8_t* code = scratch.vertex_code.data();
+  auto codes = [&](size_t begin, size_t end) {
+    for (size_t k = 0; k < count; ++k) vertexCodes(*in[k], static_cast<int>(k), begin, end, code);
+  };
+  if (scratch.pool && nv >= 16384) {
+    scratch.pool->forRange(nv, 8192, codes);
   } else {
-    // In parts on the worker threads, each into its own set with ids from ne, then appended
-    // in face order with the ids shifted: the same output as one pass.
-    const size_t parts = 4 * scratch.pool->threadCount();
-    scratch.part_sets.resize(parts);
-    scratch.part_interior.assign(parts, 0);
-    scratch.pool->forRange(parts, 1, [&](size_t begin, size_t end) {
-      for (size_t c = begin; c < end; ++c) {
-        LineSet& part = scratch.part_sets[c];
-        part.clear();
-        uint32_t id = static_cast<uint32_t>(ne);
-        faces_pass(nf * c / parts, nf * (c + 1) / parts, part, id);
-        scratch.part_interior[c] = id - static_cast<uint32_t>(ne);
+    codes(0, nv);
+  }
+
+  // Pass 2, per face: join the two crossings, keeping the pieces that pass the test; each
+  // (part of the faces, zero set) into its own set with ids inside faces from ne up, appended
+  // below in zero-set order, then face order, with the ids shifted: the same output as one
+  // pass per zero set over all faces.
+  const uint8_t* valid = adj.face_valid.data();
+  const std::array<uint32_t, 3>* tri = faces.data();
+  auto faces_pass = [&](size_t begin, size_t end, LineSet* dst, uint32_t* interior) {
+    for (size_t f = begin; f < end; ++f) {
+      // One well-predicted branch for the faces without a line (nearly all): a sign change,
+      // the gate open and the test passing at a corner, for either zero set. A face slot
+      // marked invalid (a vertex index out of range among them) reads no code.
+      const auto& t = tri[f];
+      const bool ok = valid[f];
+      const int c0 = ok ? code[t[0]] : 0, c1 = ok ? code[t[1]] : 0, c2 = ok ? code[t[2]] : 0;
+      const int all = c0 & c1 & c2, any = c0 | c1 | c2;
+      constexpr int kSign = kNegative | (kNegative << 3), kPass = kPasses | (kPasses << 3),
+                    kGate = kGated | (kGated << 3);
+      // Per zero set k, bit 3k of each mask: sign changes, test passes somewhere, gate open.
+      const int live = (any & ~all & kSign) & ((any & kPass) >> 1) & (~(any & kGate) >> 2);
+      if (!live) continue;
+      for (size_t k = 0; k < count; ++k) {
+        if (!(live & (1 << (3 * k)))) continue;
+        const uint8_t ck[3] = {static_cast<uint8_t>(c0 >> (3 * k)), static_cast<uint8_t>(c1 >> (3 * k)),
+                               static_cast<uint8_t>(c2 >> (3 * k))};
+        faceSegments(positions, t, adj.face_edges[f], static_cast<uint32_t>(f), ck, *in[k], has_test[k], has_den[k],
+                     has_gain[k], type[k], dst[k], interior[k]);
       }
+    }
+  };
+  const size_t parts = (!scratch.pool || nf < 16384) ? 1 : 4 * scratch.pool->threadCount();
+  scratch.part_sets.resize(parts * count);
+  scratch.part_interior.assign(parts * count, 0);
+  auto run_part = [&](size_t c) {
+    LineSet* dst = &scratch.part_sets[c * count];
+    uint32_t ids[2] = {static_cast<uint32_t>(ne), static_cast<uint32_t>(ne)};
+    for (size_t k = 0; k < count; ++k) dst[k].clear();
+    faces_pass(nf * c / parts, nf * (c + 1) / parts, dst, ids);
+    for (size_t k = 0; k < count; ++k) scratch.part_interior[c * count + k] = ids[k] - static_cast<uint32_t>(ne);
+  };
+  if (parts == 1) {
+    run_part(0);
+  } else {
+    scratch.pool->forRange(parts, 1, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; ++c) run_part(c);
     });
+  }
+  uint32_t interior_id = std::max(scratch.next_interior_id, static_cast<uint32_t>(ne));
+  for (size_t k = 0; k < count; ++k) {
     for (size_t c = 0; c < parts; ++c) {
-      const LineSet& part = scratch.part_sets[c];
+      const LineSet& part = scratch.part_sets[c * count + k];
       const uint32_t shift = interior_id - static_cast<uint32_t>(ne);
       out.points.insert(out.points.end(), part.points.begin(), part.points.end());
       out.alpha.insert(out.alpha.end(), part.alpha.begin(), part.alpha.end());
       for (uint32_t id : part.point_ids) out.point_ids.push_back(id >= ne ? id + shift : id);
       out.kinds.insert(out.kinds.end(), part.kinds.begin(), part.kinds.end());
       out.sources.insert(out.sources.end(), part.sources.begin(), part.sources.end());
-      for (int k = 0; k < kLineKindCount; ++k) out.counts[k] += part.counts[k];
-      interior_id += scratch.part_interior[c];
+      for (int j = 0; j < kLineKindCount; ++j) out.counts[j] += part.counts[j];
+      interior_id += scratch.part_interior[c * count + k];
     }
   }
   scratch.next_interior_id = interior_id;
+}
+
+void extractZeroSet(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
+                    const MeshAdjacency& adj, const ZeroSetInput& in, LineKind type, LineScratch& scratch,
+                    LineSet& out) {
+  extractZeroSets(positions, faces, adj, std::span(&in, 1), std::span(&type, 1), scratch, out);
 }
 
 void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
@@ -259,23 +334,25 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
   out.clear();
   scratch.next_interior_id = 0;
   const float fs = feature_size > 0.0f && std::isfinite(feature_size) ? feature_size : 1.0f;
+  ZeroSetInput in[2];
+  LineKind types[2];
+  size_t n = 0;
   if (params.contours) {
-    ZeroSetInput in;
-    in.value = view.ndotv;
-    if (params.contours_require_positive_kr) in.test_num = view.kr;
-    extractZeroSet(mesh.positions, mesh.faces, adj, in, LineKind::kContour, scratch, out);
+    in[n].value = view.ndotv;
+    if (params.contours_require_positive_kr) in[n].test_num = view.kr;
+    types[n++] = LineKind::kContour;
   }
   if (params.suggestive && view.sc_num.size() == mesh.positions.size()) {
-    ZeroSetInput in;
-    in.value = view.kr;
-    in.test_num = view.sc_num;
-    in.test_den = view.sc_den;
-    in.gate = view.ndotv;
-    in.gate_min = params.suggestive_min_ndotv;
-    in.fade = params.suggestive_fade / (fs * fs);
-    in.gain = suggestive_gain;
-    extractZeroSet(mesh.positions, mesh.faces, adj, in, LineKind::kSuggestive, scratch, out);
+    in[n].value = view.kr;
+    in[n].test_num = view.sc_num;
+    in[n].test_den = view.sc_den;
+    in[n].gate = view.ndotv;
+    in[n].gate_min = params.suggestive_min_ndotv;
+    in[n].fade = params.suggestive_fade / (fs * fs);
+    in[n].gain = suggestive_gain;
+    types[n++] = LineKind::kSuggestive;
   }
+  extractZeroSets(mesh.positions, mesh.faces, adj, std::span(in, n), std::span(types, n), scratch, out);
   extractEdgeLines(mesh, adj, face_normals, params, scratch, out, crease_vertices);
 }
 

@@ -8,8 +8,9 @@
 // Temporal Coherence" (NPAR 2004), §3–4 (tanθ·Dw kr test computed as num/den, fading of weak
 // lines); Jeong et al. 2005 §4 (contours and suggestive contours on the adapted mesh).
 //
-// Exact chaining: each edge's zero crossing is computed once per edge (not per face), so the
-// two faces sharing an edge emit bit-identical endpoints with the same point id.
+// Exact chaining: an edge's zero crossing is always interpolated from the edge's first vertex
+// to its second, so the two faces sharing an edge emit bit-identical endpoints with the same
+// point id (the edge's index).
 #pragma once
 
 #include <array>
@@ -100,9 +101,7 @@ struct ZeroSetInput {
 
 /// Scratch buffers of the extractors (per-edge crossings, marks); reuse between calls.
 struct LineScratch {
-  std::vector<glm::vec3> cross_point;
-  std::vector<float> cross_num, cross_den, cross_gain;
-  std::vector<uint8_t> crosses;
+  std::vector<uint8_t> vertex_code;  // per vertex: value sign, test, gate (extractZeroSet)
   std::vector<uint8_t> edge_mark;
   uint32_t next_interior_id = 0;
   /// Optional threads (not owned) for the per-edge and per-face passes; the output is the
@@ -114,10 +113,19 @@ struct LineScratch {
 
 /// Appends to `out` the segments of the zero set of `in.value` over the valid faces of
 /// (positions, faces), typed `type`. `adjacency` must be built from the same faces.
+/// Exactly extractZeroSets() with one input.
 void extractZeroSet(std::span<const glm::vec3> positions,
                     std::span<const std::array<uint32_t, 3>> faces,
                     const MeshAdjacency& adjacency, const ZeroSetInput& in, LineKind type,
                     LineScratch& scratch, LineSet& out);
+
+/// The zero sets of several inputs, inputs[k] typed types[k], in one pass over the faces
+/// (two at a time): the same segments, in the same order and with the same point ids, as
+/// extractZeroSet() called on each in turn. Inputs whose value does not hold one float per
+/// vertex are skipped.
+void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
+                     const MeshAdjacency& adjacency, std::span<const ZeroSetInput> inputs,
+                     std::span<const LineKind> types, LineScratch& scratch, LineSet& out);
 
 /// Appends creases (dihedral angle, marked and non-manifold edges) and boundaries, as
 /// enabled in `params`. `face_normals` holds faceCount unit normals (zero: degenerate, never

@@ -114,6 +114,51 @@ void BM_LinesExtractAndChain(benchmark::State& state) {
 }
 BENCHMARK(BM_LinesExtractAndChain)->DenseRange(0, 2)->ArgName("mesh")->Unit(benchmark::kMillisecond);
 
+// Occluding contours (kept where kr > 0) and suggestive contours only, as rtsc draws them
+// (threshold 0.01/fs², fade 0.03/fs², back faces rejected), on one thread, over the orbit
+// above: the per-view work `scripts/peer_side_by_side.sh` times against rtsc's
+// compute_perview + zero-crossing extraction on the same meshes, as stored.
+const char* kPeerMeshes[] = {"armadillo.off", "bunny00.off", "refined_elephant.off"};
+
+const Scene* peerScene(int which) {
+  static std::unique_ptr<Scene> scenes[3];
+  if (scenes[which]) return scenes[which].get();
+  auto loaded = loadMesh(std::string(LODLINE_DATA_MESHES) + "/" + kPeerMeshes[which]);
+  if (!loaded) return nullptr;
+  auto s = std::make_unique<Scene>();
+  s->mesh = std::move(loaded.value());
+  ShapeParams sp;
+  sp.threads = 1;
+  s->shape = ShapeCache(sp);
+  s->shape.compute(s->mesh);
+  s->bounds = computeBounds(s->mesh.positions);
+  s->feature_size = computeFeatureSize(s->shape.k1(), s->shape.k2(), s->bounds.radius);
+  scenes[which] = std::move(s);
+  return scenes[which].get();
+}
+
+void BM_ContoursSuggestive(benchmark::State& state) {
+  const Scene* s = peerScene(static_cast<int>(state.range(0)));
+  if (!s) return state.SkipWithError("mesh not found (run scripts/setup.sh)");
+  state.SetLabel(kPeerMeshes[state.range(0)]);
+  LineExtractor ex;
+  LineSet lines;
+  LineParams params;
+  params.contours_require_positive_kr = true;
+  params.creases = params.boundaries = params.complete_outline = false;
+  ex.extract(s->mesh, s->shape, ViewSpec::fromCamera(orbit(*s, 0)), params, s->feature_size, lines);
+  int step = 0;
+  for (auto _ : state) {
+    ex.extract(s->mesh, s->shape, ViewSpec::fromCamera(orbit(*s, ++step)), params, s->feature_size, lines);
+    benchmark::DoNotOptimize(lines.points.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(s->mesh.faceCount()));
+  state.counters["faces"] = static_cast<double>(s->mesh.faceCount());
+  state.counters["contour_segments"] = lines.counts[static_cast<int>(LineKind::kContour)];
+  state.counters["suggestive_segments"] = lines.counts[static_cast<int>(LineKind::kSuggestive)];
+}
+BENCHMARK(BM_ContoursSuggestive)->DenseRange(0, 2)->ArgName("mesh")->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace lodline
 
