@@ -1,6 +1,7 @@
 // DeCarlo et al. 2003 §3–4 and DeCarlo et al. 2004 §3; see view_quantities.h.
 #include "lines/view_quantities.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -52,6 +53,114 @@ inline void derivativeAt(const SurfaceFields& s, size_t i, const ViewAt& va, flo
 
 }  // namespace
 
+namespace {
+
+// Flat views of computeViewQuantities()' inputs and outputs.
+struct ViewArrays {
+  const float* pos;
+  const float* nrm;
+  const float* pd1;
+  const float* pd2;
+  const float* k1;
+  const float* k2;
+  const float* dc;
+  float* ndotv;
+  float* kr;
+  float* dwkr;
+  float* num;
+  float* den;
+  float ex, ey, ez, ox, oy, oz, sc_threshold;
+};
+
+// The arithmetic of viewAt() and derivativeAt() (computeSuggestiveQuantities() must agree
+// bit for bit), without branches, over blocks of vertices whose vec3 fields are first copied
+// to plain per-component arrays, so that the compiler runs it four vertices at a time: the
+// square roots and divisions are most of the view stage's time.
+template <bool kOrtho, bool kDerivs>
+void viewRange(const ViewArrays& a, size_t begin, size_t end) {
+  // Whole blocks in local arrays (a short last block padded with harmless values): a fixed
+  // trip count over memory nothing else aliases is what the vectoriser needs.
+  constexpr size_t kBlock = 64;
+  alignas(16) float nx[kBlock], ny[kBlock], nz[kBlock], dx[kBlock], dy[kBlock], dz[kBlock];
+  alignas(16) float p1x[kBlock], p1y[kBlock], p1z[kBlock], p2x[kBlock], p2y[kBlock], p2z[kBlock];
+  alignas(16) float c0[kBlock], c1[kBlock], c2[kBlock], c3[kBlock], k1[kBlock], k2[kBlock];
+  alignas(16) float o_ndotv[kBlock], o_kr[kBlock], o_dwkr[kBlock], o_num[kBlock];
+  const float ex = a.ex, ey = a.ey, ez = a.ez, ox = a.ox, oy = a.oy, oz = a.oz, thr = a.sc_threshold;
+  for (size_t b = begin; b < end; b += kBlock) {
+    const size_t n = std::min(kBlock, end - b);
+    for (size_t j = 0; j < n; ++j) {
+      const size_t i = b + j;
+      nx[j] = a.nrm[3 * i];
+      ny[j] = a.nrm[3 * i + 1];
+      nz[j] = a.nrm[3 * i + 2];
+      if constexpr (!kOrtho) {
+        dx[j] = ex - a.pos[3 * i];
+        dy[j] = ey - a.pos[3 * i + 1];
+        dz[j] = ez - a.pos[3 * i + 2];
+      }
+      p1x[j] = a.pd1[3 * i];
+      p1y[j] = a.pd1[3 * i + 1];
+      p1z[j] = a.pd1[3 * i + 2];
+      p2x[j] = a.pd2[3 * i];
+      p2y[j] = a.pd2[3 * i + 1];
+      p2z[j] = a.pd2[3 * i + 2];
+      k1[j] = a.k1[i];
+      k2[j] = a.k2[i];
+      if constexpr (kDerivs) {
+        c0[j] = a.dc[4 * i];
+        c1[j] = a.dc[4 * i + 1];
+        c2[j] = a.dc[4 * i + 2];
+        c3[j] = a.dc[4 * i + 3];
+      }
+    }
+    for (size_t j = n; j < kBlock; ++j) {
+      nx[j] = ny[j] = nz[j] = dx[j] = dy[j] = dz[j] = 1.0f;
+      p1x[j] = p1y[j] = p1z[j] = p2x[j] = p2y[j] = p2z[j] = 1.0f;
+      c0[j] = c1[j] = c2[j] = c3[j] = k1[j] = k2[j] = 0.0f;
+    }
+    for (size_t j = 0; j < kBlock; ++j) {
+      float vx = ox, vy = oy, vz = oz;
+      if constexpr (!kOrtho) {
+        const float len = std::sqrt(dx[j] * dx[j] + dy[j] * dy[j] + dz[j] * dz[j]);
+        const bool far = len > 0.0f;
+        const float l = far ? len : 1.0f;
+        const float qx = dx[j] / l, qy = dy[j] / l, qz = dz[j] / l;
+        vx = far ? qx : nx[j];
+        vy = far ? qy : ny[j];
+        vz = far ? qz : nz[j];
+      }
+      const float ndotv = vx * nx[j] + vy * ny[j] + vz * nz[j];
+      const float u = vx * p1x[j] + vy * p1y[j] + vz * p1z[j];
+      const float v = vx * p2x[j] + vy * p2y[j] + vz * p2z[j];
+      o_ndotv[j] = ndotv;
+      const float u2 = u * u, v2 = v * v;
+      o_kr[j] = k1[j] * u2 + k2[j] * v2;
+      if constexpr (kDerivs) {
+        const float sin2 = u2 + v2;
+        const bool ok = sin2 > 1e-12f;
+        const float s2 = ok ? sin2 : 1.0f;
+        const float cwww = u2 * (u * c0[j] + 3.0f * v * c1[j]) + v2 * (3.0f * u * c2[j] + v * c3[j]);
+        const float csc2 = 1.0f / s2;
+        const float tau = (k2[j] - k1[j]) * u * v * csc2;
+        const float sd = cwww * csc2 - 2.0f * ndotv * tau * tau;
+        const float sin_dwkr = ok ? sd : 0.0f;
+        const float dw = sin_dwkr / std::sqrt(s2);
+        o_dwkr[j] = ok ? dw : 0.0f;
+        o_num[j] = sin_dwkr - thr * ndotv;
+      }
+    }
+    std::copy_n(o_ndotv, n, a.ndotv + b);
+    std::copy_n(o_kr, n, a.kr + b);
+    if constexpr (kDerivs) {
+      std::copy_n(o_dwkr, n, a.dwkr + b);
+      std::copy_n(o_num, n, a.num + b);
+      std::copy_n(o_ndotv, n, a.den + b);
+    }
+  }
+}
+
+}  // namespace
+
 void computeViewQuantities(const SurfaceFields& s, const ViewSpec& view, float sc_threshold,
                            ViewQuantities& out, WorkerPool* pool) {
   const size_t nv = s.positions.size();
@@ -61,19 +170,19 @@ void computeViewQuantities(const SurfaceFields& s, const ViewSpec& view, float s
   out.dwkr.resize(with_derivs ? nv : 0);
   out.sc_num.resize(with_derivs ? nv : 0);
   out.sc_den.resize(with_derivs ? nv : 0);
+  if (nv == 0) return;
   const glm::vec3 ortho_dir = glm::normalize(view.toward_viewer);
+  const ViewArrays a{&s.positions[0].x, &s.normals[0].x, &s.pdir1[0].x, &s.pdir2[0].x, s.k1.data(), s.k2.data(),
+                     with_derivs ? &s.dcurv[0].x : nullptr, out.ndotv.data(), out.kr.data(), out.dwkr.data(),
+                     out.sc_num.data(), out.sc_den.data(), view.eye.x, view.eye.y, view.eye.z, ortho_dir.x,
+                     ortho_dir.y, ortho_dir.z, sc_threshold};
   auto range = [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      const ViewAt va = viewAt(s, view, ortho_dir, i);
-      out.ndotv[i] = va.ndotv;
-      const float u2 = va.u * va.u, v2 = va.v * va.v;
-      out.kr[i] = s.k1[i] * u2 + s.k2[i] * v2;
-      if (!with_derivs) continue;
-      float sin_dwkr, dwkr;
-      derivativeAt(s, i, va, sin_dwkr, dwkr);
-      out.dwkr[i] = dwkr;
-      out.sc_num[i] = sin_dwkr - sc_threshold * va.ndotv;
-      out.sc_den[i] = va.ndotv;
+    if (view.orthographic) {
+      if (with_derivs) viewRange<true, true>(a, begin, end);
+      else viewRange<true, false>(a, begin, end);
+    } else {
+      if (with_derivs) viewRange<false, true>(a, begin, end);
+      else viewRange<false, false>(a, begin, end);
     }
   };
   if (pool) {

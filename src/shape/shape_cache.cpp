@@ -255,6 +255,10 @@ void ShapeCache::vertexNormal(uint32_t v) {
     area += rec.corner[c];
     n += rec.normal_weight[c] * rec.n;
   }
+  finishNormal(v, n, area);
+}
+
+void ShapeCache::finishNormal(uint32_t v, glm::vec3 n, float area) {
   const float len = glm::length(n);
   n = (len > 0.0f && std::isfinite(len)) ? n / len : kFallbackNormal;
   if (!finite3(n)) n = kFallbackNormal;
@@ -303,8 +307,6 @@ void ShapeCache::faceCurvatureFit(const TriMesh& mesh, uint32_t f) {
 
 void ShapeCache::vertexCurvature(uint32_t v) {
   const MeshAdjacency& adj = adjacency_;
-  const glm::vec3& u = frames_[v].u;
-  const glm::vec3& w = frames_[v].w;
   glm::vec3 k(0.0f);
   float wsum = 0.0f;
   for (uint32_t i = adj.vertex_face_begin[v]; i < adj.vertex_face_end[v]; ++i) {
@@ -317,6 +319,12 @@ void ShapeCache::vertexCurvature(uint32_t v) {
     k += wt * projectCurvature(rec.curv, rec.rel[c]);
     wsum += wt;
   }
+  finishCurvature(v, k, wsum);
+}
+
+void ShapeCache::finishCurvature(uint32_t v, glm::vec3 k, float wsum) {
+  const glm::vec3& u = frames_[v].u;
+  const glm::vec3& w = frames_[v].w;
   float k1 = 0.0f, k2 = 0.0f;
   glm::vec2 ab(1.0f, 0.0f);  // pdir1 = a·u + b·w
   if (wsum > 0.0f) {
@@ -407,11 +415,74 @@ void ShapeCache::vertexDerivative(uint32_t v) {
     c += wt * projectDerivative(rec.dcurv, principalInFace(rec.rel[corner], ab));
     wsum += wt;
   }
+  finishDerivative(v, c, wsum);
+}
+
+void ShapeCache::finishDerivative(uint32_t v, glm::vec4 c, float wsum) {
   if (wsum > 0.0f) c /= wsum;
   if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]) ||
       !std::isfinite(c[3]))
     c = glm::vec4(0.0f);
   dcurv_[v] = c;
+}
+
+// The full compute on one thread, by scattering each face's share to its three vertices in
+// face order (Rusinkiewicz 2004's own loop order) instead of gathering each vertex's ring.
+// A vertex's ring lists its faces in increasing order, so every vertex receives the same
+// terms in the same order as its gather adds them, and the results are bit-identical; but
+// the face records stream through once per phase and only the small per-vertex sums are
+// touched at random — the gathers' random reads of whole face records were most of the time.
+void ShapeCache::computeScattered(const TriMesh& mesh, bool eager_derivatives) {
+  const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
+  const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
+  const uint8_t* valid = adjacency_.face_valid.data();
+  sum_.assign(nv, glm::vec4(0.0f));
+  sum_w_.assign(nv, 0.0f);
+  // Normals and point areas: every face of a ring (a valid face) adds to its corners.
+  for (uint32_t f = 0; f < nf; ++f) {
+    faceGeometry(mesh, f);
+    if (!valid[f]) continue;
+    const FaceRecord& rec = faces_[f];
+    for (int j = 0; j < 3; ++j) {
+      const uint32_t v = mesh.faces[f][j];
+      sum_w_[v] += rec.corner[j];
+      sum_[v] += glm::vec4(rec.normal_weight[j] * rec.n, 0.0f);
+    }
+  }
+  for (uint32_t v = 0; v < nv; ++v) finishNormal(v, glm::vec3(sum_[v]), sum_w_[v]);
+  // Curvature: the faces with a fit add where their corner weight is positive.
+  std::fill(sum_.begin(), sum_.end(), glm::vec4(0.0f));
+  std::fill(sum_w_.begin(), sum_w_.end(), 0.0f);
+  for (uint32_t f = 0; f < nf; ++f) {
+    faceCurvatureFit(mesh, f);
+    const FaceRecord& rec = faces_[f];
+    if (!valid[f] || !(rec.ok & kCurvOk)) continue;
+    for (int j = 0; j < 3; ++j) {
+      const float wt = rec.corner[j];
+      if (!(wt > 0.0f)) continue;
+      const uint32_t v = mesh.faces[f][j];
+      sum_[v] += glm::vec4(wt * projectCurvature(rec.curv, rec.rel[j]), 0.0f);
+      sum_w_[v] += wt;
+    }
+  }
+  for (uint32_t v = 0; v < nv; ++v) finishCurvature(v, glm::vec3(sum_[v]), sum_w_[v]);
+  if (!eager_derivatives) return;
+  std::fill(sum_.begin(), sum_.end(), glm::vec4(0.0f));
+  std::fill(sum_w_.begin(), sum_w_.end(), 0.0f);
+  for (uint32_t f = 0; f < nf; ++f) {
+    faceDerivativeFit(mesh, f);
+    const FaceRecord& rec = faces_[f];
+    if (!valid[f] || !(rec.ok & kDcurvOk)) continue;
+    for (int j = 0; j < 3; ++j) {
+      const float wt = rec.corner[j];
+      if (!(wt > 0.0f)) continue;
+      const uint32_t v = mesh.faces[f][j];
+      const glm::vec2 ab(vertex_kab_[v][2], vertex_kab_[v][3]);
+      sum_[v] += wt * projectDerivative(rec.dcurv, principalInFace(rec.rel[j], ab));
+      sum_w_[v] += wt;
+    }
+  }
+  for (uint32_t v = 0; v < nv; ++v) finishDerivative(v, sum_[v], sum_w_[v]);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -454,17 +525,22 @@ void ShapeCache::compute(const TriMesh& mesh) {
     resize(nv, nf);
     stats_.connectivity_rebuilt = true;
   }
-  // Each phase reads only what the previous phases finished and writes only its own face or
-  // vertex, so the loops split over threads without changing a bit of the result.
-  parallelFor(nf, [&](uint32_t f) { faceGeometry(mesh, f); });
-  parallelFor(nv, [&](uint32_t v) { vertexNormal(v); });
-  parallelFor(nf, [&](uint32_t f) { faceCurvatureFit(mesh, f); });
-  parallelFor(nv, [&](uint32_t v) { vertexCurvature(v); });
   const bool eager = params_.derivatives && !params_.lazy_derivatives;
-  if (eager) {
-    parallelFor(nf, [&](uint32_t f) { faceDerivativeFit(mesh, f); });
-    parallelFor(nv, [&](uint32_t v) { vertexDerivative(v); });
-  } else if (params_.lazy_derivatives && ++dgen_ == 0) {  // every tensor is stale now
+  if (params_.threads == 1 && !external_pool_) {
+    computeScattered(mesh, eager);
+  } else {
+    // Each phase reads only what the previous phases finished and writes only its own face
+    // or vertex, so the loops split over threads without changing a bit of the result.
+    parallelFor(nf, [&](uint32_t f) { faceGeometry(mesh, f); });
+    parallelFor(nv, [&](uint32_t v) { vertexNormal(v); });
+    parallelFor(nf, [&](uint32_t f) { faceCurvatureFit(mesh, f); });
+    parallelFor(nv, [&](uint32_t v) { vertexCurvature(v); });
+    if (eager) {
+      parallelFor(nf, [&](uint32_t f) { faceDerivativeFit(mesh, f); });
+      parallelFor(nv, [&](uint32_t v) { vertexDerivative(v); });
+    }
+  }
+  if (!eager && params_.lazy_derivatives && ++dgen_ == 0) {  // every tensor is stale now
     std::fill(vertex_dgen_.begin(), vertex_dgen_.end(), 0);
     std::fill(face_dgen_.begin(), face_dgen_.end(), 0);
     dgen_ = 1;

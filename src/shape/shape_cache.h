@@ -189,6 +189,12 @@ class ShapeCache {
   void vertexCurvature(uint32_t v);
   void faceDerivativeFit(const TriMesh& mesh, uint32_t f);
   void vertexDerivative(uint32_t v);
+  // The vertex kernels' last step, from the ring's sums (shared by gather and scatter).
+  void finishNormal(uint32_t v, glm::vec3 n, float area);
+  void finishCurvature(uint32_t v, glm::vec3 k, float wsum);
+  void finishDerivative(uint32_t v, glm::vec4 c, float wsum);
+  // compute() on one thread: the faces scatter to their vertices, bit-identical to gathers.
+  void computeScattered(const TriMesh& mesh, bool eager_derivatives);
   // Incremental bookkeeping over the nested sets C ⊆ V1 ⊆ V2 ⊆ V3, F1 ⊆ F2 ⊆ F3 kept as
   // prefixes of inc_verts_/inc_faces_: appends the unstamped faces around
   // inc_verts_[begin, end), resp. the unstamped vertices of inc_faces_[begin, end).
@@ -236,6 +242,8 @@ class ShapeCache {
   std::vector<glm::vec3> pdir1_, pdir2_;
   std::vector<glm::vec4> vertex_kab_;  // (k1, k2, a, b): pdir1 = a·u + b·w in frames_
   std::vector<glm::vec4> dcurv_;
+  std::vector<glm::vec4> sum_;  // computeScattered(): per-vertex sums of one phase
+  std::vector<float> sum_w_;
 
   // Incremental scratch: stamps avoid clearing per-vertex/face marks.
   std::vector<uint32_t> vertex_stamp_, face_stamp_;

@@ -103,19 +103,26 @@ BENCHMARK(BM_ShapeFull)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ShapeFull)->Args({1, 0, 1})->ArgNames({"mesh", "derivs", "threads"})->Unit(benchmark::kMillisecond);
 
-// Including the adjacency build (first frame / connectivity change).
+// From nothing: a new cache (arrays, adjacency, then everything), as the first frame pays
+// and as rtsc's need_curvatures + need_dcurv on a fresh mesh do (scripts/peer_side_by_side.py).
+// range(1): worker threads as in BM_ShapeFull.
 void BM_ShapeFullWithAdjacency(benchmark::State& state) {
   const TriMesh* mesh = benchMesh(kMeshes[state.range(0)]);
   if (!mesh) return state.SkipWithError("mesh not found (run scripts/setup.sh)");
   state.SetLabel(kMeshes[state.range(0)]);
+  ShapeParams params;
+  params.threads = static_cast<unsigned>(state.range(1));
   for (auto _ : state) {
-    ShapeCache shape;
+    ShapeCache shape(params);
     shape.compute(*mesh);
     benchmark::DoNotOptimize(shape.k1().data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh->vertexCount()));
 }
-BENCHMARK(BM_ShapeFullWithAdjacency)->DenseRange(0, 3)->ArgName("mesh")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShapeFullWithAdjacency)
+    ->ArgsProduct({{0, 1, 2, 3}, {1, 0}})
+    ->ArgNames({"mesh", "threads"})
+    ->Unit(benchmark::kMillisecond);
 
 // Connectivity changes every frame (the LOD stage splits and collapses): update() rebuilds
 // the adjacency (O(V + F)) and recomputes around the changed face slot only. Two face arrays

@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""lodline's curvature and per-view line stages against rtsc's, side by side in one run
+(docs/performance.md, "Against rtsc"). The peer is a small driver around trimesh2 and the
+per-view code of rtsc (Rusinkiewicz & DeCarlo's real-time suggestive contours), built
+separately (GPL, not part of lodline) and given with --peer; it is called as
+
+    PEER MESH REPS VIEWS
+
+and prints `curv median X ms` (need_normals + need_curvatures + need_dcurv on a fresh mesh,
+point areas included) and `perview median Y ms/view` (n.v, kr and the suggestive test per
+vertex, then contours where kr > 0 and suggestive contours, threshold 0.01/fs^2, fade
+0.03/fs^2, back faces culled, over the orbit of tests/bench/lines_bench).
+
+lodline's counterparts, one thread, the meshes as stored:
+  curvature + derivatives, fresh   BM_ShapeFullWithAdjacency threads:1 (new cache: arrays,
+                                   adjacency, corner areas, normals, curvature, derivatives)
+  curvature + derivatives, kept    BM_ShapeFull derivs:1 threads:1 (adjacency kept: what a
+                                   frame pays when every vertex moved)
+  contours + suggestive per view   BM_ContoursSuggestive
+
+Each run times the peer and then lodline on each mesh, so the two share the machine's
+state; the table gives each run's ratio (peer ms / lodline ms: above 1, lodline is faster)
+and their median.
+
+  scripts/peer_side_by_side.py --peer PATH [--build build] [--runs 3] [--meshes a.off,...]
+"""
+import argparse
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+
+ap = argparse.ArgumentParser()
+ap.add_argument("--peer", required=True, help="the rtsc driver (PEER MESH REPS VIEWS)")
+ap.add_argument("--build", default="build")
+ap.add_argument("--runs", type=int, default=3)
+ap.add_argument("--meshes", default="armadillo.off,bunny00.off,refined_elephant.off")
+ap.add_argument("--data", default="data/meshes")
+ap.add_argument("--reps", type=int, default=5, help="peer curvature repetitions")
+ap.add_argument("--views", type=int, default=100, help="peer views per repetition")
+args = ap.parse_args()
+
+meshes = args.meshes.split(",")
+# Indices of the meshes in tests/bench/shape_bench.cpp (kMeshes) and lines_bench.cpp (kPeerMeshes).
+shape_index = {"armadillo.off": 0, "bunny00.off": 1, "refined_elephant.off": 2}
+lines_index = {"armadillo.off": 0, "bunny00.off": 1, "refined_elephant.off": 2}
+for m in meshes:
+    if m not in shape_index:
+        sys.exit(f"peer_side_by_side.py: {m}: not among the benchmarks' meshes {sorted(shape_index)}")
+    if not os.path.exists(os.path.join(args.data, m)):
+        sys.exit(f"peer_side_by_side.py: {os.path.join(args.data, m)}: missing (run scripts/setup.sh)")
+for exe in ("shape_bench", "lines_bench"):
+    if not os.access(os.path.join(args.build, "tests/bench", exe), os.X_OK):
+        sys.exit(f"peer_side_by_side.py: {args.build}/tests/bench/{exe}: not built")
+
+
+def peer(mesh):
+    out = subprocess.run([args.peer, os.path.join(args.data, mesh), str(args.reps), str(args.views)],
+                         capture_output=True, text=True, check=True).stdout
+    curv = re.search(r"curv median ([0-9.]+) ms", out)
+    view = re.search(r"perview median ([0-9.]+) ms/view", out)
+    if not curv or not view:
+        sys.exit(f"peer_side_by_side.py: unexpected peer output:\n{out}")
+    return float(curv.group(1)), float(view.group(1))
+
+
+def bench(exe, pattern):
+    out = subprocess.run([os.path.join(args.build, "tests/bench", exe), f"--benchmark_filter={pattern}",
+                          "--benchmark_format=json", "--benchmark_min_time=0.5"],
+                         capture_output=True, text=True, check=True).stdout
+    runs = [b for b in json.loads(out)["benchmarks"] if b.get("run_type", "iteration") == "iteration"]
+    if len(runs) != 1:
+        sys.exit(f"peer_side_by_side.py: {exe} {pattern}: {len(runs)} results")
+    b = runs[0]
+    scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b["time_unit"]]
+    return b["real_time"] * scale
+
+
+rows = {m: [] for m in meshes}
+for run in range(args.runs):
+    for m in meshes:
+        p_curv, p_view = peer(m)
+        s = shape_index[m]
+        fresh = bench("shape_bench", f"^BM_ShapeFullWithAdjacency/mesh:{s}/threads:1$")
+        kept = bench("shape_bench", f"^BM_ShapeFull/mesh:{s}/derivs:1/threads:1$")
+        view = bench("lines_bench", f"^BM_ContoursSuggestive/mesh:{lines_index[m]}$")
+        rows[m].append((p_curv, fresh, kept, p_view, view))
+        print(f"run {run + 1} {m}: curvature peer {p_curv:.2f} ms, lodline fresh {fresh:.2f} / kept {kept:.2f} ms; "
+              f"per view peer {p_view:.3f} ms, lodline {view:.3f} ms", file=sys.stderr)
+
+print("| mesh | curvature + derivatives: rtsc / lodline fresh / lodline kept (ms) | speed-up fresh, kept "
+      "| contours + suggestive per view: rtsc / lodline (ms) | speed-up |")
+print("|---|---|---|---|---|")
+for m in meshes:
+    r = rows[m]
+    med = lambda k: statistics.median(x[k] for x in r)
+    fresh_ratio = [x[0] / x[1] for x in r]
+    kept_ratio = [x[0] / x[2] for x in r]
+    view_ratio = [x[3] / x[4] for x in r]
+    runs = lambda v: ", ".join(f"{x:.2f}" for x in v)
+    print(f"| {m} | {med(0):.1f} / {med(1):.1f} / {med(2):.1f} | {statistics.median(fresh_ratio):.2f}× "
+          f"({runs(fresh_ratio)}), {statistics.median(kept_ratio):.2f}× ({runs(kept_ratio)}) "
+          f"| {med(3):.2f} / {med(4):.2f} | {statistics.median(view_ratio):.2f}× ({runs(view_ratio)}) |")
