@@ -50,26 +50,50 @@ namespace {
 // test passes, bit 2 the gate is shut. Zero set k uses bits 3k..3k+2 of a vertex's code.
 constexpr uint8_t kNegative = 1, kPasses = 2, kGated = 4;
 
-// Per vertex, the code bits of zero set `k`. Branch-free: the signs are as good as random
-// from one vertex to the next, and a mispredicted branch per vertex would cost more than the
-// whole test.
-void vertexCodes(const ZeroSetInput& in, int k, size_t begin, size_t end, uint8_t* code) {
+// Per vertex, the code bits of zero set `k`. Branch-free and specialised on what the input
+// has, so the compiler vectorises it: the signs are as good as random from one vertex to the
+// next, and a mispredicted branch per vertex would cost more than the whole test.
+template <bool kTest, bool kDen, bool kGate, int kShift>
+void vertexCodesOf(const ZeroSetInput& in, size_t begin, size_t end, uint8_t* __restrict code) {
+  const float* __restrict val = in.value.data();
+  const float* __restrict num = in.test_num.data();
+  const float* __restrict den = in.test_den.data();
+  const float* __restrict gate = in.gate.data();
+  const float gate_min = in.gate_min;
+  for (size_t v = begin; v < end; ++v) {
+    int c = val[v] < 0.0f ? kNegative : 0;
+    if constexpr (kTest) {
+      const float n = num[v], d = kDen ? den[v] : 1.0f;
+      c |= (((n > 0.0f) & (d > 0.0f)) | ((n < 0.0f) & (d < 0.0f))) ? kPasses : 0;
+    } else {
+      c |= kPasses;
+    }
+    if constexpr (kGate) c |= gate[v] < gate_min ? kGated : 0;
+    if constexpr (kShift == 0) {
+      code[v] = static_cast<uint8_t>(c);
+    } else {
+      code[v] = static_cast<uint8_t>(code[v] | (c << kShift));
+    }
+  }
+}
+
+template <int kShift>
+void vertexCodesShifted(const ZeroSetInput& in, size_t begin, size_t end, uint8_t* code) {
   const size_t nv = in.value.size();
   const bool has_test = in.test_num.size() == nv;
   const bool has_den = has_test && in.test_den.size() == nv;
   const bool has_gate = in.gate.size() == nv;
-  const float* val = in.value.data();
-  const float* num = in.test_num.data();
-  const float* den = in.test_den.data();
-  const float* gate = in.gate.data();
-  const int shift = 3 * k;
-  for (size_t v = begin; v < end; ++v) {
-    const float n = has_test ? num[v] : 1.0f, d = has_den ? den[v] : 1.0f;
-    const bool pass = ((n > 0.0f) & (d > 0.0f)) | ((n < 0.0f) & (d < 0.0f));
-    const bool gated = has_gate && gate[v] < in.gate_min;
-    const int c = static_cast<int>(val[v] < 0.0f) | (pass ? kPasses : 0) | (gated ? kGated : 0);
-    code[v] = static_cast<uint8_t>(k == 0 ? c : (code[v] | (c << shift)));
-  }
+  if (has_test && has_den && has_gate) return vertexCodesOf<true, true, true, kShift>(in, begin, end, code);
+  if (has_test && has_den) return vertexCodesOf<true, true, false, kShift>(in, begin, end, code);
+  if (has_test && has_gate) return vertexCodesOf<true, false, true, kShift>(in, begin, end, code);
+  if (has_test) return vertexCodesOf<true, false, false, kShift>(in, begin, end, code);
+  if (has_gate) return vertexCodesOf<false, false, true, kShift>(in, begin, end, code);
+  vertexCodesOf<false, false, false, kShift>(in, begin, end, code);
+}
+
+void vertexCodes(const ZeroSetInput& in, int k, size_t begin, size_t end, uint8_t* code) {
+  if (k == 0) vertexCodesShifted<0>(in, begin, end, code);
+  else vertexCodesShifted<3>(in, begin, end, code);
 }
 
 // Appends to `dst` the segments of zero set `in` in face f, whose corners are `corner` with
@@ -81,9 +105,10 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
   // The crossing on the edge (a, b), always interpolated from its lower vertex index to its
   // higher, so the two faces of an edge compute bit-identical points (and share the edge's
   // id: exact chaining).
+  // The point itself is formed only once a piece of the face passes the test (point()).
   struct Crossing {
-    glm::vec3 p;
-    float num, den, gain;
+    uint32_t a, b;
+    float s, t, num, den, gain;
   };
   auto crossingOf = [&](uint32_t a, uint32_t b) {
     if (b < a) std::swap(a, b);  // as MeshAdjacency::edges stores it
@@ -91,7 +116,7 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
     float t = va / (va - vb);
     if (!(t >= 0.0f && t <= 1.0f)) t = 0.5f;  // NaN input
     const float s = 1.0f - t;
-    Crossing x{s * positions[a] + t * positions[b], 0.0f, 1.0f, 1.0f};
+    Crossing x{a, b, s, t, 0.0f, 1.0f, 1.0f};
     if (has_test) {
       x.num = s * in.test_num[a] + t * in.test_num[b];
       x.den = has_den ? s * in.test_den[a] + t * in.test_den[b] : 1.0f;
@@ -106,10 +131,9 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
   const uint32_t e1 = face_edges[i];   // joins corners i and i + 1
   const uint32_t e2 = face_edges[i2];  // joins corners i + 2 and i
   const Crossing x1 = crossingOf(corner[i], corner[(i + 1) % 3]), x2 = crossingOf(corner[i2], corner[i]);
-  const glm::vec3& p1 = x1.p;
-  const glm::vec3& p2 = x2.p;
+  auto point = [&](const Crossing& x) { return x.s * positions[x.a] + x.t * positions[x.b]; };
   if (!has_test) {
-    pushSegment(dst, type, f, p1, e1, 1.0f, p2, e2, 1.0f);
+    pushSegment(dst, type, f, point(x1), e1, 1.0f, point(x2), e2, 1.0f);
     return;
   }
   const float n1 = x1.num, n2 = x2.num;
@@ -121,6 +145,8 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
   if ((d1 >= 0.0f) != (d2 >= 0.0f)) z[nz++] = d1 / (d1 - d2);
   z[nz++] = 1.0f;
   if (nz == 4 && z[2] < z[1]) std::swap(z[1], z[2]);
+  glm::vec3 p1, p2;
+  bool have_points = false;
   for (int k = 0; k + 1 < nz; ++k) {
     const float za = z[k], zb = z[k + 1];
     if (!(zb > za)) continue;
@@ -129,6 +155,11 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
     if (!passes(nm, dm)) continue;
     const float na = (1.0f - za) * n1 + za * n2, da = (1.0f - za) * d1 + za * d2;
     const float nb = (1.0f - zb) * n1 + zb * n2, db = (1.0f - zb) * d1 + zb * d2;
+    if (!have_points) {
+      p1 = point(x1);
+      p2 = point(x2);
+      have_points = true;
+    }
     const glm::vec3 pa = k == 0 ? p1 : (1.0f - za) * p1 + za * p2;
     const glm::vec3 pb = k + 2 == nz ? p2 : (1.0f - zb) * p1 + zb * p2;
     const uint32_t ida = k == 0 ? e1 : interior_id++;
@@ -194,26 +225,46 @@ void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::
   // pass per zero set over all faces.
   const uint8_t* valid = adj.face_valid.data();
   const std::array<uint32_t, 3>* tri = faces.data();
+  constexpr int kSign = kNegative | (kNegative << 3), kPass = kPasses | (kPasses << 3),
+                kGate = kGated | (kGated << 3);
+  // Per zero set k, bit 3k: the sign changes over the face, the test passes at a corner and
+  // no corner's gate is shut. A face slot marked invalid (a vertex index out of range among
+  // them) reads no code.
+  auto live_of = [&](size_t f, int& c0, int& c1, int& c2) {
+    const auto& t = tri[f];
+    const bool ok = valid[f];
+    c0 = ok ? code[t[0]] : 0;
+    c1 = ok ? code[t[1]] : 0;
+    c2 = ok ? code[t[2]] : 0;
+    const int all = c0 & c1 & c2, any = c0 | c1 | c2;
+    return (any & ~all & kSign) & ((any & kPass) >> 1) & (~(any & kGate) >> 2);
+  };
   auto faces_pass = [&](size_t begin, size_t end, LineSet* dst, uint32_t* interior) {
-    for (size_t f = begin; f < end; ++f) {
-      // One well-predicted branch for the faces without a line (nearly all): a sign change,
-      // the gate open and the test passing at a corner, for either zero set. A face slot
-      // marked invalid (a vertex index out of range among them) reads no code.
-      const auto& t = tri[f];
-      const bool ok = valid[f];
-      const int c0 = ok ? code[t[0]] : 0, c1 = ok ? code[t[1]] : 0, c2 = ok ? code[t[2]] : 0;
-      const int all = c0 & c1 & c2, any = c0 | c1 | c2;
-      constexpr int kSign = kNegative | (kNegative << 3), kPass = kPasses | (kPasses << 3),
-                    kGate = kGated | (kGated << 3);
-      // Per zero set k, bit 3k of each mask: sign changes, test passes somewhere, gate open.
-      const int live = (any & ~all & kSign) & ((any & kPass) >> 1) & (~(any & kGate) >> 2);
-      if (!live) continue;
-      for (size_t k = 0; k < count; ++k) {
-        if (!(live & (1 << (3 * k)))) continue;
-        const uint8_t ck[3] = {static_cast<uint8_t>(c0 >> (3 * k)), static_cast<uint8_t>(c1 >> (3 * k)),
-                               static_cast<uint8_t>(c2 >> (3 * k))};
-        faceSegments(positions, t, adj.face_edges[f], static_cast<uint32_t>(f), ck, *in[k], has_test[k], has_den[k],
-                     has_gain[k], type[k], dst[k], interior[k]);
+    // In chunks: first the faces with a line (few, one well-predicted branch for the rest),
+    // then those, each one's edge record fetched a few faces ahead — the candidates are far
+    // apart, so each would otherwise wait for its own cache miss.
+    constexpr size_t kChunk = 512, kAhead = 8;
+    uint32_t cand[kChunk];
+    for (size_t base = begin; base < end; base += kChunk) {
+      const size_t stop = std::min(end, base + kChunk);
+      size_t n = 0;
+      for (size_t f = base; f < stop; ++f) {
+        int c0, c1, c2;
+        cand[n] = static_cast<uint32_t>(f);
+        n += live_of(f, c0, c1, c2) != 0;
+      }
+      for (size_t j = 0; j < n; ++j) {
+        if (j + kAhead < n) __builtin_prefetch(&adj.face_edges[cand[j + kAhead]]);
+        const uint32_t f = cand[j];
+        int c0, c1, c2;
+        const int live = live_of(f, c0, c1, c2);
+        for (size_t k = 0; k < count; ++k) {
+          if (!(live & (1 << (3 * k)))) continue;
+          const uint8_t ck[3] = {static_cast<uint8_t>(c0 >> (3 * k)), static_cast<uint8_t>(c1 >> (3 * k)),
+                                 static_cast<uint8_t>(c2 >> (3 * k))};
+          faceSegments(positions, tri[f], adj.face_edges[f], f, ck, *in[k], has_test[k], has_den[k], has_gain[k],
+                       type[k], dst[k], interior[k]);
+        }
       }
     }
   };
