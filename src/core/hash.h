@@ -18,6 +18,22 @@ inline constexpr uint64_t kHashSeed = 0xcbf29ce484222325ull;
 /// buffers as one).
 uint64_t hashBytes(const void* data, size_t size, uint64_t seed = kHashSeed);
 
+/// hashBytes() of a byte stream given in pieces: update() with each piece in order, then
+/// finish() equals hashBytes(all the pieces concatenated, their total size, seed) — so a file
+/// can be checked while it is read straight into its arrays.
+class StreamingHash {
+ public:
+  explicit StreamingHash(uint64_t seed = kHashSeed) : h_(seed) {}
+  void update(const void* data, size_t size);
+  uint64_t finish() const;
+
+ private:
+  uint64_t h_;
+  size_t total_ = 0;
+  unsigned char pending_[8] = {};
+  size_t npending_ = 0;  // bytes of an unfinished word, < 8
+};
+
 /// hashBytes() of the characters of `text`.
 inline uint64_t hashText(std::string_view text, uint64_t seed = kHashSeed) {
   return hashBytes(text.data(), text.size(), seed);

@@ -48,14 +48,6 @@ void append(std::string& buf, const std::vector<T>& v) {
   buf.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
 }
 
-template <class T>
-void take(const char*& p, std::vector<T>& v, size_t count) {
-  v.resize(count);
-  if (count == 0) return;  // v.data() may be null: no memcpy from or to it
-  std::memcpy(v.data(), p, count * sizeof(T));
-  p += count * sizeof(T);
-}
-
 uint32_t next3(uint32_t i) { return i == 2 ? 0 : i + 1; }
 uint32_t prev3(uint32_t i) { return i == 0 ? 2 : i - 1; }
 
@@ -137,7 +129,19 @@ Status verifyRefinement(const ProgressiveMesh& pm, const std::string& what) {
       }
     return false;
   };
+  // The records a split reads are scattered over the face array: fetch those of a split a
+  // few ahead while this one is checked (finalize() has checked every index).
+  constexpr uint32_t kAhead = 6;
+  auto prefetch = [&](uint32_t i) {
+    const VertexSplit& vs = pm.splits[i];
+    for (uint32_t f : vs.fn) __builtin_prefetch(&face[f]);
+    __builtin_prefetch(&face[vs.fl]);
+    __builtin_prefetch(&face[vs.fr]);
+    __builtin_prefetch(&incident[vs.vt]);
+    __builtin_prefetch(&incident[vs.vu]);
+  };
   for (uint32_t i = static_cast<uint32_t>(pm.splits.size()); i-- > 0;) {
+    if (i >= kAhead) prefetch(i - kAhead);
     const uint32_t s = n + i;
     const VertexSplit& vs = pm.splits[i];
     auto where = [i] { return "split " + std::to_string(i) + ": "; };  // built only for an error
@@ -255,21 +259,31 @@ Result<ProgressiveMesh> loadPm(const std::filesystem::path& path) {
                           std::to_string(expect + sizeof(FileHeader)) + ")");
   if (file_size - sizeof(FileHeader) > expect)
     return Error::runtime(name + ": trailing bytes after the progressive mesh data");
-  std::string payload(expect, '\0');
-  in.read(payload.data(), static_cast<std::streamsize>(expect));
-  if (!in) return Error::runtime(name + ": read error");
-  if (checksumOf(h, payload.data(), payload.size()) != h.checksum)
-    return Error::runtime(name + ": checksum mismatch (file corrupt)");
+  // Straight into the arrays, the checksum taken as they arrive (no copy of the payload).
+  FileHeader unsummed = h;
+  unsummed.checksum = 0;
+  StreamingHash sum(hashBytes(&unsummed, sizeof(unsummed)));
   ProgressiveMesh pm;
-  const char* p = payload.data();
-  take(p, pm.positions, h.vertex_count);
-  take(p, pm.faces, h.face_count);
-  take(p, pm.vertex_flags, h.vertex_count);
-  p += ((h.vertex_count + 3) / 4) * 4 - h.vertex_count;
-  take(p, pm.splits, h.split_count);
-  take(p, pm.base_faces, h.base_face_count);
-  take(p, pm.base_corners, h.base_face_count);
-  take(p, pm.base_neighbors, h.base_face_count);
+  bool read_ok = true;
+  auto read = [&](auto& v, size_t count) {
+    v.resize(count);
+    const size_t bytes = count * sizeof(v[0]);
+    if (!read_ok || bytes == 0) return;
+    in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(bytes));
+    read_ok = static_cast<bool>(in);
+    if (read_ok) sum.update(v.data(), bytes);
+  };
+  read(pm.positions, h.vertex_count);
+  read(pm.faces, h.face_count);
+  read(pm.vertex_flags, h.vertex_count);
+  std::vector<char> pad;
+  read(pad, ((h.vertex_count + 3) / 4) * 4 - h.vertex_count);
+  read(pm.splits, h.split_count);
+  read(pm.base_faces, h.base_face_count);
+  read(pm.base_corners, h.base_face_count);
+  read(pm.base_neighbors, h.base_face_count);
+  if (!read_ok) return Error::runtime(name + ": read error");
+  if (sum.finish() != h.checksum) return Error::runtime(name + ": checksum mismatch (file corrupt)");
   pm.content_hash = h.content_hash;
   pm.params_hash = h.params_hash;
   Status st = pm.finalize(name);
