@@ -450,38 +450,35 @@ void ShapeCache::computeScattered(const TriMesh& mesh, bool eager_derivatives) {
     }
   }
   for (uint32_t v = 0; v < nv; ++v) finishNormal(v, glm::vec3(sum_[v]), sum_w_[v]);
-  // Curvature: the faces with a fit add where their corner weight is positive.
-  std::fill(sum_.begin(), sum_.end(), glm::vec4(0.0f));
-  std::fill(sum_w_.begin(), sum_w_.end(), 0.0f);
-  for (uint32_t f = 0; f < nf; ++f) {
-    faceCurvatureFit(mesh, f);
-    const FaceRecord& rec = faces_[f];
-    if (!valid[f] || !(rec.ok & kCurvOk)) continue;
-    for (int j = 0; j < 3; ++j) {
-      const float wt = rec.corner[j];
-      if (!(wt > 0.0f)) continue;
-      const uint32_t v = mesh.faces[f][j];
-      sum_[v] += glm::vec4(wt * projectCurvature(rec.curv, rec.rel[j]), 0.0f);
-      sum_w_[v] += wt;
+  // Curvature, then derivatives: the faces with a fit (`ok_bit`) add `term` where their
+  // corner weight is positive, as vertexCurvature() and vertexDerivative() gather them.
+  auto scatter = [&](auto fit, uint8_t ok_bit, auto term) {
+    std::fill(sum_.begin(), sum_.end(), glm::vec4(0.0f));
+    std::fill(sum_w_.begin(), sum_w_.end(), 0.0f);
+    for (uint32_t f = 0; f < nf; ++f) {
+      fit(f);
+      const FaceRecord& rec = faces_[f];
+      if (!valid[f] || !(rec.ok & ok_bit)) continue;
+      for (int j = 0; j < 3; ++j) {
+        const float wt = rec.corner[j];
+        if (!(wt > 0.0f)) continue;
+        const uint32_t v = mesh.faces[f][j];
+        sum_[v] += term(rec, j, v, wt);
+        sum_w_[v] += wt;
+      }
     }
-  }
+  };
+  scatter([&](uint32_t f) { faceCurvatureFit(mesh, f); }, kCurvOk,
+          [](const FaceRecord& rec, int j, uint32_t, float wt) {
+            return glm::vec4(wt * projectCurvature(rec.curv, rec.rel[j]), 0.0f);
+          });
   for (uint32_t v = 0; v < nv; ++v) finishCurvature(v, glm::vec3(sum_[v]), sum_w_[v]);
   if (!eager_derivatives) return;
-  std::fill(sum_.begin(), sum_.end(), glm::vec4(0.0f));
-  std::fill(sum_w_.begin(), sum_w_.end(), 0.0f);
-  for (uint32_t f = 0; f < nf; ++f) {
-    faceDerivativeFit(mesh, f);
-    const FaceRecord& rec = faces_[f];
-    if (!valid[f] || !(rec.ok & kDcurvOk)) continue;
-    for (int j = 0; j < 3; ++j) {
-      const float wt = rec.corner[j];
-      if (!(wt > 0.0f)) continue;
-      const uint32_t v = mesh.faces[f][j];
-      const glm::vec2 ab(vertex_kab_[v][2], vertex_kab_[v][3]);
-      sum_[v] += wt * projectDerivative(rec.dcurv, principalInFace(rec.rel[j], ab));
-      sum_w_[v] += wt;
-    }
-  }
+  scatter([&](uint32_t f) { faceDerivativeFit(mesh, f); }, kDcurvOk,
+          [&](const FaceRecord& rec, int j, uint32_t v, float wt) {
+            const glm::vec2 ab(vertex_kab_[v][2], vertex_kab_[v][3]);
+            return wt * projectDerivative(rec.dcurv, principalInFace(rec.rel[j], ab));
+          });
   for (uint32_t v = 0; v < nv; ++v) finishDerivative(v, sum_[v], sum_w_[v]);
 }
 
