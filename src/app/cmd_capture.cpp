@@ -3,7 +3,6 @@
 // speed), into an MP4 (through ffmpeg) or a numbered PNG sequence, with optional per-frame
 // temporal-coherence metrics (docs/capture.md). Parses, then present/capture.h does the work.
 #include <atomic>
-#include <charconv>
 #include <csignal>
 #include <iostream>
 #include <memory>
@@ -28,37 +27,13 @@ extern "C" void onInterrupt(int) { g_interrupted.store(true); }
 struct CaptureOptions {
   ViewOptions view;
   DetailOptions detail;
-  std::string path = "orbit";
-  double duration = 8.0;
-  std::string frames;
-  double fps = 30.0;
+  CapturePathOptions capture;
   std::string output;
   std::string metrics;
   std::string stats;
   std::string svg;
   std::string context = "auto";
-  std::string stroke_coherence = "on";
-  float fade_in = 0.0f;
 };
-
-Result<FrameRange> parseFrames(const std::string& s, int64_t total) {
-  FrameRange r{0, total};
-  if (s.empty()) return r;
-  const auto bad = Error::usage("--frames: invalid value '" + s + "' (expected N or A:B with 0 <= A < B)");
-  auto parse = [](std::string_view v, int64_t& out) {
-    auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), out);
-    return ec == std::errc() && p == v.data() + v.size() && out >= 0;
-  };
-  const auto colon = s.find(':');
-  if (colon == std::string::npos) {
-    if (!parse(s, r.end) || r.end == 0) return bad;
-    return r;
-  }
-  if (!parse(std::string_view(s).substr(0, colon), r.first) ||
-      !parse(std::string_view(s).substr(colon + 1), r.end) || r.first >= r.end)
-    return bad;
-  return r;
-}
 
 int runCapture(CLI::App& cmd, CaptureOptions& o) {
   if (o.output.empty()) return reportError(Error::usage("capture: -o out.mp4 or -o DIR/ is required"));
@@ -81,7 +56,6 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
   // Options the scene's settings may have set are read from here on.
   auto context = parseContextBackend(o.context);
   if (!context) return reportError(context.error());
-  if (!(o.fps > 0.0 && o.fps <= 1000.0)) return reportError(Error::usage("--fps: must be in (0, 1000]"));
   if (rq.png_sequence) {
     std::error_code ec;
     std::filesystem::create_directories(rq.output, ec);
@@ -94,25 +68,15 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
       return reportError(Error::runtime(o.svg + ": cannot create directory" + (ec ? ": " + ec.message() : "")));
   }
   const LoadedScene& l = **loaded;
-  auto path = scenePath({o.path, givenOnCommandLine(cmd, "path"), o.duration}, l.drawing.bounds(), l.camera,
+  const CapturePathOptions& c = o.capture;
+  auto path = scenePath({c.path, givenOnCommandLine(cmd, "path"), c.duration}, l.drawing.bounds(), l.camera,
                         l.view.fov_deg, l.view.frame.aspect(), l.view.orbit);
   if (!path) return reportError(path.error());
-  auto range = parseFrames(o.frames, captureFrameCount(*path, o.fps));
-  if (!range) return reportError(range.error());
+  if (Status s = resolveCaptureOptions(c, std::move(path.value()), rq); !s) return reportError(s.error());
   rq.context = *context;
-  rq.path = std::move(path.value());
-  rq.path_name = o.path;
-  rq.fps = o.fps;
-  rq.range = *range;
   rq.metrics = o.metrics;
   rq.stats = o.stats;
   rq.svg_dir = o.svg;
-  if (o.stroke_coherence != "on" && o.stroke_coherence != "off")
-    return reportError(Error::usage("--stroke-coherence: expected on or off, got '" + o.stroke_coherence + "'"));
-  rq.stroke_coherence = o.stroke_coherence == "on";
-  if (!(o.fade_in >= 0.0f && o.fade_in <= 60.0f))
-    return reportError(Error::usage("--fade-in: must be in [0, 60] seconds"));
-  rq.fade_in = o.fade_in;
   rq.interrupted = &g_interrupted;
   rq.progress = isatty(STDERR_FILENO);
   std::signal(SIGINT, onInterrupt);
@@ -140,15 +104,7 @@ Command addCaptureCommand(CLI::App& parent) {
       "capture", "Render a camera path around a model or scene headlessly to an MP4 video or a numbered PNG sequence");
   addViewOptions(*cmd, o->view);
   addDetailOptions(*cmd, o->detail);
-  cmd->add_option("--path", o->path,
-                  "Camera path: orbit, zoom-out, dolly, flyover, or a path file (.json); default: the scene file's "
-                  "camera path, else orbit")
-      ->capture_default_str();
-  cmd->add_option("--duration", o->duration, "Length of a built-in path in seconds")->capture_default_str();
-  cmd->add_option("--frames", o->frames,
-                  "N renders frames 0..N-1; A:B renders frames A..B-1 only (frame k is identical "
-                  "whichever range renders it); default: the whole path");
-  cmd->add_option("--fps", o->fps, "Simulated frame rate (the video's rate)")->capture_default_str();
+  addCaptureOptions(*cmd, o->capture);
   cmd->add_option("-o,--output", o->output, "out.mp4 (through ffmpeg) or DIR/ for frame_NNNNN.png files")
       ->required();
   cmd->add_option("--metrics", o->metrics, "Per-frame temporal-coherence metrics as CSV (docs/capture.md)");
@@ -157,14 +113,6 @@ Command addCaptureCommand(CLI::App& parent) {
                   "DIR/: one SVG per frame (frame_NNNNN.svg), each stroke with an id it keeps while it "
                   "persists from frame to frame (docs/capture.md)");
   cmd->add_option("--context", o->context, "OpenGL context: auto, egl or osmesa")->capture_default_str();
-  cmd->add_option("--stroke-coherence", o->stroke_coherence,
-                  "on: brushes, dashes and jitter stay on the surface from frame to frame; off: they start at "
-                  "each visible run's first point (docs/strokes.md)")
-      ->capture_default_str();
-  cmd->add_option("--fade-in", o->fade_in,
-                  "Seconds over which a line that appears fades in (0: off); lines that continue one of the "
-                  "previous frame keep their opacity (docs/temporal-coherence.md)")
-      ->capture_default_str();
   return {cmd, [o, cmd] { return runCapture(*cmd, *o); }};
 }
 

@@ -14,8 +14,8 @@ namespace lodline {
 void addViewOptions(CLI::App& cmd, ViewOptions& o) {
   cmd.add_option("model", o.models,
                  "Mesh file (.off, .obj, .ply, .stl; polygons are triangulated), scene file (.json, "
-                 "docs/scenes.md) or glTF 2.0 file (.gltf, .glb)")
-      ->required();
+                 "docs/scenes.md) or glTF 2.0 file (.gltf, .glb); default: the default model (knot.off), "
+                 "found beside the program (share/lodline/models when installed, models/ in the source tree)");
   cmd.add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
   cmd.add_option("--view", o.view,
                  "Camera as AZ,EL,DIST: azimuth and elevation in degrees, distance in "
@@ -361,6 +361,61 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   s["smoothing-time"] = exact(detail.smoothing.seconds);
   s["max-adapt-frames"] = detail.max_adapt_frames;
   return s;
+}
+
+void addCaptureOptions(CLI::App& cmd, CapturePathOptions& o) {
+  cmd.add_option("--path", o.path,
+                 "Camera path: orbit, zoom-out, dolly, flyover, or a path file (.json); default: the scene file's "
+                 "camera path, else orbit")
+      ->capture_default_str();
+  cmd.add_option("--duration", o.duration, "Length of a built-in path in seconds")->capture_default_str();
+  cmd.add_option("--frames", o.frames,
+                 "N renders frames 0..N-1; A:B renders frames A..B-1 only (frame k is identical "
+                 "whichever range renders it); default: the whole path");
+  cmd.add_option("--fps", o.fps, "Simulated frame rate (the video's rate)")->capture_default_str();
+  cmd.add_option("--stroke-coherence", o.stroke_coherence,
+                 "on: brushes, dashes and jitter stay on the surface from frame to frame; off: they start at "
+                 "each visible run's first point (docs/strokes.md)")
+      ->capture_default_str();
+  cmd.add_option("--fade-in", o.fade_in,
+                 "Seconds over which a line that appears fades in (0: off); lines that continue one of the "
+                 "previous frame keep their opacity (docs/temporal-coherence.md)")
+      ->capture_default_str();
+}
+
+Result<FrameRange> parseFrameRange(const std::string& s, int64_t total) {
+  FrameRange r{0, total};
+  if (s.empty()) return r;
+  const auto bad = Error::usage("--frames: invalid value '" + s + "' (expected N or A:B with 0 <= A < B)");
+  auto parse = [](std::string_view v, int64_t& out) {
+    auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), out);
+    return ec == std::errc() && p == v.data() + v.size() && out >= 0;
+  };
+  const auto colon = s.find(':');
+  if (colon == std::string::npos) {
+    if (!parse(s, r.end) || r.end == 0) return bad;
+    return r;
+  }
+  if (!parse(std::string_view(s).substr(0, colon), r.first) ||
+      !parse(std::string_view(s).substr(colon + 1), r.end) || r.first >= r.end)
+    return bad;
+  return r;
+}
+
+Status resolveCaptureOptions(const CapturePathOptions& o, CameraPath path, CaptureRequest& rq) {
+  if (!(o.fps > 0.0 && o.fps <= 1000.0)) return Error::usage("--fps: must be in (0, 1000]");
+  auto range = parseFrameRange(o.frames, captureFrameCount(path, o.fps));
+  if (!range) return range.error();
+  if (o.stroke_coherence != "on" && o.stroke_coherence != "off")
+    return Error::usage("--stroke-coherence: expected on or off, got '" + o.stroke_coherence + "'");
+  if (!(o.fade_in >= 0.0f && o.fade_in <= 60.0f)) return Error::usage("--fade-in: must be in [0, 60] seconds");
+  rq.path = std::move(path);
+  rq.path_name = o.path;
+  rq.fps = o.fps;
+  rq.range = *range;
+  rq.stroke_coherence = o.stroke_coherence == "on";
+  rq.fade_in = o.fade_in;
+  return {};
 }
 
 }  // namespace lodline

@@ -15,6 +15,7 @@
 #include "core/result.h"
 #include "frame/scene_builder.h"
 #include "lines/lines.h"
+#include "present/capture.h"
 
 namespace lodline {
 
@@ -48,6 +49,26 @@ struct ViewOptions {
   std::string suggestive_motion_fade = "off";
   float crease_angle = LineParams{}.crease_angle_deg;
 };
+
+/// The options of a capture beyond the view and detail ones (`capture` and the Python
+/// module's capture iterator).
+struct CapturePathOptions {
+  std::string path = "orbit";  ///< a built-in path, or a path file (.json)
+  double duration = 8.0;       ///< a built-in path's length, s
+  std::string frames;          ///< "N" or "A:B"; empty: every frame
+  double fps = 30.0;
+  std::string stroke_coherence = "on";
+  float fade_in = 0.0f;        ///< s; 0: off
+};
+
+void addCaptureOptions(CLI::App& cmd, CapturePathOptions& o);
+
+/// Checks `o` and fills request's path (`path`, already resolved with scenePath()), fps,
+/// range, stroke coherence and fade-in. Usage errors name the option.
+Status resolveCaptureOptions(const CapturePathOptions& o, CameraPath path, CaptureRequest& request);
+
+/// Parses --frames: "N" (frames 0..N-1) or "A:B" (A..B-1); empty: all `total` frames.
+Result<FrameRange> parseFrameRange(const std::string& text, int64_t total);
 
 /// Adds the shared options to a subcommand.
 void addViewOptions(CLI::App& cmd, ViewOptions& o);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ostream>
+#include <sstream>
 
 #include "io/atomic_file.h"
 #include "lines/stroke_curve.h"
@@ -181,9 +182,10 @@ Status writeSvg(const std::filesystem::path& path, int width, int height,
   return writeSvgLayers(path, width, height, std::span<const SvgLayer>(&layer, 1), style);
 }
 
-Status writeSvgLayers(const std::filesystem::path& path, int width, int height, std::span<const SvgLayer> layers,
-                      const SvgStyle& page) {
-  const std::string name = path.string();
+namespace {
+
+// Checks the layers' arrays; errors name `name` (the file, or "SVG").
+Status checkLayers(const std::string& name, int width, int height, std::span<const SvgLayer> layers) {
   if (width <= 0 || height <= 0)
     return Error::runtime(name + ": invalid SVG size " + std::to_string(width) + "x" +
                           std::to_string(height));
@@ -201,23 +203,41 @@ Status writeSvgLayers(const std::filesystem::path& path, int width, int height, 
         if (strokes->offsets[s] > strokes->offsets[s + 1] || strokes->offsets[s + 1] > strokes->points.size())
           return Error::runtime(name + ": stroke " + std::to_string(s) + " is out of range");
     }
+  return {};
+}
 
+void writeDocument(std::ostream& os, int width, int height, std::span<const SvgLayer> layers, const SvgStyle& page) {
+  os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+     << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << width
+     << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << ' ' << height << "\">\n";
+  if (page.background)
+    os << "<rect x=\"0\" y=\"0\" width=\"" << width << "\" height=\"" << height
+       << "\" fill=\"" << sanitizeColour(page.background_colour) << "\"/>\n";
+  for (const SvgLayer& layer : layers) {
+    const bool group = layers.size() > 1;
+    if (group) os << "<g id=\"" << sanitizeId(layer.name) << "\">\n";
+    writeStrokes(os, layer, std::clamp(layer.style.decimals, 0, 6));
+    if (group) os << "</g>\n";
+  }
+  os << "</svg>\n";
+}
+
+}  // namespace
+
+Status writeSvgLayers(const std::filesystem::path& path, int width, int height, std::span<const SvgLayer> layers,
+                      const SvgStyle& page) {
+  if (Status s = checkLayers(path.string(), width, height, layers); !s) return s;
   return writeFileAtomically(path, [&](std::ostream& os) -> Status {
-    os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-       << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << width
-       << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << ' ' << height << "\">\n";
-    if (page.background)
-      os << "<rect x=\"0\" y=\"0\" width=\"" << width << "\" height=\"" << height
-         << "\" fill=\"" << sanitizeColour(page.background_colour) << "\"/>\n";
-    for (const SvgLayer& layer : layers) {
-      const bool group = layers.size() > 1;
-      if (group) os << "<g id=\"" << sanitizeId(layer.name) << "\">\n";
-      writeStrokes(os, layer, std::clamp(layer.style.decimals, 0, 6));
-      if (group) os << "</g>\n";
-    }
-    os << "</svg>\n";
+    writeDocument(os, width, height, layers, page);
     return {};
   });
+}
+
+Result<std::string> svgLayersText(int width, int height, std::span<const SvgLayer> layers, const SvgStyle& page) {
+  if (Status s = checkLayers("SVG", width, height, layers); !s) return s.error();
+  std::ostringstream os;
+  writeDocument(os, width, height, layers, page);
+  return os.str();
 }
 
 }  // namespace lodline

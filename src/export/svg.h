@@ -88,4 +88,7 @@ struct SvgLayer {
 Status writeSvgLayers(const std::filesystem::path& path, int width, int height, std::span<const SvgLayer> layers,
                       const SvgStyle& page);
 
+/// The document writeSvgLayers() writes, as text (errors name "SVG").
+Result<std::string> svgLayersText(int width, int height, std::span<const SvgLayer> layers, const SvgStyle& page);
+
 }  // namespace lodline

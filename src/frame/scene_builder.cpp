@@ -108,7 +108,7 @@ Result<SceneDrawing> buildSceneDrawing(const Scene& scene, std::span<const Objec
       std::string note;
       const uint64_t hash = meshContentHash(mesh);
       auto pm = loadOrBuildPm(mesh, hash, pm_choice.cache_dir, {}, progress ? progress(obj) : PmProgress{}, &note);
-      if (!pm) return Error::runtime(obj.mesh.string() + ": " + pm.error().message);
+      if (!pm) return Error::runtime((obj.mesh.empty() ? obj.name : obj.mesh.string()) + ": " + pm.error().message);
       if (!info.cache_note.empty()) info.cache_note += "; ";
       info.cache_note += note;
       auto shared = std::make_shared<const ProgressiveMesh>(std::move(pm.value()));

@@ -60,10 +60,83 @@ int64_t captureFrameCount(const CameraPath& path, double fps) {
   return std::max<int64_t>(1, std::llround(path.duration() * fps));
 }
 
+CaptureRun::CaptureRun(LoadedScene& loaded, ScenePresenter& presenter, const CaptureRequest& rq, bool measure)
+    : loaded_(loaded), presenter_(presenter), path_(rq.path), fps_(rq.fps), range_(rq.range), measure_(measure),
+      next_(rq.range.first), t0_(rq.path.keys().front().time) {
+  // Smoothing at the capture's frame rate (Jeong §3.3: f is the capture rate when capturing).
+  const SmoothingParams& sm = loaded.detail.smoothing;
+  smoothing_w_ = sm.enabled ? smoothingWeight(sm.alpha, sm.seconds, static_cast<float>(fps_)) : 1.0f;
+}
+
+// One step of the simulation at frame k (time k/fps): the state every later frame builds on
+// (level of detail, geomorphs, temporal smoothing). Detail parameters were checked by the
+// caller, so frame() cannot fail.
+Camera CaptureRun::simulate(int64_t k) {
+  SceneDrawing& scene = loaded_.drawing;
+  const FrameParams& frame = loaded_.view.frame;
+  const Camera cam = path_.at(t0_ + static_cast<double>(k) / fps_, scene.bounds());
+  (void)scene.frame(cam, frame.width, frame.height, loaded_.detail.params, static_cast<float>(1.0 / fps_), smoothing_w_);
+  return cam;
+}
+
+Result<std::unique_ptr<CaptureRun>> CaptureRun::start(LoadedScene& loaded, ScenePresenter& p, const CaptureRequest& rq,
+                                                      bool measure) {
+  std::unique_ptr<CaptureRun> run(new CaptureRun(loaded, p, rq, measure));
+  SceneDrawing& scene = loaded.drawing;
+  const FrameParams& frame = loaded.view.frame;
+  const float dt = static_cast<float>(1.0 / rq.fps);
+  // Frame 0 starts from the detail converged for its camera (as a still render would), not
+  // from the base mesh, so the first frames are not a refinement transient.
+  const Camera cam0 = rq.path.at(run->t0_, scene.bounds());
+  if (auto steps = scene.converge(cam0, frame.width, frame.height, loaded.detail.params, dt, loaded.detail.max_adapt_frames);
+      !steps)
+    return steps.error();
+  // When the camera moves from frame 0 to 1, frame 0 is already a frame in motion.
+  const Camera c1 = rq.path.at(run->t0_ + 1.0 / rq.fps, scene.bounds());
+  p.startSequence(cam0.eye != c1.eye || cam0.target != c1.target || cam0.up != c1.up || cam0.fov_deg != c1.fov_deg);
+  p.setStrokeCoherence(rq.stroke_coherence);
+  p.setFadeStep(rq.fade_in > 0.0f ? std::min(1.0f, dt / rq.fade_in) : 0.0f);
+  // Frames before the range advance the simulation and are drawn (the outline's hysteresis
+  // builds on the frames drawn before); the one just before it also gives the previous frame
+  // of the coherence measure, so frame k and its metrics are the same whichever range
+  // renders it.
+  for (int64_t k = 0; k < rq.range.first; ++k) {
+    const Camera cam = run->simulate(k);
+    if (Status s = p.present(scene, cam, frame, k == 0); !s) return s.error();
+    if (measure && k == rq.range.first - 1) {
+      (void)reportFrame(scene, p, &run->mask_);
+      if (Status s = p.readSurface(run->surface_); !s) return s.error();
+      (void)run->meter_.measure(run->mask_, run->surface_, cam);
+    }
+  }
+  return run;
+}
+
+Result<CapturedFrame> CaptureRun::next() {
+  Stopwatch frame_clock;
+  CapturedFrame f;
+  f.index = next_++;
+  f.camera = simulate(f.index);
+  SceneDrawing& scene = loaded_.drawing;
+  if (Status s = presenter_.present(scene, f.camera, loaded_.view.frame, f.index == 0); !s) return s.error();
+  f.image = presenter_.readImage();
+  if (measure_) {
+    const FrameReport report = reportFrame(scene, presenter_, &mask_);
+    if (Status s = presenter_.readSurface(surface_); !s) return s.error();
+    f.coherence = meter_.measure(mask_, surface_, f.camera);
+    std::ostringstream row;
+    writeMetricsRow(row, f.index, report, f.coherence, frame_clock.elapsed());
+    f.metrics_row = row.str();
+    f.measured = true;
+    f.specks = static_cast<double>(report.total.specks);
+    f.texture_drift = report.texture_drift;
+  }
+  return f;
+}
+
 Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& rq) {
   SceneDrawing& scene = loaded.drawing;
   const FrameParams& frame = loaded.view.frame;
-  const ResolvedDetail& detail = loaded.detail;
   auto presenter = createPresenter(PresenterBackend::kGl, rq.context, scene, frame);
   if (!presenter) return presenter.error();
   ScenePresenter& p = **presenter;
@@ -77,66 +150,33 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
   const bool want_metrics = !rq.metrics.empty() || !rq.stats.empty();
   const bool want_svg = !rq.svg_dir.empty();
   StrokeIdTracker ids;  // stroke ids from frame 0 on, so frame k's are the same whichever range
-  CoherenceMeter meter;
-  LineMask mask;
-  SurfaceImage surface;
   std::ostringstream csv;
   csv << metricsCsvHeader();
   std::vector<double> churns, binary_churns, raw_churns, specks_per_frame, frame_ms, drifts;
 
-  // Smoothing at the capture's frame rate (Jeong §3.3: f is the capture rate when capturing).
-  const float smoothing_w = detail.smoothing.enabled
-                                ? smoothingWeight(detail.smoothing.alpha, detail.smoothing.seconds, static_cast<float>(rq.fps))
-                                : 1.0f;
-  const double t0 = rq.path.keys().front().time;
-  const float dt = static_cast<float>(1.0 / rq.fps);
-  // One step of the simulation at frame k (time k/fps): the state every later frame builds
-  // on (level of detail, geomorphs, temporal smoothing). Detail parameters were checked by
-  // the caller, so frame() cannot fail.
-  auto simulate = [&](int64_t k) -> Camera {
-    const Camera cam = rq.path.at(t0 + static_cast<double>(k) / rq.fps, scene.bounds());
-    (void)scene.frame(cam, frame.width, frame.height, detail.params, dt, smoothing_w);
-    return cam;
-  };
-  // Frame 0 starts from the detail converged for its camera (as a still render would), not
-  // from the base mesh, so the first frames are not a refinement transient.
-  {
-    const Camera cam0 = rq.path.at(t0, scene.bounds());
-    if (auto steps = scene.converge(cam0, frame.width, frame.height, detail.params, dt, detail.max_adapt_frames); !steps)
-      return steps.error();
-  }
-  // Frames before the range advance the simulation and are drawn (the outline's hysteresis
-  // builds on the frames drawn before); the one just before it also gives the previous frame
-  // of the coherence measure, so frame k and its metrics are the same whichever range
-  // renders it. When the camera moves from frame 0 to 1, frame 0 is already a frame in motion.
-  {
-    const Camera c0 = rq.path.at(t0, scene.bounds()), c1 = rq.path.at(t0 + 1.0 / rq.fps, scene.bounds());
-    p.startSequence(c0.eye != c1.eye || c0.target != c1.target || c0.up != c1.up || c0.fov_deg != c1.fov_deg);
-    p.setStrokeCoherence(rq.stroke_coherence);
-    p.setFadeStep(rq.fade_in > 0.0f ? std::min(1.0f, dt / rq.fade_in) : 0.0f);
-  }
-  for (int64_t k = 0; k < rq.range.first; ++k) {
-    const Camera cam = simulate(k);
-    if (Status s = p.present(scene, cam, frame, k == 0); !s) return s.error();
-    if (want_svg) ids.update(p.visible(), cam, frame.width, frame.height);
-    if (want_metrics && k == rq.range.first - 1) {
-      (void)reportFrame(scene, p, &mask);
-      if (Status s = p.readSurface(surface); !s) return s.error();
-      (void)meter.measure(mask, surface, cam);
-    }
-  }
+  // Stroke ids need every frame from 0: the frames before the range are replayed here with
+  // their ids (CaptureRun::start draws them only when ids are not wanted).
+  CaptureRequest first = rq;
+  if (want_svg) first.range = {0, rq.range.end};
+  auto run = CaptureRun::start(loaded, p, first, want_metrics);
+  if (!run) return run.error();
+  CaptureRun& r = **run;
 
   Stopwatch wall;
   CaptureOutcome out;
   out.measured = want_metrics;
   Status failure;
-  for (int64_t k = rq.range.first; k < rq.range.end && !(rq.interrupted && rq.interrupted->load()); ++k) {
+  while (!r.done() && !(rq.interrupted && rq.interrupted->load())) {
     Stopwatch frame_clock;
-    const Camera cam = simulate(k);
-    if (failure = p.present(scene, cam, frame, k == 0); !failure) break;
-    const Image image = p.readImage();
+    auto f = r.next();
+    if (!f) {
+      failure = f.error();
+      break;
+    }
+    const int64_t k = f->index;
     if (want_svg) {
-      ids.update(p.visible(), cam, frame.width, frame.height);
+      ids.update(p.visible(), f->camera, frame.width, frame.height);
+      if (k < rq.range.first) continue;
       char name[32];
       std::snprintf(name, sizeof(name), "frame_%05lld.svg", static_cast<long long>(k));
       if (failure = writeFrameSvg(rq.svg_dir / name, scene, p, &ids.ids()); !failure) break;
@@ -144,23 +184,20 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
     if (rq.png_sequence) {
       char name[32];
       std::snprintf(name, sizeof(name), "frame_%05lld.png", static_cast<long long>(k));
-      failure = writePng(rq.output / name, image);
+      failure = writePng(rq.output / name, f->image);
     } else {
-      failure = video->write(image.rgba);
+      failure = video->write(f->image.rgba);
     }
     if (!failure) break;
-    if (want_metrics) {
-      const FrameReport report = reportFrame(scene, p, &mask);
-      if (failure = p.readSurface(surface); !failure) break;
-      const FrameCoherence c = meter.measure(mask, surface, cam);
-      writeMetricsRow(csv, k, report, c, frame_clock.elapsed());
-      if (c.compared) {
-        churns.push_back(c.compensated.churn());
-        binary_churns.push_back(c.compensated.churnBinary());
-        raw_churns.push_back(c.raw.churn());
-        drifts.push_back(report.texture_drift);
+    if (f->measured) {
+      csv << f->metrics_row;
+      if (f->coherence.compared) {
+        churns.push_back(f->coherence.compensated.churn());
+        binary_churns.push_back(f->coherence.compensated.churnBinary());
+        raw_churns.push_back(f->coherence.raw.churn());
+        drifts.push_back(f->texture_drift);
       }
-      specks_per_frame.push_back(static_cast<double>(report.total.specks));
+      specks_per_frame.push_back(f->specks);
     }
     frame_ms.push_back(frame_clock.elapsed());
     ++out.frames;

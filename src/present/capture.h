@@ -7,12 +7,17 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 
+#include "core/camera.h"
+#include "core/image.h"
 #include "core/result.h"
+#include "export/coherence.h"
 #include "frame/camera_path.h"
 #include "frame/scene_builder.h"
 #include "gl/context.h"
+#include "present/presenter.h"
 
 namespace lodline {
 
@@ -58,6 +63,51 @@ struct CaptureOutcome {
   double churn_mean = 0.0, churn_p95 = 0.0, churn_binary_mean = 0.0, churn_raw_mean = 0.0, specks_mean = 0.0;
   double texture_drift_mean = 0.0;  ///< mean of the frames' texture_drift (frames after the first)
   bool measured = false;  ///< metrics were computed (metrics or stats requested)
+};
+
+/// One frame of a capture as CaptureRun::next() gives it.
+struct CapturedFrame {
+  int64_t index = 0;        ///< the frame's number on the path
+  Camera camera;
+  Image image;              ///< the colour image, row 0 = top
+  bool measured = false;    ///< `metrics_row` and `coherence` were computed
+  FrameCoherence coherence;  ///< against the previous frame (compared = false for frame 0)
+  std::string metrics_row;  ///< the frame's line of the `--metrics` CSV (metricsCsvHeader())
+  double specks = 0.0;
+  double texture_drift = 0.0;
+};
+
+/// A capture advanced frame by frame (what captureFrames() writes, and the Python module's
+/// frame iterator yields): the path, the simulation at the capture's rate, the drawing and
+/// the coherence measure, without the outputs. `presenter` and `loaded` must outlive it.
+class CaptureRun {
+ public:
+  /// Converges frame 0's detail and simulates (and draws, for the outline's hysteresis) the
+  /// frames before request.range.first. `measure`: compute each frame's metrics.
+  static Result<std::unique_ptr<CaptureRun>> start(LoadedScene& loaded, ScenePresenter& presenter,
+                                                   const CaptureRequest& request, bool measure);
+  /// True when every frame of the range was given.
+  bool done() const { return next_ >= range_.end; }
+  /// Draws the next frame of the range. Errors: a failed draw or surface readback.
+  Result<CapturedFrame> next();
+  /// The presenter that draws the frames (for SVG output and stroke ids).
+  ScenePresenter& presenter() { return presenter_; }
+
+ private:
+  CaptureRun(LoadedScene& loaded, ScenePresenter& presenter, const CaptureRequest& request, bool measure);
+  Camera simulate(int64_t k);
+  LoadedScene& loaded_;
+  ScenePresenter& presenter_;
+  CameraPath path_;
+  double fps_ = 30.0;
+  FrameRange range_;
+  bool measure_ = false;
+  int64_t next_ = 0;
+  float smoothing_w_ = 1.0f;
+  double t0_ = 0.0;
+  CoherenceMeter meter_;
+  LineMask mask_;
+  SurfaceImage surface_;
 };
 
 /// Runs the capture; every output is finished (a valid video, complete PNGs, the CSV and

@@ -32,50 +32,51 @@ uint64_t coveragePixels(const Image& image, const glm::vec4& background) {
 
 }  // namespace
 
-Status renderStill(LoadedScene& loaded, const StillRequest& request) {
-  Stopwatch total, stage;
+Result<StillFrame> drawStill(LoadedScene& loaded, ScenePresenter& p) {
+  Stopwatch stage;
   SceneDrawing& scene = loaded.drawing;
   const FrameParams& frame = loaded.view.frame;
+  StillFrame still;
   auto camera = initialCamera(loaded, frame.aspect());
   if (!camera) return camera.error();
+  still.camera = *camera;
   // A still image shows the converged detail.
   auto steps = scene.converge(*camera, frame.width, frame.height, loaded.detail.params, 1.0f / 30.0f,
                               loaded.detail.max_adapt_frames);
   if (!steps) return steps.error();
-  const double ms_adapt = stage.lap();
-
-  auto presenter = createPresenter(request.backend, request.context, scene, frame);
-  if (!presenter) return presenter.error();
-  ScenePresenter& p = **presenter;
-  const double ms_context = stage.lap();
-  if (Status s = p.present(scene, *camera, frame, true); !s) return s;
-  const Image image = p.readImage();
+  still.adapt_steps = *steps;
+  still.ms_adapt = stage.lap();
+  p.startSequence(false);
+  if (Status s = p.present(scene, *camera, frame, true); !s) return s.error();
+  still.image = p.readImage();
   // Visible strokes of every object, from the depth of all faces (so one object hides
   // another's lines): for the SVG and the stats.
-  if (!request.svg.empty() || !request.stats.empty()) (void)p.visible();
+  (void)p.visible();
+  return still;
+}
 
-  if (!request.png.empty())
-    if (Status s = writePng(request.png, image); !s) return s;
-  if (!request.svg.empty())
-    if (Status s = writeFrameSvg(request.svg, scene, p); !s) return s;
-  if (request.stats.empty()) return {};
-
+nlohmann::json stillStats(const LoadedScene& loaded, ScenePresenter& p, const StillFrame& still, double ms_setup,
+                          double ms_before) {
+  Stopwatch total;
+  const SceneDrawing& scene = loaded.drawing;
+  const FrameParams& frame = loaded.view.frame;
   const FrameReport report = reportFrame(scene, p);
   nlohmann::json j;
   j["model"] = {{"path", loaded.view.model.string()},
                 {"vertices", report.total.input_vertices},
                 {"faces", report.total.input_faces}};
-  j["image"] = {{"width", frame.width}, {"height", frame.height}, {"coverage_px", coveragePixels(image, frame.background)}};
-  j["context"] = {{"backend", p.backendName()},
-                  {"gl", request.backend == PresenterBackend::kSoft ? std::string("none") : p.description()}};
+  j["image"] = {{"width", frame.width}, {"height", frame.height},
+                {"coverage_px", coveragePixels(still.image, frame.background)}};
+  const bool soft = p.backendName() == "soft";
+  j["context"] = {{"backend", p.backendName()}, {"gl", soft ? std::string("none") : p.description()}};
   j.update(frameStatsJson(report));
   if (j.contains("lod")) {
     j["lod"]["target_area"] = loaded.detail.params.target_area * loaded.detail.params.object_factor;
-    j["lod"]["adapt_steps"] = *steps;
+    j["lod"]["adapt_steps"] = still.adapt_steps;
     j["lod"]["cache"] = loaded.build.cache_note;
   }
-  if (const auto* soft = dynamic_cast<const SoftPresenter*>(&p)) {
-    const SoftTimes& st = soft->softTimes();
+  if (const auto* sp = dynamic_cast<const SoftPresenter*>(&p)) {
+    const SoftTimes& st = sp->softTimes();
     j["soft_ms"] = {{"transform", st.transform}, {"setup", st.setup}, {"raster", st.raster},
                     {"shade", st.shade},         {"lines", st.lines}};
   }
@@ -83,17 +84,34 @@ Status renderStill(LoadedScene& loaded, const StillRequest& request) {
   j["ms"] = {{"load", loaded.build.load_ms},
              {"intersect", loaded.build.intersect_ms},
              {"pm", loaded.build.pm_ms},
-             {"adapt", ms_adapt},
+             {"adapt", still.ms_adapt},
              {"shape", ms.shape},
              {"view", ms.view},
              {"extract", ms.extract},
              {"chain", ms.chain},
-             {"setup", ms_context + ms.upload},
+             {"setup", ms_setup + ms.upload},
              {"render", ms.render},
              {"readback", ms.readback},
              {"visibility", ms.visibility},
              {"strokes", ms.strokes},
-             {"total", request.elapsed_ms + total.elapsed()}};
+             {"total", ms_before + total.elapsed()}};
+  return j;
+}
+
+Status renderStill(LoadedScene& loaded, const StillRequest& request) {
+  Stopwatch total, stage;
+  auto presenter = createPresenter(request.backend, request.context, loaded.drawing, loaded.view.frame);
+  if (!presenter) return presenter.error();
+  ScenePresenter& p = **presenter;
+  const double ms_context = stage.lap();
+  auto still = drawStill(loaded, p);
+  if (!still) return still.error();
+  if (!request.png.empty())
+    if (Status s = writePng(request.png, still->image); !s) return s;
+  if (!request.svg.empty())
+    if (Status s = writeFrameSvg(request.svg, loaded.drawing, p); !s) return s;
+  if (request.stats.empty()) return {};
+  const nlohmann::json j = stillStats(loaded, p, *still, ms_context, request.elapsed_ms + total.elapsed());
   const std::string text = j.dump(2) + "\n";
   return writeFileAtomically(request.stats, [&](std::ostream& out) -> Status {
     out << text;

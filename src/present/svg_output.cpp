@@ -129,8 +129,12 @@ SvgStyle svgStyleOf(const ObjectStyle& style, const FrameParams& frame) {
   return s;
 }
 
-Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scene, ScenePresenter& presenter,
-                     const std::vector<std::vector<uint64_t>>* ids) {
+namespace {
+
+// Builds the layers of the last present() and hands them to `write`.
+template <typename Write>
+auto withFrameLayers(const SceneDrawing& scene, ScenePresenter& presenter, const std::vector<std::vector<uint64_t>>* ids,
+                     Write&& write) {
   const FrameParams& frame = presenter.frame();
   const Camera& camera = presenter.camera();
   const std::vector<StrokeRuns>& visible = presenter.visible();
@@ -155,7 +159,24 @@ Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scen
                       SvgStrokes{h.points, h.offsets, h.kinds, h.opacity}, outlines});
   }
   ObjectStyle page_style;
-  return writeSvgLayers(path, frame.width, frame.height, layers, svgStyleOf(page_style, frame));
+  return write(frame.width, frame.height, std::span<const SvgLayer>(layers), svgStyleOf(page_style, frame));
+}
+
+}  // namespace
+
+Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scene, ScenePresenter& presenter,
+                     const std::vector<std::vector<uint64_t>>* ids) {
+  return withFrameLayers(scene, presenter, ids,
+                         [&](int w, int h, std::span<const SvgLayer> layers, const SvgStyle& page) {
+                           return writeSvgLayers(path, w, h, layers, page);
+                         });
+}
+
+Result<std::string> frameSvgText(const SceneDrawing& scene, ScenePresenter& presenter) {
+  return withFrameLayers(scene, presenter, nullptr,
+                         [&](int w, int h, std::span<const SvgLayer> layers, const SvgStyle& page) {
+                           return svgLayersText(w, h, layers, page);
+                         });
 }
 
 }  // namespace lodline

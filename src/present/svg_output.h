@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "core/result.h"
@@ -20,5 +21,8 @@ SvgStyle svgStyleOf(const ObjectStyle& style, const FrameParams& frame);
 /// `ids` (ids[object][visible run], e.g. StrokeIdTracker::ids()), each stroke carries its id.
 Status writeFrameSvg(const std::filesystem::path& path, const SceneDrawing& scene, ScenePresenter& presenter,
                      const std::vector<std::vector<uint64_t>>* ids = nullptr);
+
+/// The SVG writeFrameSvg() writes (without ids), as text.
+Result<std::string> frameSvgText(const SceneDrawing& scene, ScenePresenter& presenter);
 
 }  // namespace lodline
