@@ -29,6 +29,7 @@ packages=(
   glslang-tools ffmpeg xvfb xauth librsvg2-bin fonts-dejavu-core
   libimgui-dev libtinygltf-dev xdotool
   clang-14 libclang-rt-14-dev util-linux
+  pybind11-dev python3-dev python3-numpy python3-pytest parallel dpkg-dev
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -62,7 +63,7 @@ if [ $do_build -eq 1 ]; then
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
   build_type=Release
   extra=()
-  if [ "$sanitize" = ON ]; then build_type=RelWithDebInfo; extra=(-DLODLINE_BUILD_BENCH=OFF -DLODLINE_BUILD_VIEWER=OFF); fi
+  if [ "$sanitize" = ON ]; then build_type=RelWithDebInfo; extra=(-DLODLINE_BUILD_BENCH=OFF -DLODLINE_BUILD_VIEWER=OFF -DLODLINE_BUILD_PYTHON=OFF); fi
   cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=$build_type \
     -DLODLINE_SANITIZE=$sanitize "${launcher[@]}" "${extra[@]}" >/dev/null
   cmake --build "$build_dir" -j "$(nproc)"

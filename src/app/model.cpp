@@ -64,19 +64,23 @@ std::filesystem::path defaultCacheDir() {
   return std::filesystem::temp_directory_path() / "lodline-cache";
 }
 
-Result<std::shared_ptr<const DetailMap>> readDetailMap(const std::filesystem::path& path, float scale) {
-  auto img = readPng(path, kMaxDetailMapPixels);
-  if (!img) return img.error();
+std::shared_ptr<const DetailMap> detailMapFromImage(const Image& img, float scale) {
   auto map = std::make_shared<DetailMap>();
-  map->width = img->width;
-  map->height = img->height;
-  map->values.resize(static_cast<size_t>(img->width) * img->height);
+  map->width = img.width;
+  map->height = img.height;
+  map->values.resize(static_cast<size_t>(img.width) * img.height);
   for (size_t i = 0; i < map->values.size(); ++i) {
-    const uint8_t* px = &img->rgba[i * 4];
+    const uint8_t* px = &img.rgba[i * 4];
     const float grey = (0.299f * px[0] + 0.587f * px[1] + 0.114f * px[2]) / 255.0f;
     map->values[i] = grey * scale;
   }
-  return std::shared_ptr<const DetailMap>(std::move(map));
+  return map;
+}
+
+Result<std::shared_ptr<const DetailMap>> readDetailMap(const std::filesystem::path& path, float scale) {
+  auto img = readPng(path, kMaxDetailMapPixels);
+  if (!img) return img.error();
+  return detailMapFromImage(*img, scale);
 }
 
 Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
@@ -230,16 +234,38 @@ Result<std::vector<ObjectStyle>> resolveObjectStyles(const Scene& scene, const V
   return styles;
 }
 
+Result<std::filesystem::path> defaultModelPath() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return Error::runtime("/proc/self/exe: cannot find the lodline program to find the default model");
+  const std::filesystem::path dir = exe.parent_path();
+  // Installed (PREFIX/bin → PREFIX/share/lodline), or built in the source tree (build/ → models/).
+  for (const auto& candidate : {dir / ".." / "share" / "lodline" / "models" / "knot.off", dir / ".." / "models" / "knot.off"})
+    if (std::filesystem::is_regular_file(candidate, ec)) return candidate.lexically_normal();
+  return Error::usage("give a MODEL: the default model (knot.off) is neither in " +
+                      (dir / ".." / "share" / "lodline" / "models").lexically_normal().string() + " nor in " +
+                      (dir / ".." / "models").lexically_normal().string());
+}
+
 Result<SceneInput> readInput(CLI::App& cmd, ViewOptions& view, DetailOptions& detail, double* read_ms) {
+  if (view.models.empty()) {
+    auto model = defaultModelPath();
+    if (!model) return model.error();
+    view.models = {model->string()};
+  }
   if (view.models.size() != 1)
     return Error::usage("give exactly one MODEL (a mesh, scene or glTF file; got " + std::to_string(view.models.size()) +
                         ")");
   Stopwatch sw;
-  SceneInput in;
   auto scene = loadScene(std::filesystem::path(view.models[0]));
   if (!scene) return scene.error();
-  in.scene = std::move(scene.value());
   if (read_ms) *read_ms = sw.lap();
+  return resolveInput(cmd, view, detail, std::move(scene.value()));
+}
+
+Result<SceneInput> resolveInput(CLI::App& cmd, ViewOptions& view, DetailOptions& detail, Scene scene) {
+  SceneInput in;
+  in.scene = std::move(scene);
   if (Status s = applySceneSettings(in.scene, cmd); !s) return s.error();
   auto resolved = resolveViewOptions(view);
   if (!resolved) return resolved.error();

@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/options.h"
+#include "core/image.h"
 #include "core/result.h"
 #include "frame/scene_builder.h"
 #include "io/scene_file.h"
@@ -45,6 +46,8 @@ struct DetailOptions {
 void addDetailOptions(CLI::App& cmd, DetailOptions& o);
 /// Reads a detail map: a PNG whose grey level v at a pixel multiplies T by (v/255)·scale.
 Result<std::shared_ptr<const DetailMap>> readDetailMap(const std::filesystem::path& path, float scale);
+/// The detail map of an image (as readDetailMap() makes it of the PNG's pixels).
+std::shared_ptr<const DetailMap> detailMapFromImage(const Image& image, float scale);
 Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o);
 
 /// The default cache directory: $XDG_CACHE_HOME/lodline or ~/.cache/lodline.
@@ -59,11 +62,19 @@ Status applySceneSettings(const Scene& scene, CLI::App& cmd);
 /// True when the option `--name` of `cmd` was given on the command line.
 bool givenOnCommandLine(const CLI::App& cmd, const std::string& name);
 
-/// Reads the input named by `view.models` (mesh, scene or glTF), applies its settings to
+/// Reads the input named by `view.models` (mesh, scene or glTF; none: the default model), applies its settings to
 /// `cmd`'s options not given on the command line (so `view` and `detail` are read after)
 /// and resolves the frame's parameters (the scene's camera and light included) and each
 /// object's style. `read_ms` (optional) receives the time spent.
 Result<SceneInput> readInput(CLI::App& cmd, ViewOptions& view, DetailOptions& detail, double* read_ms = nullptr);
+
+/// The default model, beside the running program: PREFIX/share/lodline/models/knot.off when
+/// installed, else models/knot.off of the source tree the program was built in.
+Result<std::filesystem::path> defaultModelPath();
+
+/// readInput() for a scene already in memory (`view.models` names it in errors): the scene's
+/// settings, the options and each object's style resolved as for a file.
+Result<SceneInput> resolveInput(CLI::App& cmd, ViewOptions& view, DetailOptions& detail, Scene scene);
 
 /// readInput(), then loads every object (frame/scene_builder.h): its mesh in world space and
 /// its level of detail, with a progress bar for progressive-mesh builds on a terminal.
