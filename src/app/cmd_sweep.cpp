@@ -43,6 +43,12 @@ struct SweepOptions {
   int jobs = 1;          ///< renders at the same time
   bool force = false;    ///< render complete runs again
   bool dry_run = false;  ///< check and print the plan only
+  /// Print one self-contained shell command per pending run (for GNU parallel, a Slurm
+  /// array, any scheduler) instead of rendering.
+  bool emit_commands = false;
+  /// Render nothing: gather the runs already in the directory (rendered elsewhere) into
+  /// results.csv, the sheets and the charts.
+  bool collect = false;
   std::vector<std::string> charts;  ///< stat columns to plot
   SheetOptions sheet;
   std::string font = kDefaultFontPath;
@@ -220,6 +226,9 @@ int runSweep(const SweepOptions& o) {
   const Plan& plan = *plan_r;
   if (o.jobs < 1 || o.jobs > 64) return reportError(Error::usage("--jobs: must be 1..64"));
   if (o.output.empty()) return reportError(Error::usage("sweep: -o DIR is required"));
+  if (static_cast<int>(o.dry_run) + static_cast<int>(o.emit_commands) + static_cast<int>(o.collect) > 1)
+    return reportError(Error::usage("sweep: --dry-run, --emit-commands and --collect exclude each other"));
+  if (o.collect && o.force) return reportError(Error::usage("sweep: --collect renders nothing, so --force does not apply"));
   if (o.sheet.cell_width < 0 || o.sheet.cell_width > 4096)
     return reportError(Error::usage("--cell-width: must be 0..4096 px"));
   std::string stat_names;
@@ -306,11 +315,28 @@ int runSweep(const SweepOptions& o) {
   if (len <= 0) return reportError(Error::runtime("/proc/self/exe: cannot find the lodline executable"));
   exe[len] = 0;
 
+  if (o.emit_commands) {
+    // One line per pending run, runnable from any directory on a machine that sees the same
+    // files: it changes to this directory (relative paths in the options stay valid) and
+    // writes the run's PNG and JSON atomically, so a run cut short leaves nothing `--collect`
+    // would take for done.
+    const std::string cwd = std::filesystem::current_path(ec).string();
+    for (size_t i = 0; i < plan.runs.size(); ++i) {
+      if (results[i].state == RunState::kComplete) continue;
+      const Run& run = plan.runs[i];
+      std::cout << "cd " << shellQuote(cwd) << " && " << shellQuote(exe) << " render " << shellQuote(run.model);
+      for (const auto& a : run.args) std::cout << ' ' << shellQuote(a);
+      std::cout << " -o " << shellQuote(pngOf(runs_dir, run).string()) << " --stats "
+                << shellQuote(jsonOf(runs_dir, run).string()) << '\n';
+    }
+    return 0;
+  }
+
   // Ctrl-C from here on stops the renders; the summaries are still written (and are not
   // themselves cut short).
   std::signal(SIGINT, onSweepInterrupt);
   std::signal(SIGTERM, onSweepInterrupt);
-  const bool finished = executeRuns(exe, plan.runs, runs_dir, o.jobs, results);
+  const bool finished = o.collect || executeRuns(exe, plan.runs, runs_dir, o.jobs, results);
 
   // Stats of every run with outputs (rendered now or kept from before).
   for (size_t i = 0; i < plan.runs.size(); ++i) {
@@ -355,6 +381,11 @@ int runSweep(const SweepOptions& o) {
     std::cerr << "lodline: sweep interrupted; " << not_run << " run(s) not done (rerun the same command to finish)\n";
     return 130;
   }
+  if (o.collect && not_run) {
+    std::cerr << "lodline: sweep --collect: " << not_run << " run(s) have no PNG and JSON in " << runs_dir.string()
+              << " yet (render them, e.g. with --emit-commands)\n";
+    return 1;
+  }
   return failed ? 1 : 0;
 }
 
@@ -384,6 +415,12 @@ Command addSweepCommand(CLI::App& parent) {
   cmd->add_option("-j,--jobs", o->jobs, "Runs rendered at the same time (child processes)")->capture_default_str();
   cmd->add_flag("--force", o->force, "Render every run again, even those whose PNG and JSON exist");
   cmd->add_flag("--dry-run", o->dry_run, "Check everything and print each run's name, state and render command; render nothing");
+  cmd->add_flag("--emit-commands", o->emit_commands,
+                "Render nothing: print one self-contained shell command per pending run (for GNU parallel, a Slurm "
+                "job array or any scheduler); then --collect gathers the results");
+  cmd->add_flag("--collect", o->collect,
+                "Render nothing: build results.csv, the contact sheets and the charts from the runs already in the "
+                "directory (rendered elsewhere); exit 1 when some runs are missing");
   cmd->add_option("--chart", o->charts,
                   "Result column to plot against the first --vary axis, one line per value of the others "
                   "(repeatable; DIR/chart_COLUMN.svg)")

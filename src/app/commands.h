@@ -25,6 +25,7 @@ Command addSimplifyCommand(CLI::App& parent);
 Command addCompareCommand(CLI::App& parent);
 Command addBenchCommand(CLI::App& parent);
 Command addSweepCommand(CLI::App& parent);
+Command addJoinCommand(CLI::App& parent);
 
 /// Parses an error bound given as a percentage of the bounding-box diagonal ("0.02%" or
 /// "0.02") into a fraction (0.0002); usage error naming `option` otherwise.

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
       lodline::addRenderCommand(app), lodline::addViewCommand(app), lodline::addCaptureCommand(app),
       lodline::addBuildCommand(app), lodline::addGenerateCommand(app),
       lodline::addSimplifyCommand(app), lodline::addCompareCommand(app), lodline::addBenchCommand(app),
-      lodline::addSweepCommand(app)};
+      lodline::addSweepCommand(app), lodline::addJoinCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

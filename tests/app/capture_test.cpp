@@ -61,6 +61,83 @@ TEST_F(Capture, FramesAreDeterministicAndRangesAgree) {
   EXPECT_FALSE(readAll(a / "frame_00000.png") == readAll(a / "frame_00001.png"));
 }
 
+// Four `--frames A:B` shards joined with `lodline join` equal the capture made in one
+// process: the same PNG frames, the same metrics rows (the timing column aside), and an MP4
+// of all the frames without re-encoding.
+TEST_F(Capture, FourShardsJoinedEqualTheOneProcessCapture) {
+  const auto whole = dir_ / "whole", joined = dir_ / "joined";
+  const std::string path = "--path orbit --duration 2 --fps 8 ";  // 16 frames
+  std::string out;
+  ASSERT_EQ(shell(capture(path + "-o " + whole.string() + "/ --metrics " + (dir_ / "whole.csv").string()), &out), 0)
+      << out;
+  const std::vector<std::string> ranges = {"0:3", "3:8", "8:9", "9:16"};
+  std::string pngs, csvs, mp4s;
+  for (size_t i = 0; i < ranges.size(); ++i) {
+    const auto part = dir_ / ("part" + std::to_string(i));
+    const std::string csv = part.string() + ".csv", mp4 = part.string() + ".mp4";
+    ASSERT_EQ(shell(capture(path + "--frames " + ranges[i] + " -o " + part.string() + "/ --metrics " + csv), &out), 0)
+        << out;
+    pngs += " " + part.string();
+    csvs += " " + csv;
+    if (shell("command -v ffmpeg") == 0) {
+      ASSERT_EQ(shell(capture(path + "--frames " + ranges[i] + " -o " + mp4), &out), 0) << out;
+      mp4s += " " + mp4;
+    }
+  }
+  // Shards in any order on the command line: frames are placed by number.
+  ASSERT_EQ(test::runLodline("join" + pngs + " -o " + joined.string() + "/", &out), 0) << out;
+  ASSERT_EQ(test::runLodline("join" + csvs + " -o " + (dir_ / "joined.csv").string(), &out), 0) << out;
+  for (int k = 0; k < 16; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%05d.png", k);
+    EXPECT_TRUE(readAll(whole / name) == readAll(joined / name)) << name;
+  }
+  EXPECT_FALSE(std::filesystem::exists(joined / "frame_00016.png"));
+  // Metrics: equal row by row except ms_total.
+  auto rows = [](const std::filesystem::path& p) {
+    std::vector<std::vector<std::string>> table;
+    std::ifstream in(p);
+    for (std::string line; std::getline(in, line);) {
+      std::vector<std::string> f;
+      std::stringstream ss(line);
+      for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+      table.push_back(f);
+    }
+    return table;
+  };
+  auto a = rows(dir_ / "whole.csv"), b = rows(dir_ / "joined.csv");
+  ASSERT_EQ(a.size(), 17u);
+  ASSERT_EQ(b.size(), a.size());
+  const auto ms = std::find(a[0].begin(), a[0].end(), "ms_total") - a[0].begin();
+  for (size_t r = 0; r < a.size(); ++r) {
+    ASSERT_EQ(a[r].size(), b[r].size());
+    for (size_t c = 0; c < a[r].size(); ++c) {
+      if (r == 0 || static_cast<std::ptrdiff_t>(c) != ms) {
+        EXPECT_EQ(a[r][c], b[r][c]) << "row " << r << " column " << a[0][c];
+      }
+    }
+  }
+  // A missing shard is a gap, a repeated one an overlap: both refused, nothing written.
+  EXPECT_EQ(test::runLodline("join " + (dir_ / "part0").string() + " " + (dir_ / "part2").string() + " -o " +
+                                 (dir_ / "gap").string() + "/",
+                             &out),
+            1);
+  EXPECT_NE(out.find("frames 3..7 are in no part"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "gap"));
+  EXPECT_EQ(test::runLodline("join " + (dir_ / "part0.csv").string() + " " + (dir_ / "part0.csv").string() + " -o " +
+                                 (dir_ / "twice.csv").string(),
+                             &out),
+            1);
+  EXPECT_NE(out.find("frame 0 is also in"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "twice.csv"));
+  if (mp4s.empty() || shell("command -v ffprobe") != 0) return;
+  const auto video = dir_ / "joined.mp4";
+  ASSERT_EQ(test::runLodline("join" + mp4s + " -o " + video.string(), &out), 0) << out;
+  ASSERT_EQ(shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+                  "-of csv=p=0 " + video.string(), &out), 0);
+  EXPECT_EQ(std::stoi(out), 16);
+}
+
 TEST_F(Capture, VideoHasTheRequestedFrameCount) {
   if (shell("command -v ffprobe") != 0) GTEST_SKIP() << "ffprobe not installed";
   const auto video = dir_ / "v.mp4";

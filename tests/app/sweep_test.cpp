@@ -452,6 +452,60 @@ TEST_F(Sweep, ParallelJobsGiveTheSameImages) {
   EXPECT_NE(svg.find("view.az = 120, lod = none"), std::string::npos);
 }
 
+// A sweep rendered elsewhere: --emit-commands prints one command per pending run, GNU
+// parallel runs them two at a time (from another directory), and --collect builds the same
+// results.csv (timing columns aside) and sheet as the sweep run by lodline itself.
+TEST_F(Sweep, EmitCommandsThroughParallelThenCollectEqualsTheSweep) {
+  if (test::runCommand("command -v parallel") != 0) GTEST_SKIP() << "GNU parallel is not installed (apt install parallel)";
+  const fs::path self = dir_ / "self", shard = dir_ / "shard";
+  const std::string vary = "--vary target-area=8,16,32,64 --vary view.az=0,60,120 --vary lod=pm,none";  // 24 runs
+  CliRun one = sweep(vary + " -o " + self.string());
+  ASSERT_EQ(one.code, 0) << one.output;
+  CliRun emitted = sweep(vary + " --emit-commands -o " + shard.string());
+  ASSERT_EQ(emitted.code, 0) << emitted.output;
+  const auto commands = lines(emitted.output);
+  ASSERT_EQ(commands.size(), 24u) << emitted.output;
+  for (const auto& c : commands) EXPECT_EQ(c.rfind("cd ", 0), 0u) << c;
+  std::ofstream(dir_ / "commands.txt") << emitted.output;
+  // Collecting before anything rendered says what is missing.
+  CliRun early = sweep(vary + " --collect -o " + shard.string());
+  EXPECT_EQ(early.code, 1) << early.output;
+  EXPECT_NE(early.output.find("24 run(s) have no PNG and JSON"), std::string::npos) << early.output;
+  // Two runs as tasks of a Slurm job array (scripts/slurm_array.sh runs line TASK + 1)...
+  std::string out;
+  for (int task : {0, 1})
+    ASSERT_EQ(test::runCommand("SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " " + LODLINE_SOURCE_DIR +
+                                   "/scripts/slurm_array.sh " + (dir_ / "commands.txt").string(),
+                               &out),
+              0)
+        << out;
+  // ...then the 22 still pending through GNU parallel, two at a time.
+  CliRun rest = sweep(vary + " --emit-commands -o " + shard.string());
+  ASSERT_EQ(rest.code, 0) << rest.output;
+  ASSERT_EQ(lines(rest.output).size(), 22u) << rest.output;
+  std::ofstream(dir_ / "rest.txt") << rest.output;
+  ASSERT_EQ(test::runCommand("cd / && parallel --will-cite -j2 --halt now,fail=1 < " + (dir_ / "rest.txt").string(), &out), 0)
+      << out;
+  // Everything is done: nothing left to emit.
+  CliRun none = sweep(vary + " --emit-commands -o " + shard.string());
+  ASSERT_EQ(none.code, 0) << none.output;
+  EXPECT_TRUE(lines(none.output).empty()) << none.output;
+  CliRun collected = sweep(vary + " --collect -o " + shard.string());
+  ASSERT_EQ(collected.code, 0) << collected.output;
+  auto a = readCsv(self / "results.csv"), b = readCsv(shard / "results.csv");
+  ASSERT_EQ(a.size(), 24u);
+  ASSERT_EQ(b.size(), a.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    for (auto* row : {&a[i], &b[i]})
+      for (auto it = row->begin(); it != row->end();) it = it->first.rfind("ms_", 0) == 0 ? row->erase(it) : std::next(it);
+    EXPECT_EQ(a[i], b[i]) << "row " << i;
+  }
+  EXPECT_TRUE(fs::exists(shard / "sheet_lod-pm.png"));
+  EXPECT_EQ(readAll(self / "sheet_lod-pm.png"), readAll(shard / "sheet_lod-pm.png"));
+  // The modes exclude each other.
+  EXPECT_EQ(sweep(vary + " --collect --emit-commands -o " + shard.string()).code, 2);
+}
+
 TEST_F(Sweep, InterruptStopsTheRendersAndKeepsTheRunsDone) {
   const fs::path out = dir_ / "i";
   setenv("EGL_PLATFORM", "surfaceless", 1);
