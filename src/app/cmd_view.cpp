@@ -246,6 +246,8 @@ int runView(CLI::App& cmd, ViewCommandOptions& o) {
           if (s.recorded.empty() || t - s.recorded.back().time >= 0.1)
             s.recorded.push_back({t, cam.eye, cam.target, cam.up, cam.fov_deg});
         }
+        // Frame the scene in the part of the window the panel leaves free.
+        v.setInset(s.panel.visible ? static_cast<int>(s.panel.right_px) : 0);
         if (Status st = v.frame(fb_w, fb_h, dt); !st) {
           status = reportError(st.error());
           break;

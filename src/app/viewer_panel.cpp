@@ -324,6 +324,10 @@ void drawPanel(ViewerSession& session, PanelState& state, int width, int height)
   }
   if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
   ImGui::PopItemWidth();
+  const float scale = ImGui::GetIO().DisplayFramebufferScale.x;
+  // Moved to the right half, the panel no longer narrows the view from the left.
+  const bool left = ImGui::GetWindowPos().x < 0.5f * ImGui::GetIO().DisplaySize.x;
+  state.right_px = left ? (ImGui::GetWindowPos().x + ImGui::GetWindowSize().x + 8.0f) * (scale > 0.0f ? scale : 1.0f) : 0.0f;
   ImGui::End();
 }
 

@@ -26,6 +26,9 @@ struct PanelState {
   /// Screen rectangle of the T slider as last drawn (min x, min y, max x, max y), so tests
   /// and scripted demos can drag it with real mouse input.
   std::array<float, 4> target_area_slider{};
+  /// The panel's right edge in framebuffer pixels as last drawn (the viewer frames the scene
+  /// to its right); before the first draw, where the panel first appears.
+  float right_px = 436.0f;
 };
 
 /// Fills the text fields from the session (call once after creating it).

@@ -47,10 +47,14 @@ Result<std::unique_ptr<ViewerSession>> ViewerSession::create(std::unique_ptr<Loa
   }
   s->initial_orbit_ = s->orbit_;
   s->initial_pan_ = s->pan_;
+  s->base_distance_ = s->orbit_.distance;
+  s->base_aspect_ = s->loaded_->view.frame.aspect();
   return s;
 }
 
-Camera ViewerSession::camera(int width, int height) const {
+Camera ViewerSession::camera(int width, int height) const { return cameraFor(width, height, inset_px_); }
+
+Camera ViewerSession::cameraFor(int width, int height, int inset_px) const {
   const Bounds& bounds = loaded_->drawing.bounds();
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
   if (path_) {
@@ -61,12 +65,61 @@ Camera ViewerSession::camera(int width, int height) const {
   Bounds shifted = bounds;
   shifted.center += pan_;
   Camera cam = orbitCamera(shifted, orbit_, fov_deg_, aspect);
+  if (inset_px > 0 && height > 0) {
+    // Move the camera sideways so the target sits at the free part's centre: inset/2 px to
+    // the right, a pixel being the image height's share of the view at the target's distance.
+    const glm::vec3 fwd = cam.forward();
+    const glm::vec3 right = glm::normalize(glm::cross(fwd, cam.up));
+    const float dist = glm::length(cam.target - cam.eye);
+    const float px = cam.orthographic ? cam.ortho_height / static_cast<float>(height)
+                               : 2.0f * dist * std::tan(glm::radians(cam.fov_deg) * 0.5f) / static_cast<float>(height);
+    const glm::vec3 shift = -right * (0.5f * static_cast<float>(inset_px) * px);
+    cam.eye += shift;
+    cam.target += shift;
+  }
   fitClipPlanes(cam, bounds);
   return cam;
 }
 
 Status ViewerSession::frame(int width, int height, float dt) {
   SceneDrawing& scene = loaded_->drawing;
+  // While the view is the initial framing, fit its distance to the free part of the window.
+  const bool initial = orbit_.azimuth_deg == initial_orbit_.azimuth_deg &&
+                       orbit_.elevation_deg == initial_orbit_.elevation_deg &&
+                       orbit_.distance == initial_orbit_.distance && pan_ == initial_pan_;
+  if (initial && !path_ && height > 0 && base_distance_ > 0.0f &&
+      (fitted_for_[0] != width || fitted_for_[1] != height || fitted_for_[2] != inset_px_)) {
+    // What the initial view shows across the whole window must fit in the free part: the
+    // scene's box, seen from the initial distance, at most half the free width either side
+    // of the centre (2% margin); farther by that ratio when it is wider (twice, as the
+    // perspective is not linear in the distance).
+    const int free_w = std::max(width - inset_px_, width / 4);
+    float scale = 1.0f;
+    if (inset_px_ > 0) {
+      const Bounds& b = scene.bounds();
+      for (int pass = 0; pass < 2; ++pass) {
+        OrbitView o = orbit_;
+        o.distance = base_distance_ * scale;
+        Bounds shifted = b;
+        shifted.center += pan_;
+        const Camera c = orbitCamera(shifted, o, fov_deg_, static_cast<float>(width) / static_cast<float>(height));
+        const PixelProjector proj(c, width, height);
+        float half_extent = 0.0f;
+        for (int k = 0; k < 8; ++k) {
+          const glm::vec3 p((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
+          glm::vec2 px;
+          float depth = 0.0f;
+          if (proj.project(p, px, depth)) half_extent = std::max(half_extent, std::abs(px.x - 0.5f * width));
+        }
+        scale *= std::max(1.0f, half_extent / (0.48f * static_cast<float>(free_w)));
+      }
+    }
+    orbit_.distance = initial_orbit_.distance = base_distance_ * std::max(scale, 1.0f);
+    fitted_for_[0] = width;
+    fitted_for_[1] = height;
+    fitted_for_[2] = inset_px_;
+    dirty_ = true;
+  }
   const Camera cam = camera(width, height);
   const ResolvedDetail& detail = loaded_->detail;
   // A new framebuffer size needs a new picture even when nothing else changed.
@@ -192,7 +245,7 @@ Status ViewerSession::saveView(const std::filesystem::path& path, int width, int
     style.stroke_style = strokes.string();
   }
   out.settings = settingsOf(frame, style, loaded_->detail, loaded_->view.line_params, path.parent_path());
-  const Camera cam = camera(width, height);
+  const Camera cam = cameraFor(width, height, 0);
   SceneCamera sc;
   sc.explicit_pose = true;
   sc.eye = cam.eye;

@@ -84,10 +84,20 @@ class ViewerSession {
   const FrameReport& report() const { return report_; }
   const ScenePresenter& presenter() const { return *presenter_; }
 
+  /// The width, px, the panel covers at the window's left (0: none). The scene is framed in
+  /// the rest: its centre at the free part's centre and, while the view is the initial one,
+  /// its distance scaled to the free part's aspect.
+  void setInset(int left_px) {
+    if (left_px != inset_px_) dirty_ = true;
+    inset_px_ = left_px;
+  }
+
   /// Writes the current camera, parameters and objects (with their detail factors and
   /// styles) as a scene file that `lodline render` reproduces (io/scene_file.h's writer);
   /// paths are written relative to the new file's folder. Atomic; errors name the file.
-  /// `width`×`height`: the image size.
+  /// `width`×`height`: the image size. The camera saved is the one framing the scene in the
+  /// whole image (the panel's inset left out), so `lodline render` centres what the viewer
+  /// showed in the free part.
   Status saveView(const std::filesystem::path& path, int width, int height) const;
 
  private:
@@ -95,8 +105,16 @@ class ViewerSession {
   std::unique_ptr<LoadedScene> loaded_;
   ViewOptions options_;
   std::unique_ptr<GlPresenter> presenter_;
+  Camera cameraFor(int width, int height, int inset_px) const;
   OrbitView orbit_, initial_orbit_;
   glm::vec3 pan_{0.0f}, initial_pan_{0.0f};
+  int inset_px_ = 0;
+  /// The initial distance (given or framing the scene) and the aspect it was meant for: while
+  /// the view is still the initial one, it is scaled so the scene fills the part of the
+  /// window the panel leaves free as it would have filled that aspect.
+  float base_distance_ = 0.0f;
+  float base_aspect_ = 1.0f;
+  int fitted_for_[3] = {0, 0, -1};  ///< width, height, inset the distance was fitted for
   float fov_deg_ = 35.0f;
   std::optional<CameraPath> path_;
   double play_time_ = 0.0;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <glad/gl.h>
+#include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/model.h"
@@ -147,6 +148,48 @@ TEST_F(Viewer, ASavedViewRendersToTheSamePicture) {
   // Up to one level of 255: a stroke's coverage turns a last-bit difference of its position
   // (the saved camera read back in another process) into a level in a few fringe pixels.
   EXPECT_EQ(differing(viewer, *rendered, 1), 0u);
+}
+
+// With the panel covering the window's left, the scene is framed in the part it leaves free:
+// its centre at that part's centre, its bounding box inside it; a saved view keeps the
+// framing without the panel's shift (render centres the scene).
+TEST_F(Viewer, TheSceneIsFramedBesideThePanel) {
+  auto s = open({(dir_ / "scene.json").string(), "--msaa", "1"});
+  ASSERT_TRUE(s);
+  const int w = 480, h = 240, inset = 200;
+  s->setInset(inset);
+  ASSERT_TRUE(s->frame(w, h, 1.0f / 30.0f).ok());
+  const Bounds& b = s->scene().bounds();
+  const Camera cam = s->camera(w, h);
+  const PixelProjector proj(cam, w, h);
+  glm::vec2 c;
+  float depth = 0.0f;
+  ASSERT_TRUE(proj.project(b.center, c, depth));
+  EXPECT_NEAR(c.x, inset + 0.5f * (w - inset), 1.0f);
+  EXPECT_NEAR(c.y, 0.5f * h, 1.0f);
+  // The scene's box lies in the free part.
+  for (int k = 0; k < 8; ++k) {
+    const glm::vec3 p((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
+    glm::vec2 px;
+    ASSERT_TRUE(proj.project(p, px, depth));
+    EXPECT_GE(px.x, inset - 1.0f) << "corner " << k;
+    EXPECT_LE(px.x, w + 1.0f) << "corner " << k;
+  }
+  // Without the panel the same session frames the scene in the whole window again.
+  s->setInset(0);
+  ASSERT_TRUE(s->frame(w, h, 1.0f / 30.0f).ok());
+  const PixelProjector whole(s->camera(w, h), w, h);
+  ASSERT_TRUE(whole.project(b.center, c, depth));
+  EXPECT_NEAR(c.x, 0.5f * w, 1.0f);
+  // The saved view looks at the scene's centre: no sideways shift.
+  s->setInset(inset);
+  ASSERT_TRUE(s->frame(w, h, 1.0f / 30.0f).ok());
+  const auto saved = dir_ / "framed.json";
+  ASSERT_TRUE(s->saveView(saved, w, h).ok());
+  auto t = open({saved.string()});
+  ASSERT_TRUE(t);
+  const Camera back = t->camera(w, h);
+  EXPECT_LT(glm::length(back.target - b.center), 1e-3f * b.radius);
 }
 
 // Stroke fields edited in the panel (one kind, then all of them) are saved as a style file
