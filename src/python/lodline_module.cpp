@@ -19,6 +19,9 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/model.h"
@@ -518,8 +521,21 @@ class PyRenderer {
   }
 
   static SceneCamera cameraOf(const py::handle& h) {
+    if (py::isinstance<py::array>(h)) {
+      // A 4×4 view matrix (world to eye, OpenGL's convention: the eye looks down −z).
+      const glm::mat4 v = matrixOf(py::reinterpret_borrow<py::object>(h));
+      const glm::mat4 inv = glm::inverse(v);
+      SceneCamera c;
+      c.explicit_pose = true;
+      c.eye = glm::vec3(inv[3]);
+      c.target = c.eye - glm::normalize(glm::vec3(inv[2]));
+      c.up = glm::normalize(glm::vec3(inv[1]));
+      if (!std::isfinite(c.eye.x + c.eye.y + c.eye.z + c.target.x + c.up.x))
+        throw PyUsageError("camera: the view matrix is not invertible");
+      return c;
+    }
     if (!py::isinstance<py::dict>(h))
-      throw PyUsageError("camera: expected a dict with eye, target and up (and optionally fov)");
+      throw PyUsageError("camera: expected a 4×4 view matrix or a dict with eye, target and up (and optionally fov)");
     const py::dict d = h.cast<py::dict>();
     SceneCamera c;
     c.explicit_pose = true;
@@ -742,7 +758,8 @@ PYBIND11_MODULE(lodline, m) {
       .def("render", &PyRenderer::render, py::arg("model"),
            "render(model, **options) -> Frame. `model`: a path, Mesh or Scene; options: the command line's long "
            "options with '_' for '-' (size=(W, H), view=(az, el, dist), target_area=16, lines='contour,suggestive', "
-           "full_detail=True, ...), detail_map (a path or an H×W array), camera=dict(eye, target, up, fov), "
+           "full_detail=True, ...), detail_map (a path or an H×W array), camera (a 4×4 view matrix or "
+           "dict(eye, target, up, fov)), "
            "surface=True for the surface buffer")
       .def("capture", &PyRenderer::capture, py::arg("model"),
            "capture(model, path='orbit', duration=8, fps=30, frames='A:B', metrics=True, **options) -> Capture, "

@@ -114,6 +114,30 @@ def test_scene_built_in_python(cache):
     assert f.stats["objects"][1]["detail_factor"] == 2.0
 
 
+def look_at(eye, target, up):
+    f = np.subtract(target, eye)
+    f = f / np.linalg.norm(f)
+    r = np.cross(f, up)
+    r = r / np.linalg.norm(r)
+    u = np.cross(r, f)
+    m = np.eye(4)
+    m[0, :3], m[1, :3], m[2, :3] = r, u, -f
+    m[:3, 3] = -m[:3, :3] @ np.asarray(eye, float)
+    return m
+
+
+def test_camera_as_pose_or_view_matrix(cache):
+    eye, target = (0.5, 1.0, 4.0), (0.0, 0.0, 0.0)
+    r = lodline.Renderer(reuse=False)
+    by_pose = r.render(KNOT, size=(160, 120), cache_dir=cache, camera=dict(eye=eye, target=target, up=(0, 1, 0)))
+    by_matrix = r.render(KNOT, size=(160, 120), cache_dir=cache, camera=look_at(eye, target, (0, 1, 0)))
+    default = r.render(KNOT, size=(160, 120), cache_dir=cache)
+    assert np.abs(by_pose.image.astype(int) - by_matrix.image.astype(int)).max() <= 1
+    assert not np.array_equal(by_pose.image, default.image)
+    with pytest.raises(lodline.UsageError, match="camera"):
+        r.render(KNOT, camera=dict(eye=eye))
+
+
 def test_numpy_detail_map_equals_png_map(cache, tmp_path):
     h, w = 120, 160
     grey = np.full((h, w), 255, dtype=np.uint8)
