@@ -285,6 +285,7 @@ Result<SceneInput> resolveInput(CLI::App& cmd, ViewOptions& view, DetailOptions&
   }
   // The scene's light is the frame's (toon, shaded and chamfer highlights alike).
   if (in.scene.light_dir_eye) in.view.frame.light_dir_eye = *in.scene.light_dir_eye;
+  in.view.line_params.light_dir_eye = in.view.frame.light_dir_eye;  // isophotes see the same light
   auto styles = resolveObjectStyles(in.scene, view);
   if (!styles) return styles.error();
   in.styles = std::move(styles.value());

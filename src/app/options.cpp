@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include <glm/geometric.hpp>
+
 #include "io/scene_file.h"
 #include "io/stroke_style_file.h"
 
@@ -40,8 +42,8 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
                  "thickness and opacity by depth, strength and bend, dashes, jitter, brush (docs/strokes.md)")
       ->capture_default_str();
   cmd.add_option("--lines", o.lines,
-                 "Comma-separated line kinds to draw: contour, suggestive, crease, boundary, intersection "
-                 "(or none)")
+                 "Comma-separated line kinds to draw: contour, suggestive, crease, boundary, intersection, "
+                 "isophote, topo, parabolic (or none; docs/lines.md)")
       ->capture_default_str();
   cmd.add_option("--hidden-lines", o.hidden_lines,
                  "Draw the hidden parts of lines too: off, or COLOUR[:WIDTH][:dash=ON,OFF] (pixels), e.g. "
@@ -82,6 +84,17 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
                  "the surface faster than START fade, gone at END (DeCarlo et al. 2004; docs/temporal-coherence.md)")
       ->capture_default_str();
   cmd.add_option("--crease-angle", o.crease_angle, "Dihedral angle in degrees above which an edge is a crease line")
+      ->capture_default_str();
+  cmd.add_option("--isophote-spacing", o.isophote_spacing,
+                 "Isophotes (--lines ...,isophote) at n.l = 0, S, 2S, ... under the frame's light")
+      ->capture_default_str();
+  cmd.add_option("--topo-spacing", o.topo_spacing,
+                 "Topographic lines (--lines ...,topo) every S times the object's bounding-box diagonal")
+      ->capture_default_str();
+  cmd.add_option("--topo-axis", o.topo_axis, "X,Y,Z: the up axis of the topographic lines' heights (world)")
+      ->capture_default_str();
+  cmd.add_option("--parabolic-threshold", o.parabolic_threshold,
+                 "Parabolic lines (--lines ...,parabolic, K = 0) only where max(|k1|,|k2|) exceeds this / feature size")
       ->capture_default_str();
 }
 
@@ -224,6 +237,32 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
     r.line_params.suggestive_motion_fade_end = stop;
   }
   r.line_params.crease_angle_deg = o.crease_angle;
+  if (!(o.isophote_spacing >= 0.01f && o.isophote_spacing <= 1.0f))
+    return Error::usage("--isophote-spacing: must be in [0.01, 1] (a step of n.l)");
+  r.line_params.isophote_spacing = o.isophote_spacing;
+  r.line_params.light_dir_eye = r.frame.light_dir_eye;
+  if (!(o.topo_spacing >= 1e-3f && o.topo_spacing <= 1.0f))
+    return Error::usage("--topo-spacing: must be in [0.001, 1] (a fraction of the bounding-box diagonal)");
+  r.line_params.topo_spacing = o.topo_spacing;
+  {
+    const auto bad = Error::usage("--topo-axis: expected X,Y,Z (a non-zero direction), got '" + o.topo_axis + "'");
+    float a[3];
+    std::stringstream axis(o.topo_axis);
+    std::string part;
+    int count = 0;
+    while (std::getline(axis, part, ',')) {
+      if (count == 3) return bad;
+      char* end = nullptr;
+      a[count] = std::strtof(part.c_str(), &end);
+      if (part.empty() || *end != '\0' || !std::isfinite(a[count])) return bad;
+      ++count;
+    }
+    if (count != 3 || (a[0] == 0.0f && a[1] == 0.0f && a[2] == 0.0f)) return bad;
+    r.line_params.topo_axis = glm::normalize(glm::vec3(a[0], a[1], a[2]));
+  }
+  if (!(o.parabolic_threshold >= 0.0f && o.parabolic_threshold <= 1e3f))
+    return Error::usage("--parabolic-threshold: must be in [0, 1000]");
+  r.line_params.parabolic_threshold = o.parabolic_threshold;
   if (o.outline != "complete" && o.outline != "contour")
     return Error::usage("--outline: expected complete or contour, got '" + o.outline + "'");
   r.line_params.complete_outline = o.outline == "complete";
@@ -339,6 +378,10 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
                                     ? exact(lines.suggestive_motion_fade_start) + "," + exact(lines.suggestive_motion_fade_end)
                                     : std::string("off");
   s["crease-angle"] = exact(lines.crease_angle_deg);
+  s["isophote-spacing"] = exact(lines.isophote_spacing);
+  s["topo-spacing"] = exact(lines.topo_spacing);
+  s["topo-axis"] = exact(lines.topo_axis.x) + "," + exact(lines.topo_axis.y) + "," + exact(lines.topo_axis.z);
+  s["parabolic-threshold"] = exact(lines.parabolic_threshold);
   s["outline"] = lines.complete_outline ? "complete" : "contour";
   s["hidden-lines"] = formatHiddenLines(style.hidden);
 

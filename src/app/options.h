@@ -48,6 +48,11 @@ struct ViewOptions {
   /// (LineParams::suggestive_motion_fade_*).
   std::string suggestive_motion_fade = "off";
   float crease_angle = LineParams{}.crease_angle_deg;
+  // The level-set kinds (docs/lines.md).
+  float isophote_spacing = LineParams{}.isophote_spacing;
+  float topo_spacing = LineParams{}.topo_spacing;
+  std::string topo_axis = "0,1,0";
+  float parabolic_threshold = LineParams{}.parabolic_threshold;
 };
 
 /// The options of a capture beyond the view and detail ones (`capture` and the Python

@@ -232,6 +232,10 @@ void linesSection(ViewerSession& s, PanelState& st) {
   changed |= ImGui::SliderFloat("Motion fade from (px/s)", &lp.suggestive_motion_fade_start, 0.0f, 200.0f, "%.1f");
   changed |= ImGui::SliderFloat("Motion fade to (px/s, 0 = off)", &lp.suggestive_motion_fade_end, 0.0f, 400.0f, "%.1f");
   changed |= ImGui::SliderFloat("Crease angle (deg)", &lp.crease_angle_deg, 1.0f, 179.0f, "%.1f");
+  changed |= ImGui::SliderFloat("Isophote spacing (n.l)", &lp.isophote_spacing, 0.05f, 1.0f, "%.3f");
+  changed |= ImGui::SliderFloat("Topo spacing (of diagonal)", &lp.topo_spacing, 0.005f, 0.25f, "%.4f",
+                                ImGuiSliderFlags_Logarithmic);
+  changed |= ImGui::SliderFloat("Parabolic threshold", &lp.parabolic_threshold, 0.0f, 1.0f, "%.3f");
   if (changed) s.setLineParams(lp);
 }
 

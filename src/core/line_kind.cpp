@@ -9,6 +9,9 @@ const char* lineKindName(LineKind k) {
     case LineKind::kCrease: return "crease";
     case LineKind::kBoundary: return "boundary";
     case LineKind::kIntersection: return "intersection";
+    case LineKind::kIsophote: return "isophote";
+    case LineKind::kTopo: return "topo";
+    case LineKind::kParabolic: return "parabolic";
   }
   return "unknown";
 }
@@ -19,6 +22,8 @@ std::optional<LineKind> parseLineKind(std::string_view name) {
   return std::nullopt;
 }
 
-const char* lineKindList() { return "contour, suggestive, crease, boundary, intersection"; }
+const char* lineKindList() {
+  return "contour, suggestive, crease, boundary, intersection, isophote, topo, parabolic";
+}
 
 }  // namespace lodline

@@ -16,11 +16,17 @@ enum class LineKind : uint8_t {
   kBoundary = 3,    ///< edges with one face
   /// where two objects' surfaces (or two parts of one surface) cross (cgal/intersections.h)
   kIntersection = 4,
+  /// level sets of the shading n·l at multiples of a spacing (l: the frame's light)
+  kIsophote = 5,
+  /// level sets of the height along an up axis at multiples of a spacing
+  kTopo = 6,
+  /// parabolic lines, K = k1·k2 = 0, where the surface is curved at all
+  kParabolic = 7,
 };
-inline constexpr int kLineKindCount = 5;
+inline constexpr int kLineKindCount = 8;
 
-/// "contour", "suggestive", "crease", "boundary", "intersection" (the names of --lines and
-/// the stats).
+/// "contour", "suggestive", "crease", "boundary", "intersection", "isophote", "topo",
+/// "parabolic" (the names of --lines and the stats).
 const char* lineKindName(LineKind k);
 /// The kind named `name`, if any.
 std::optional<LineKind> parseLineKind(std::string_view name);

@@ -5,7 +5,10 @@
 #include <cmath>
 #include <numbers>
 
+#include <glm/geometric.hpp>
+
 #include "core/timer.h"
+#include "lines/level_lines.h"
 
 namespace lodline {
 
@@ -100,6 +103,10 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   p.creases = p.creases && enabled[static_cast<int>(LineKind::kCrease)];
   p.marked_edges = p.marked_edges && p.creases;
   p.boundaries = p.boundaries && enabled[static_cast<int>(LineKind::kBoundary)];
+  // The level-set kinds are drawn when the style asks for them (lines/level_lines.h).
+  p.isophotes = enabled[static_cast<int>(LineKind::kIsophote)];
+  p.topo = enabled[static_cast<int>(LineKind::kTopo)];
+  p.parabolic = enabled[static_cast<int>(LineKind::kParabolic)];
 
   const WorkerPool::Awake awake(pool_.get());
   Stopwatch sw;
@@ -155,6 +162,21 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   if (motion_fade)
     suggestiveMotionGain(mesh_.positions, view_, smoother_.krChange(), camera, image_height, dt,
                          p.suggestive_motion_fade_start, p.suggestive_motion_fade_end, motion_gain_, pool_.get());
+  if (p.isophotes || p.topo || p.parabolic || !view_.isophote.empty() || !view_.topo.empty() ||
+      !view_.parabolic.empty()) {
+    LevelSpec level;
+    level.isophotes = p.isophotes;
+    level.light = lightInModelSpace(camera, p.light_dir_eye);
+    level.isophote_spacing = p.isophote_spacing;
+    level.topo = p.topo;
+    level.topo_origin = bounds_.center;
+    level.topo_axis = p.topo_axis;
+    level.topo_spacing = p.topo_spacing * glm::length(bounds_.max - bounds_.min);
+    level.parabolic = p.parabolic;
+    level.feature_size = fs;
+    level.parabolic_threshold = p.parabolic_threshold;
+    computeLevelQuantities(fields, level, view_, pool_.get());
+  }
   timings_.view = sw.lap();
   extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_,
                motion_fade ? std::span<const float>(motion_gain_) : std::span<const float>());

@@ -385,8 +385,8 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
   out.clear();
   scratch.next_interior_id = 0;
   const float fs = feature_size > 0.0f && std::isfinite(feature_size) ? feature_size : 1.0f;
-  ZeroSetInput in[2];
-  LineKind types[2];
+  ZeroSetInput in[5];
+  LineKind types[5];
   size_t n = 0;
   if (params.contours) {
     in[n].value = view.ndotv;
@@ -402,6 +402,22 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
     in[n].fade = params.suggestive_fade / (fs * fs);
     in[n].gain = suggestive_gain;
     types[n++] = LineKind::kSuggestive;
+  }
+  // The level-set kinds (lines/level_lines.h), where their quantities were computed.
+  const size_t nv = mesh.positions.size();
+  if (params.isophotes && view.isophote.size() == nv && view.isophote_test.size() == nv) {
+    in[n].value = view.isophote;
+    in[n].test_num = view.isophote_test;
+    types[n++] = LineKind::kIsophote;
+  }
+  if (params.topo && view.topo.size() == nv) {
+    in[n].value = view.topo;
+    types[n++] = LineKind::kTopo;
+  }
+  if (params.parabolic && view.parabolic.size() == nv && view.parabolic_test.size() == nv) {
+    in[n].value = view.parabolic;
+    in[n].test_num = view.parabolic_test;
+    types[n++] = LineKind::kParabolic;
   }
   extractZeroSets(mesh.positions, mesh.faces, adj, std::span(in, n), std::span(types, n), scratch, out);
   extractEdgeLines(mesh, adj, face_normals, params, scratch, out, crease_vertices);

@@ -63,6 +63,25 @@ struct LineParams {
   /// Also draw TriMesh::marked_edges (and non-manifold edges) as creases. Default on.
   bool marked_edges = true;
   bool boundaries = true;  ///< edges with one face. Default on
+  // Level-set kinds (lines/level_lines.h, docs/lines.md). Off by default here; a drawing
+  // turns each on when its style enables the kind (`--lines ...,isophote`).
+  bool isophotes = false;  ///< n·l = k·isophote_spacing, k ≥ 0 (terminator and lit side)
+  /// Spacing of the isophotes in n·l. Default 0.25 (n·l = 0, 0.25, 0.5, 0.75).
+  float isophote_spacing = 0.25f;
+  /// The light isophotes are of: towards the light, eye space (the frame's light,
+  /// FrameParams::light_dir_eye, which the app copies here).
+  glm::vec3 light_dir_eye{-0.45f, 0.6f, 0.65f};
+  bool topo = false;  ///< topographic lines: heights along topo_axis at multiples of the spacing
+  /// Spacing of the topographic lines as a fraction of the object's bounding-box diagonal
+  /// (full detail), levels counted from the box's centre. Default 1/24.
+  float topo_spacing = 1.0f / 24.0f;
+  glm::vec3 topo_axis{0.0f, 1.0f, 0.0f};  ///< world up of the heights (normalised). Default +y
+  bool parabolic = false;  ///< parabolic lines, K = k1·k2 = 0
+  /// Parabolic lines only where max(|k1|, |k2|) > parabolic_threshold / fs, so flat parts,
+  /// where K is 0 up to noise, draw none. fs, the feature size, is rtsc's: 1% of the
+  /// reciprocal of the 10th-percentile curvature, so the default 0.05 keeps vertices curved
+  /// more than 5× that percentile.
+  float parabolic_threshold = 0.05f;
   /// Also extract the mesh's own silhouette (edges between a front- and a back-facing face)
   /// each frame, so the presenter can draw it where the interpolated contour leaves the
   /// object's outline (coarse meshes; docs/visibility.md). Default on (`--outline complete`).

@@ -49,6 +49,10 @@ struct ViewQuantities {
   /// sc_den = cosθ. Empty when the fields carry no derivative tensor.
   std::vector<float> sc_num;
   std::vector<float> sc_den;
+  /// Level-set kinds (lines/level_lines.h); each empty when its kind is off.
+  std::vector<float> isophote, isophote_test;    ///< wave of n·l/spacing; n·l > −spacing/2
+  std::vector<float> topo;                       ///< wave of height/spacing
+  std::vector<float> parabolic, parabolic_test;  ///< k1·k2·fs²; max|k|·fs − threshold
 };
 
 /// Fills `out` for the view `view`. `sc_threshold` is the absolute threshold on tanθ·Dw kr
