@@ -43,7 +43,7 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
       ->capture_default_str();
   cmd.add_option("--lines", o.lines,
                  "Comma-separated line kinds to draw: contour, suggestive, crease, boundary, intersection, "
-                 "isophote, topo, parabolic (or none; docs/lines.md)")
+                 "isophote, topo, parabolic, ridge, valley (or none; docs/lines.md)")
       ->capture_default_str();
   cmd.add_option("--hidden-lines", o.hidden_lines,
                  "Draw the hidden parts of lines too: off, or COLOUR[:WIDTH][:dash=ON,OFF] (pixels), e.g. "
@@ -95,6 +95,10 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
       ->capture_default_str();
   cmd.add_option("--parabolic-threshold", o.parabolic_threshold,
                  "Parabolic lines (--lines ...,parabolic, K = 0) only where max(|k1|,|k2|) exceeds this / feature size")
+      ->capture_default_str();
+  cmd.add_option("--ridge-threshold", o.ridge_threshold,
+                 "Ridges and valleys (--lines ...,ridge,valley) where the dominant |k| exceeds this / feature size "
+                 "(faded in up to twice it)")
       ->capture_default_str();
 }
 
@@ -263,6 +267,9 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   if (!(o.parabolic_threshold >= 0.0f && o.parabolic_threshold <= 1e3f))
     return Error::usage("--parabolic-threshold: must be in [0, 1000]");
   r.line_params.parabolic_threshold = o.parabolic_threshold;
+  if (!(o.ridge_threshold > 0.0f && o.ridge_threshold <= 1e3f))
+    return Error::usage("--ridge-threshold: must be in (0, 1000]");
+  r.line_params.ridge_threshold = o.ridge_threshold;
   if (o.outline != "complete" && o.outline != "contour")
     return Error::usage("--outline: expected complete or contour, got '" + o.outline + "'");
   r.line_params.complete_outline = o.outline == "complete";
@@ -382,6 +389,7 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   s["topo-spacing"] = exact(lines.topo_spacing);
   s["topo-axis"] = exact(lines.topo_axis.x) + "," + exact(lines.topo_axis.y) + "," + exact(lines.topo_axis.z);
   s["parabolic-threshold"] = exact(lines.parabolic_threshold);
+  s["ridge-threshold"] = exact(lines.ridge_threshold);
   s["outline"] = lines.complete_outline ? "complete" : "contour";
   s["hidden-lines"] = formatHiddenLines(style.hidden);
 

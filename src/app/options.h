@@ -53,6 +53,7 @@ struct ViewOptions {
   float topo_spacing = LineParams{}.topo_spacing;
   std::string topo_axis = "0,1,0";
   float parabolic_threshold = LineParams{}.parabolic_threshold;
+  float ridge_threshold = LineParams{}.ridge_threshold;
 };
 
 /// The options of a capture beyond the view and detail ones (`capture` and the Python

@@ -12,6 +12,8 @@ const char* lineKindName(LineKind k) {
     case LineKind::kIsophote: return "isophote";
     case LineKind::kTopo: return "topo";
     case LineKind::kParabolic: return "parabolic";
+    case LineKind::kRidge: return "ridge";
+    case LineKind::kValley: return "valley";
   }
   return "unknown";
 }
@@ -23,7 +25,7 @@ std::optional<LineKind> parseLineKind(std::string_view name) {
 }
 
 const char* lineKindList() {
-  return "contour, suggestive, crease, boundary, intersection, isophote, topo, parabolic";
+  return "contour, suggestive, crease, boundary, intersection, isophote, topo, parabolic, ridge, valley";
 }
 
 }  // namespace lodline

@@ -22,11 +22,15 @@ enum class LineKind : uint8_t {
   kTopo = 6,
   /// parabolic lines, K = k1·k2 = 0, where the surface is curved at all
   kParabolic = 7,
+  /// ridges: maxima of the dominant positive curvature along its line of curvature
+  kRidge = 8,
+  /// valleys: the same for the dominant negative curvature
+  kValley = 9,
 };
-inline constexpr int kLineKindCount = 8;
+inline constexpr int kLineKindCount = 10;
 
 /// "contour", "suggestive", "crease", "boundary", "intersection", "isophote", "topo",
-/// "parabolic" (the names of --lines and the stats).
+/// "parabolic", "ridge", "valley" (the names of --lines and the stats).
 const char* lineKindName(LineKind k);
 /// The kind named `name`, if any.
 std::optional<LineKind> parseLineKind(std::string_view name);

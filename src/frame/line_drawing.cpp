@@ -9,6 +9,7 @@
 
 #include "core/timer.h"
 #include "lines/level_lines.h"
+#include "lines/ridge_lines.h"
 
 namespace lodline {
 
@@ -107,6 +108,8 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   p.isophotes = enabled[static_cast<int>(LineKind::kIsophote)];
   p.topo = enabled[static_cast<int>(LineKind::kTopo)];
   p.parabolic = enabled[static_cast<int>(LineKind::kParabolic)];
+  p.ridges = enabled[static_cast<int>(LineKind::kRidge)];
+  p.valleys = enabled[static_cast<int>(LineKind::kValley)];
 
   const WorkerPool::Awake awake(pool_.get());
   Stopwatch sw;
@@ -180,6 +183,16 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   timings_.view = sw.lap();
   extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_,
                motion_fade ? std::span<const float>(motion_gain_) : std::span<const float>());
+  if (p.ridges || p.valleys) {  // lines/ridge_lines.h: the raw (unsmoothed) curvature
+    const RidgeSpec ridge{p.ridges, p.valleys, p.ridge_threshold, fs};
+    SurfaceFields rf = shape_.fields(mesh_);
+    if (shape_.params().lazy_derivatives) {  // derivative tensors only where a ridge can be
+      ridgeCandidateVertices(mesh_.faces, shape_.adjacency(), rf, ridge, needed_mark_, ridge_needed_);
+      shape_.ensureDerivatives(mesh_, ridge_needed_);
+      rf.dcurv = shape_.dcurv();
+    }
+    extractRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), rf, ridge, scratch_, segments_);
+  }
   timings_.extract = sw.lap();
   chainStrokes(segments_, strokes_, chain_scratch_);
   timings_.chain = sw.lap();

@@ -21,19 +21,6 @@ void LineSet::clear() {
 
 namespace {
 
-inline void pushSegment(LineSet& out, LineKind type, uint32_t source, const glm::vec3& p0,
-                        uint32_t id0, float a0, const glm::vec3& p1, uint32_t id1, float a1) {
-  out.points.push_back(p0);
-  out.points.push_back(p1);
-  out.alpha.push_back(a0);
-  out.alpha.push_back(a1);
-  out.point_ids.push_back(id0);
-  out.point_ids.push_back(id1);
-  out.kinds.push_back(type);
-  out.sources.push_back(source);
-  ++out.counts[static_cast<int>(type)];
-}
-
 inline float fadeAlpha(float num, float den, float fade) {
   if (!(fade > 0.0f)) return 1.0f;
   const float a = num / (num + fade * den);

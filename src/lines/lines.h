@@ -82,6 +82,12 @@ struct LineParams {
   /// reciprocal of the 10th-percentile curvature, so the default 0.05 keeps vertices curved
   /// more than 5× that percentile.
   float parabolic_threshold = 0.05f;
+  bool ridges = false;   ///< ridges (lines/ridge_lines.h)
+  bool valleys = false;  ///< valleys (lines/ridge_lines.h)
+  /// Ridges and valleys where the dominant curvature's |k|·fs exceeds this, faded in over
+  /// one more threshold (fs as for parabolic lines: 0.1 is 10× the 10th-percentile
+  /// curvature). Default 0.1.
+  float ridge_threshold = 0.1f;
   /// Also extract the mesh's own silhouette (edges between a front- and a back-facing face)
   /// each frame, so the presenter can draw it where the interpolated contour leaves the
   /// object's outline (coarse meshes; docs/visibility.md). Default on (`--outline complete`).
@@ -105,6 +111,21 @@ struct LineSet {
   size_t segmentCount() const { return kinds.size(); }
   void clear();
 };
+
+/// Appends one segment (p0 → p1, ids and alphas per endpoint) of kind `type` from face or
+/// edge `source` to `out`.
+inline void pushSegment(LineSet& out, LineKind type, uint32_t source, const glm::vec3& p0, uint32_t id0, float a0,
+                        const glm::vec3& p1, uint32_t id1, float a1) {
+  out.points.push_back(p0);
+  out.points.push_back(p1);
+  out.alpha.push_back(a0);
+  out.alpha.push_back(a1);
+  out.point_ids.push_back(id0);
+  out.point_ids.push_back(id1);
+  out.kinds.push_back(type);
+  out.sources.push_back(source);
+  ++out.counts[static_cast<int>(type)];
+}
 
 /// Input of the generic zero-set extractor. Spans hold vertexCount floats (or are empty).
 struct ZeroSetInput {

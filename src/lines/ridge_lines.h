@@ -1,0 +1,55 @@
+// Ridges and valleys: the curvature extrema along the lines of curvature (docs/lines.md).
+//
+// Papers: Y. Ohtake, A. Belyaev, H.-P. Seidel, "Ridge-valley lines on meshes via implicit
+// surface fitting" (SIGGRAPH 2004), §2 (definitions: a ridge is where the larger principal
+// curvature k_max, dominant (k_max > |k_min|), has a maximum along its own curvature line,
+// e_max·∇k_max = 0 with e_max·∇(e_max·∇k_max) < 0; a valley is the same for −k_min), and
+// their per-face extraction with the principal direction's sign made to agree across a face;
+// S. Rusinkiewicz, "Estimating curvatures and their derivatives on triangle meshes" (3DPVT
+// 2004), §4, for the derivative tensor C whose C(e1,e1,e1) is that derivative. On lodline's
+// adapted mesh these lines inherit detail control like the other kinds.
+//
+// The derivative d = C(e,e,e) changes sign with e, and e is defined only up to sign. An
+// edge's crossing compares d at its first vertex with d at its second taken along the first
+// vertex's direction (flipped where e_a·e_b < 0): the two faces of an edge agree on the
+// crossing, bit for bit (exact chaining, as lines/lines.h). A face whose three such
+// agreements are inconsistent (an odd number of flips around it: the direction field turns
+// half a turn, near an umbilic) draws nothing.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/line_kind.h"
+#include "lines/lines.h"
+#include "shape/adjacency.h"
+#include "shape/shape_cache.h"
+
+namespace lodline {
+
+/// What extractRidges() draws.
+struct RidgeSpec {
+  bool ridges = false;
+  bool valleys = false;
+  /// Strength threshold on |k|·fs at the crossing (k the dominant curvature, fs the feature
+  /// size): alpha fades from 0 at the threshold to 1 at twice it. > 0.
+  float threshold = 0.1f;
+  float feature_size = 1.0f;  ///< model units, > 0
+};
+
+/// The vertices whose derivative tensor extractRidges() reads (corners of faces where a line
+/// of a requested kind can be: all three corners dominant and above half the threshold), in
+/// increasing order. `mark` is scratch, vertexCount bytes after the call (all zero).
+void ridgeCandidateVertices(std::span<const std::array<uint32_t, 3>> faces, const MeshAdjacency& adj,
+                            const SurfaceFields& fields, const RidgeSpec& spec, std::vector<uint8_t>& mark,
+                            std::vector<uint32_t>& out);
+
+/// Appends the ridge (LineKind::kRidge) and valley (kValley) segments of the valid faces to
+/// `out`, each endpoint id the index of the edge it lies on. Needs fields.k1, k2, pdir1,
+/// pdir2 and dcurv valid at the candidate vertices (ridgeCandidateVertices()).
+void extractRidges(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
+                   const MeshAdjacency& adj, const SurfaceFields& fields, const RidgeSpec& spec,
+                   LineScratch& scratch, LineSet& out);
+
+}  // namespace lodline

@@ -1,0 +1,128 @@
+// Ridges and valleys on analytic surfaces (docs/lines.md): the ridges of an ellipsoid with
+// three different axes lie in its symmetry planes (they are arcs of its principal ellipses),
+// within a tolerance that shrinks as the mesh is refined; turned inside out, the same lines
+// are valleys. The errors printed are the table in docs/lines.md.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "io/generate.h"
+#include "lines/lines.h"
+#include "lines/ridge_lines.h"
+#include "shape/shape_cache.h"
+
+namespace lodline {
+namespace {
+
+constexpr float kA = 1.0f, kB = 0.7f, kC = 0.5f;
+
+LineSet ridgeLines(const TriMesh& m, bool ridges, bool valleys, float threshold = 0.05f) {
+  ShapeCache shape;
+  shape.compute(m);
+  RidgeSpec spec;
+  spec.ridges = ridges;
+  spec.valleys = valleys;
+  spec.threshold = threshold;
+  spec.feature_size = 1.0f;  // absolute: |k| > threshold
+  LineScratch scratch;
+  LineSet out;
+  extractRidges(m.positions, m.faces, shape.adjacency(), shape.fields(m), spec, scratch, out);
+  return out;
+}
+
+// Distance from the nearest symmetry plane, in units of that axis (0 on the plane).
+double offPlanes(const glm::vec3& p) {
+  return std::min({std::abs(p.x) / kA, std::abs(p.y) / kB, std::abs(p.z) / kC});
+}
+
+double lengthOf(const LineSet& s) {
+  double len = 0.0;
+  for (size_t i = 0; i < s.segmentCount(); ++i) len += glm::length(s.points[2 * i + 1] - s.points[2 * i]);
+  return len;
+}
+
+TriMesh uvEllipsoid(int n) {
+  TriMesh m = makeUvSphere(1.0f, 2 * n, n);
+  for (auto& p : m.positions) p *= glm::vec3(kA, kB, kC);
+  return m;
+}
+
+TEST(RidgeLines, EllipsoidRidgesLieInItsSymmetryPlanes) {
+  // A latitude-longitude ellipsoid (poles on the y axis): its vertex rows are symmetric about
+  // the three planes. The discrete curvature is noisy by about 3% (more at the poles), and
+  // where k1 is nearly flat across a ridge the line wobbles by an edge or two; the mean
+  // distance shrinks with refinement, the largest stays within a few edge lengths (table in
+  // docs/lines.md).
+  double previous_mean = 1e9;
+  for (int n : {24, 48, 96, 192}) {
+    const TriMesh m = uvEllipsoid(n);
+    const LineSet s = ridgeLines(m, true, false);
+    ASSERT_GT(s.segmentCount(), 0u);
+    EXPECT_EQ(s.counts[static_cast<int>(LineKind::kValley)], 0u) << "a convex surface has no valleys";
+    std::vector<double> off;
+    double weighted = 0.0, total_alpha = 0.0;
+    for (size_t i = 0; i < s.points.size(); ++i) {
+      off.push_back(offPlanes(s.points[i]));
+      weighted += s.alpha[i] * off.back();
+      total_alpha += s.alpha[i];
+    }
+    std::sort(off.begin(), off.end());
+    const double mean = weighted / total_alpha, p99 = off[off.size() * 99 / 100], worst = off.back();
+    const double len = lengthOf(s);
+    std::printf("ridges, ellipsoid %dx%d (%zu faces): length %.2f, off the planes: mean %.2e, 99%% %.2e, max %.2e\n",
+                2 * n, n, m.faces.size(), len, mean, p99, worst);
+    // The principal ellipse in the plane z = 0 (circumference 5.4) is a ridge all round.
+    EXPECT_GT(len, 5.0);
+    EXPECT_LT(mean, previous_mean) << "the error shrinks as the ellipsoid is refined";
+    EXPECT_LT(worst, 0.08);
+    previous_mean = mean;
+  }
+  EXPECT_LT(previous_mean, 0.01);
+}
+
+TEST(RidgeLines, InsideOutRidgesAreValleys) {
+  TriMesh m = makeEllipsoid(kA, kB, kC, 4);
+  const LineSet ridges = ridgeLines(m, true, true);
+  for (auto& f : m.faces) std::swap(f[1], f[2]);  // normals inward: every curvature negates
+  const LineSet valleys = ridgeLines(m, true, true);
+  const uint32_t r = ridges.counts[static_cast<int>(LineKind::kRidge)];
+  EXPECT_GT(r, 0u);
+  // The same lines up to rounding (the curvature is estimated from corners in another order).
+  EXPECT_NEAR(valleys.counts[static_cast<int>(LineKind::kValley)], r, 0.02 * r);
+  EXPECT_EQ(valleys.counts[static_cast<int>(LineKind::kRidge)], 0u);
+}
+
+TEST(RidgeLines, TheThresholdRemovesWeakLines) {
+  const TriMesh m = makeEllipsoid(kA, kB, kC, 4);
+  // k1 on the ridges runs from b/c² = 2.8 (the middle axis' tips) to a/c² = 4 (the long
+  // axis'): above that, nothing; at 3.3 only the parts near the long axis' tips.
+  EXPECT_EQ(ridgeLines(m, true, true, 8.0f).segmentCount(), 0u);
+  const size_t all = ridgeLines(m, true, true, 0.05f).segmentCount();
+  const size_t strong = ridgeLines(m, true, true, 3.3f).segmentCount();
+  EXPECT_GT(strong, 0u);
+  EXPECT_LT(strong, all);
+}
+
+TEST(RidgeLines, SharedEdgesGiveIdenticalPoints) {
+  const TriMesh m = makeEllipsoid(kA, kB, kC, 5);
+  const LineSet s = ridgeLines(m, true, false);
+  // Two points with the same edge id are the same point, bit for bit (chaining relies on it).
+  std::vector<std::pair<uint32_t, glm::vec3>> seen;
+  for (size_t i = 0; i < s.points.size(); ++i) seen.emplace_back(s.point_ids[i], s.points[i]);
+  std::sort(seen.begin(), seen.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  size_t shared = 0;
+  for (size_t i = 1; i < seen.size(); ++i) {
+    if (seen[i].first != seen[i - 1].first) continue;
+    ++shared;
+    EXPECT_EQ(seen[i].second, seen[i - 1].second);
+  }
+  EXPECT_GT(shared, s.segmentCount() / 2) << "most segments continue through their edges";
+}
+
+}  // namespace
+}  // namespace lodline
