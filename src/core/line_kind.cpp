@@ -14,6 +14,7 @@ const char* lineKindName(LineKind k) {
     case LineKind::kParabolic: return "parabolic";
     case LineKind::kRidge: return "ridge";
     case LineKind::kValley: return "valley";
+    case LineKind::kSuggestiveHighlight: return "suggestive-highlight";
   }
   return "unknown";
 }
@@ -25,7 +26,8 @@ std::optional<LineKind> parseLineKind(std::string_view name) {
 }
 
 const char* lineKindList() {
-  return "contour, suggestive, crease, boundary, intersection, isophote, topo, parabolic, ridge, valley";
+  return "contour, suggestive, crease, boundary, intersection, isophote, topo, parabolic, ridge, valley, "
+         "suggestive-highlight";
 }
 
 }  // namespace lodline

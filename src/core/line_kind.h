@@ -26,11 +26,13 @@ enum class LineKind : uint8_t {
   kRidge = 8,
   /// valleys: the same for the dominant negative curvature
   kValley = 9,
+  /// suggestive highlights, kr = 0 where Dw kr < 0 (DeCarlo & Rusinkiewicz 2007)
+  kSuggestiveHighlight = 10,
 };
-inline constexpr int kLineKindCount = 10;
+inline constexpr int kLineKindCount = 11;
 
 /// "contour", "suggestive", "crease", "boundary", "intersection", "isophote", "topo",
-/// "parabolic", "ridge", "valley" (the names of --lines and the stats).
+/// "parabolic", "ridge", "valley", "suggestive-highlight" (the names of --lines and the stats).
 const char* lineKindName(LineKind k);
 /// The kind named `name`, if any.
 std::optional<LineKind> parseLineKind(std::string_view name);

@@ -110,12 +110,14 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   p.parabolic = enabled[static_cast<int>(LineKind::kParabolic)];
   p.ridges = enabled[static_cast<int>(LineKind::kRidge)];
   p.valleys = enabled[static_cast<int>(LineKind::kValley)];
+  p.suggestive_highlights = enabled[static_cast<int>(LineKind::kSuggestiveHighlight)];
+  const bool dw = p.suggestive || p.suggestive_highlights;  // both test Dw kr on kr = 0
 
   const WorkerPool::Awake awake(pool_.get());
   Stopwatch sw;
   SurfaceFields fields = shape_.fields(mesh_);
-  const bool lazy = p.suggestive && shape_.params().derivatives && shape_.params().lazy_derivatives;
-  if (!p.suggestive || lazy) fields.dcurv = {};
+  const bool lazy = dw && shape_.params().derivatives && shape_.params().lazy_derivatives;
+  if (!dw || lazy) fields.dcurv = {};
   const bool smooth = smoothing < 1.0f;
   if (smooth) {
     fields.normals = smoother_.blendNormals(shape_.normals(), smoothing);
@@ -158,6 +160,8 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     computeSuggestiveQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, needed_, view_);
     if (smooth) smoother_.blendSuggestive(view_, needed_, smoothing, sc_threshold);
   }
+  if (p.suggestive_highlights) suggestiveHighlightTest(sc_threshold, view_);
+  else view_.sh_num.clear();
   // Suggestive contours that slide fast are faded (DeCarlo et al. 2004 §4): their speed
   // comes from the change of the smoothed kr, so only in smoothed sequences.
   const bool motion_fade = smooth && p.suggestive && dt > 0.0f && image_height > 0 &&

@@ -372,8 +372,8 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
   out.clear();
   scratch.next_interior_id = 0;
   const float fs = feature_size > 0.0f && std::isfinite(feature_size) ? feature_size : 1.0f;
-  ZeroSetInput in[5];
-  LineKind types[5];
+  ZeroSetInput in[6];
+  LineKind types[6];
   size_t n = 0;
   if (params.contours) {
     in[n].value = view.ndotv;
@@ -389,6 +389,16 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
     in[n].fade = params.suggestive_fade / (fs * fs);
     in[n].gain = suggestive_gain;
     types[n++] = LineKind::kSuggestive;
+  }
+  if (params.suggestive_highlights && view.sh_num.size() == mesh.positions.size() &&
+      view.sc_den.size() == mesh.positions.size()) {
+    in[n].value = view.kr;
+    in[n].test_num = view.sh_num;
+    in[n].test_den = view.sc_den;
+    in[n].gate = view.ndotv;
+    in[n].gate_min = params.suggestive_min_ndotv;
+    in[n].fade = params.suggestive_fade / (fs * fs);
+    types[n++] = LineKind::kSuggestiveHighlight;
   }
   // The level-set kinds (lines/level_lines.h), where their quantities were computed.
   const size_t nv = mesh.positions.size();
@@ -420,8 +430,9 @@ void LineExtractor::extract(const TriMesh& mesh, const ShapeCache& shape,
                             const LineParams& params, float feature_size, LineSet& out) {
   const float fs = feature_size > 0.0f && std::isfinite(feature_size) ? feature_size : 1.0f;
   SurfaceFields f = fields;
-  if (!params.suggestive) f.dcurv = {};
+  if (!params.suggestive && !params.suggestive_highlights) f.dcurv = {};
   computeViewQuantities(f, view, params.suggestive_threshold / (fs * fs), view_);
+  if (params.suggestive_highlights) suggestiveHighlightTest(params.suggestive_threshold / (fs * fs), view_);
   extractLines(mesh, shape.adjacency(), shape.faceNormals(), view_, params, fs, scratch_, out);
 }
 

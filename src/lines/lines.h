@@ -82,6 +82,11 @@ struct LineParams {
   /// reciprocal of the 10th-percentile curvature, so the default 0.05 keeps vertices curved
   /// more than 5× that percentile.
   float parabolic_threshold = 0.05f;
+  /// Suggestive highlights (DeCarlo & Rusinkiewicz, "Highlight Lines for Conveying Shape",
+  /// NPAR 2007, §3): kr = 0 where Dw kr < 0 — the maxima of n·v along ŵ that suggestive
+  /// contours' minima mirror — with the same threshold and fade as suggestive contours, on
+  /// −tanθ·Dw kr.
+  bool suggestive_highlights = false;
   bool ridges = false;   ///< ridges (lines/ridge_lines.h)
   bool valleys = false;  ///< valleys (lines/ridge_lines.h)
   /// Ridges and valleys where the dominant curvature's |k|·fs exceeds this, faded in over

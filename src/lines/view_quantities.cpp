@@ -251,4 +251,15 @@ void suggestiveMotionGain(std::span<const glm::vec3> positions, const ViewQuanti
   else run(0, n);
 }
 
+void suggestiveHighlightTest(float sc_threshold, ViewQuantities& view) {
+  const size_t n = view.sc_num.size();
+  if (n == 0 || view.ndotv.size() != n) {
+    view.sh_num.clear();
+    return;
+  }
+  view.sh_num.resize(n);
+  const float two_t = 2.0f * sc_threshold;
+  for (size_t i = 0; i < n; ++i) view.sh_num[i] = -view.sc_num[i] - two_t * view.ndotv[i];
+}
+
 }  // namespace lodline

@@ -49,6 +49,9 @@ struct ViewQuantities {
   /// sc_den = cosθ. Empty when the fields carry no derivative tensor.
   std::vector<float> sc_num;
   std::vector<float> sc_den;
+  /// Suggestive-highlight test (DeCarlo & Rusinkiewicz 2007): −tanθ·Dw kr > threshold, as
+  /// sh_num = −sinθ·Dw kr − threshold·cosθ over sc_den; filled by suggestiveHighlightTest().
+  std::vector<float> sh_num;
   /// Level-set kinds (lines/level_lines.h); each empty when its kind is off.
   std::vector<float> isophote, isophote_test;    ///< wave of n·l/spacing; n·l > −spacing/2
   std::vector<float> topo;                       ///< wave of height/spacing
@@ -81,6 +84,10 @@ void computeSuggestiveQuantities(const SurfaceFields& fields, const ViewSpec& vi
 void suggestiveMotionGain(std::span<const glm::vec3> positions, const ViewQuantities& view,
                           std::span<const float> kr_change, const Camera& camera, int image_height, float dt,
                           float start_px_s, float end_px_s, std::vector<float>& out, WorkerPool* pool = nullptr);
+
+/// Fills view.sh_num from view.sc_num and view.ndotv (sinθ·Dw kr = sc_num + threshold·cosθ),
+/// so it follows whatever smoothing the suggestive test had; cleared when sc_num is empty.
+void suggestiveHighlightTest(float sc_threshold, ViewQuantities& view);
 
 /// The suggestive-contour test from n·v and Dw kr (as computeViewQuantities forms it).
 inline void suggestiveTest(float ndotv, float dwkr, float sc_threshold, float& num, float& den) {

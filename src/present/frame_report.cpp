@@ -76,6 +76,8 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
     o.strokes_extracted = d.strokes().strokeCount();
     o.strokes = visible[i].strokeCount();
     o.specks = countSpecks(visible[i].length_px);
+    for (size_t s = 0; s < visible[i].strokeCount(); ++s)
+      if (visible[i].length_px[s] < kSpeckLengthPx) ++o.specks_by_kind[static_cast<int>(visible[i].kinds[s])];
     rasterizeStrokes(visible[i], frame.width, frame.height, mask);
     o.line_pixels = mask.count();
     rasterizeStrokes(presenter.hidden()[i], frame.width, frame.height, mask);
@@ -108,6 +110,7 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
     for (int k = 0; k < kLineKindCount; ++k) {
       t.lines[k] += o.lines[k];
       t.lines_extracted[k] += o.lines_extracted[k];
+      t.specks_by_kind[k] += o.specks_by_kind[k];
     }
     t.strokes_extracted += o.strokes_extracted;
     t.strokes += o.strokes;
@@ -154,6 +157,7 @@ nlohmann::json frameStatsJson(const FrameReport& report) {
   j["strokes"] = t.strokes;
   j["strokes_extracted"] = t.strokes_extracted;
   j["specks"] = t.specks;
+  j["specks_by_kind"] = kindsJson(t.specks_by_kind);
   j["line_pixels"] = t.line_pixels;
   j["hidden_line_pixels"] = t.hidden_line_pixels;
   j["outline_fill_px"] = t.outline_fill_px;
@@ -179,6 +183,7 @@ nlohmann::json frameStatsJson(const FrameReport& report) {
                          {"strokes", o.strokes},
                          {"strokes_extracted", o.strokes_extracted},
                          {"specks", o.specks},
+                         {"specks_by_kind", kindsJson(o.specks_by_kind)},
                          {"line_pixels", o.line_pixels},
                          {"hidden_line_pixels", o.hidden_line_pixels},
                          {"outline_fill_px", o.outline_fill_px},

@@ -47,6 +47,7 @@ struct ObjectReport {
   uint64_t strokes_extracted = 0;  ///< strokes after chaining, visible or not
   uint64_t strokes = 0;            ///< visible strokes (runs after hidden-line removal)
   uint64_t specks = 0;             ///< visible strokes shorter than kSpeckLengthPx
+  std::array<uint64_t, kLineKindCount> specks_by_kind{};  ///< the specks per kind
   uint64_t line_pixels = 0;        ///< pixels under the visible strokes (centre lines)
   uint64_t hidden_line_pixels = 0; ///< pixels under the hidden runs (drawn or not)
   /// Length of the visible contour that completes the exterior outline (the mesh's own

@@ -303,6 +303,57 @@ TriMesh makeSubdividedCube(int n) {
   return m;
 }
 
+// Suggestive highlights (DeCarlo & Rusinkiewicz 2007) are the other half of the front-facing
+// kr = 0 set: with no threshold and no fading, every front-facing kr = 0 segment is drawn as
+// a suggestive contour (Dw kr > 0) or as a suggestive highlight (Dw kr < 0), and the two
+// never share a piece.
+TEST(SuggestiveHighlights, AreTheKrZeroSetWhereSuggestiveContoursAreNot) {
+  const TriMesh m = makeTorus(1.0f, 0.4f, 128, 64);
+  ShapeCache shape;
+  shape.compute(m);
+  ViewSpec view;
+  view.eye = {0.0f, 1.5f, 4.0f};
+  LineParams p = only(LineKind::kSuggestive);
+  p.suggestive_highlights = true;
+  p.suggestive_threshold = 0.0f;
+  p.suggestive_fade = 0.0f;
+  LineExtractor ex;
+  LineSet lines;
+  ex.extract(m, shape, view, p, 1.0f, lines);
+  auto lengthOf = [](const LineSet& s, LineKind k) {
+    double len = 0.0;
+    for (size_t i = 0; i < s.segmentCount(); ++i)
+      if (s.kinds[i] == k) len += glm::length(s.points[2 * i + 1] - s.points[2 * i]);
+    return len;
+  };
+  const double sc = lengthOf(lines, LineKind::kSuggestive), sh = lengthOf(lines, LineKind::kSuggestiveHighlight);
+  // The whole front-facing kr = 0 set, untested.
+  ViewQuantities q;
+  computeViewQuantities(shape.fields(m), view, 0.0f, q);
+  ZeroSetInput all;
+  all.value = q.kr;
+  all.gate = q.ndotv;
+  LineScratch scratch;
+  LineSet zero;
+  extractZeroSet(m.positions, m.faces, shape.adjacency(), all, LineKind::kSuggestive, scratch, zero);
+  const double total = lengthOf(zero, LineKind::kSuggestive);
+  std::printf("torus kr = 0: %.3f long; suggestive %.3f + highlights %.3f\n", total, sc, sh);
+  EXPECT_GT(sc, 0.1 * total);
+  EXPECT_GT(sh, 0.1 * total);
+  EXPECT_NEAR(sc + sh, total, 1e-3 * total);
+  // No piece twice: highlight points are where the suggestive test fails.
+  for (size_t i = 0; i < lines.segmentCount(); ++i) {
+    if (lines.kinds[i] != LineKind::kSuggestiveHighlight) continue;
+    const glm::vec3 mid = 0.5f * (lines.points[2 * i] + lines.points[2 * i + 1]);
+    for (size_t j = 0; j < lines.segmentCount(); ++j) {
+      if (lines.kinds[j] != LineKind::kSuggestive || lines.sources[j] != lines.sources[i]) continue;
+      const glm::vec3 a = lines.points[2 * j], b = lines.points[2 * j + 1];
+      const float t = std::clamp(glm::dot(mid - a, b - a) / std::max(1e-12f, glm::dot(b - a, b - a)), 0.0f, 1.0f);
+      EXPECT_GT(glm::length(a + t * (b - a) - mid), 1e-6f) << "face " << lines.sources[i];
+    }
+  }
+}
+
 TEST(Creases, CubeEdgesAndMarkedEdges) {
   const TriMesh m = makeSubdividedCube(2);
   EXPECT_GT(test::signedVolume(m), 0.0);
@@ -554,6 +605,9 @@ TEST(LineTypes, Names) {
   EXPECT_STREQ(lineKindName(LineKind::kSuggestive), "suggestive");
   EXPECT_STREQ(lineKindName(LineKind::kCrease), "crease");
   EXPECT_STREQ(lineKindName(LineKind::kBoundary), "boundary");
+  EXPECT_STREQ(lineKindName(LineKind::kSuggestiveHighlight), "suggestive-highlight");
+  for (int k = 0; k < kLineKindCount; ++k)
+    EXPECT_EQ(parseLineKind(lineKindName(static_cast<LineKind>(k))), static_cast<LineKind>(k));
 }
 
 }  // namespace
