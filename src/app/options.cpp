@@ -43,7 +43,7 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
       ->capture_default_str();
   cmd.add_option("--lines", o.lines,
                  "Comma-separated line kinds to draw: contour, suggestive, crease, boundary, intersection, "
-                 "isophote, topo, parabolic, ridge, valley (or none; docs/lines.md)")
+                 "isophote, topo, parabolic, ridge, valley, suggestive-highlight, apparent-ridge (or none; docs/lines.md)")
       ->capture_default_str();
   cmd.add_option("--hidden-lines", o.hidden_lines,
                  "Draw the hidden parts of lines too: off, or COLOUR[:WIDTH][:dash=ON,OFF] (pixels), e.g. "
@@ -99,6 +99,10 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
   cmd.add_option("--ridge-threshold", o.ridge_threshold,
                  "Ridges and valleys (--lines ...,ridge,valley) where the dominant |k| exceeds this / feature size "
                  "(faded in up to twice it)")
+      ->capture_default_str();
+  cmd.add_option("--apparent-ridge-threshold", o.apparent_ridge_threshold,
+                 "Apparent ridges (--lines ...,apparent-ridge) where the view-dependent curvature q1 exceeds this / "
+                 "feature size (faded in up to twice it)")
       ->capture_default_str();
 }
 
@@ -270,6 +274,9 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   if (!(o.ridge_threshold > 0.0f && o.ridge_threshold <= 1e3f))
     return Error::usage("--ridge-threshold: must be in (0, 1000]");
   r.line_params.ridge_threshold = o.ridge_threshold;
+  if (!(o.apparent_ridge_threshold > 0.0f && o.apparent_ridge_threshold <= 1e3f))
+    return Error::usage("--apparent-ridge-threshold: must be in (0, 1000]");
+  r.line_params.apparent_ridge_threshold = o.apparent_ridge_threshold;
   if (o.outline != "complete" && o.outline != "contour")
     return Error::usage("--outline: expected complete or contour, got '" + o.outline + "'");
   r.line_params.complete_outline = o.outline == "complete";
@@ -390,6 +397,7 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   s["topo-axis"] = exact(lines.topo_axis.x) + "," + exact(lines.topo_axis.y) + "," + exact(lines.topo_axis.z);
   s["parabolic-threshold"] = exact(lines.parabolic_threshold);
   s["ridge-threshold"] = exact(lines.ridge_threshold);
+  s["apparent-ridge-threshold"] = exact(lines.apparent_ridge_threshold);
   s["outline"] = lines.complete_outline ? "complete" : "contour";
   s["hidden-lines"] = formatHiddenLines(style.hidden);
 

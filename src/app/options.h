@@ -54,6 +54,7 @@ struct ViewOptions {
   std::string topo_axis = "0,1,0";
   float parabolic_threshold = LineParams{}.parabolic_threshold;
   float ridge_threshold = LineParams{}.ridge_threshold;
+  float apparent_ridge_threshold = LineParams{}.apparent_ridge_threshold;
 };
 
 /// The options of a capture beyond the view and detail ones (`capture` and the Python

@@ -238,6 +238,8 @@ void linesSection(ViewerSession& s, PanelState& st) {
   changed |= ImGui::SliderFloat("Parabolic threshold", &lp.parabolic_threshold, 0.0f, 1.0f, "%.3f");
   changed |= ImGui::SliderFloat("Ridge/valley threshold", &lp.ridge_threshold, 0.005f, 2.0f, "%.3f",
                                 ImGuiSliderFlags_Logarithmic);
+  changed |= ImGui::SliderFloat("Apparent-ridge threshold", &lp.apparent_ridge_threshold, 0.005f, 2.0f, "%.3f",
+                                ImGuiSliderFlags_Logarithmic);
   if (changed) s.setLineParams(lp);
 }
 

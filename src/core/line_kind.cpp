@@ -15,6 +15,7 @@ const char* lineKindName(LineKind k) {
     case LineKind::kRidge: return "ridge";
     case LineKind::kValley: return "valley";
     case LineKind::kSuggestiveHighlight: return "suggestive-highlight";
+    case LineKind::kApparentRidge: return "apparent-ridge";
   }
   return "unknown";
 }
@@ -27,7 +28,7 @@ std::optional<LineKind> parseLineKind(std::string_view name) {
 
 const char* lineKindList() {
   return "contour, suggestive, crease, boundary, intersection, isophote, topo, parabolic, ridge, valley, "
-         "suggestive-highlight";
+         "suggestive-highlight, apparent-ridge";
 }
 
 }  // namespace lodline

@@ -28,11 +28,14 @@ enum class LineKind : uint8_t {
   kValley = 9,
   /// suggestive highlights, kr = 0 where Dw kr < 0 (DeCarlo & Rusinkiewicz 2007)
   kSuggestiveHighlight = 10,
+  /// apparent ridges, maxima of the view-dependent curvature (Judd et al. 2007)
+  kApparentRidge = 11,
 };
-inline constexpr int kLineKindCount = 11;
+inline constexpr int kLineKindCount = 12;
 
 /// "contour", "suggestive", "crease", "boundary", "intersection", "isophote", "topo",
-/// "parabolic", "ridge", "valley", "suggestive-highlight" (the names of --lines and the stats).
+/// "parabolic", "ridge", "valley", "suggestive-highlight", "apparent-ridge" (the names of
+/// --lines and the stats).
 const char* lineKindName(LineKind k);
 /// The kind named `name`, if any.
 std::optional<LineKind> parseLineKind(std::string_view name);

@@ -111,6 +111,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   p.ridges = enabled[static_cast<int>(LineKind::kRidge)];
   p.valleys = enabled[static_cast<int>(LineKind::kValley)];
   p.suggestive_highlights = enabled[static_cast<int>(LineKind::kSuggestiveHighlight)];
+  p.apparent_ridges = enabled[static_cast<int>(LineKind::kApparentRidge)];
   const bool dw = p.suggestive || p.suggestive_highlights;  // both test Dw kr on kr = 0
 
   const WorkerPool::Awake awake(pool_.get());
@@ -196,6 +197,11 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
       rf.dcurv = shape_.dcurv();
     }
     extractRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), rf, ridge, scratch_, segments_);
+  }
+  if (p.apparent_ridges) {  // per view: the (smoothed) normals, the raw curvature
+    computeApparentRidgeQuantities(mesh_.faces, shape_.adjacency(), fields, ViewSpec::fromCamera(camera), apparent_);
+    extractApparentRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), apparent_, p.apparent_ridge_threshold, fs,
+                          segments_);
   }
   timings_.extract = sw.lap();
   chainStrokes(segments_, strokes_, chain_scratch_);

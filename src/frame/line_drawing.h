@@ -10,6 +10,7 @@
 #include "core/camera.h"
 #include "core/mesh.h"
 #include "lines/lines.h"
+#include "lines/ridge_lines.h"
 #include "lines/strokes.h"
 #include "frame/temporal_smoothing.h"
 #include "shape/shape_cache.h"
@@ -111,7 +112,8 @@ class LineDrawing {
   std::vector<std::array<uint32_t, 3>> faces_in_;  // updateMesh(span): copy, then swap in
   std::vector<uint32_t> needed_;     // vertices whose Dw kr this frame needs (lazy derivatives)
   std::vector<uint8_t> needed_mark_;
-  std::vector<uint32_t> ridge_needed_;  // vertices whose tensor ridges read (lazy derivatives)
+  std::vector<uint32_t> ridge_needed_;
+  ApparentRidgeQuantities apparent_;  // per view, when apparent ridges are drawn  // vertices whose tensor ridges read (lazy derivatives)
   std::vector<float> motion_gain_;   // per vertex, the suggestive contours' motion fade
   LineScratch scratch_;
   LineSet segments_, silhouette_;

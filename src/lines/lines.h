@@ -93,6 +93,10 @@ struct LineParams {
   /// one more threshold (fs as for parabolic lines: 0.1 is 10× the 10th-percentile
   /// curvature). Default 0.1.
   float ridge_threshold = 0.1f;
+  bool apparent_ridges = false;  ///< apparent ridges (lines/ridge_lines.h)
+  /// Apparent ridges where q1·fs (q1: the maximum view-dependent curvature) exceeds this,
+  /// faded in over one more threshold. Default 0.1.
+  float apparent_ridge_threshold = 0.1f;
   /// Also extract the mesh's own silhouette (edges between a front- and a back-facing face)
   /// each frame, so the presenter can draw it where the interpolated contour leaves the
   /// object's outline (coarse meshes; docs/visibility.md). Default on (`--outline complete`).

@@ -39,18 +39,34 @@ struct Field {  // one kind's view of the shape: curvature, direction, its deriv
   float sign;  // +1 ridges (k1, e1, C111); −1 valleys (−k2, e2, −C222)
   std::span<const float> k;
   std::span<const glm::vec3> e;
+  std::span<const glm::vec4> dcurv;
   int component;  // 0: C111, 3: C222
-  float curvature(uint32_t v) const { return sign * k[v]; }
-  float derivative(uint32_t v, std::span<const glm::vec4> dcurv) const { return sign * dcurv[v][component]; }
+  float strength(uint32_t v) const { return sign * k[v]; }
+  const glm::vec3& direction(uint32_t v) const { return e[v]; }
+  float derivative(uint32_t v) const { return sign * dcurv[v][component]; }
 };
 
-void faceRidge(std::span<const glm::vec3> positions, const std::array<uint32_t, 3>& t,
-               const std::array<uint32_t, 3>& face_edges, uint32_t face, const Field& fld,
-               std::span<const glm::vec4> dcurv, float th_fs, float fs, LineSet& out) {
+struct ApparentField {  // Judd et al. 2007: q1, the direction of t1 on the surface, Dt1 q1
+  std::span<const float> q1;
+  std::span<const glm::vec3> t1;
+  std::span<const float> dt1q1;
+  float strength(uint32_t v) const { return q1[v]; }
+  const glm::vec3& direction(uint32_t v) const { return t1[v]; }
+  float derivative(uint32_t v) const { return dt1q1[v]; }
+};
+
+// The maximum of fld.strength along fld.direction in face f, if one crosses it: the zero set
+// of the derivative, with the directions' signs agreed along each edge, where the derivative
+// decreases along the direction. Endpoint alpha fades from 0 at th_fs (on strength·fs) to 1
+// at twice it.
+template <class F>
+void faceMaximum(std::span<const glm::vec3> positions, const std::array<uint32_t, 3>& t,
+                 const std::array<uint32_t, 3>& face_edges, uint32_t face, LineKind kind, const F& fld,
+                 float th_fs, float fs, LineSet& out) {
   // Agreement of the directions along each side j (corners j, j+1).
   float side_sign[3];
   for (int j = 0; j < 3; ++j)
-    side_sign[j] = glm::dot(fld.e[t[j]], fld.e[t[(j + 1) % 3]]) < 0.0f ? -1.0f : 1.0f;
+    side_sign[j] = glm::dot(fld.direction(t[j]), fld.direction(t[(j + 1) % 3])) < 0.0f ? -1.0f : 1.0f;
   if (side_sign[0] * side_sign[1] * side_sign[2] < 0.0f) return;  // the field turns in the face
   struct Crossing {
     glm::vec3 p;
@@ -62,32 +78,30 @@ void faceRidge(std::span<const glm::vec3> positions, const std::array<uint32_t, 
   for (int j = 0; j < 3; ++j) {
     uint32_t a = t[j], b = t[(j + 1) % 3];
     if (b < a) std::swap(a, b);  // from the edge's first vertex, as both faces compute it
-    const float da = fld.derivative(a, dcurv), db = side_sign[j] * fld.derivative(b, dcurv);
+    const float da = fld.derivative(a), db = side_sign[j] * fld.derivative(b);
     if ((da < 0.0f) == (db < 0.0f)) continue;
     float s = da / (da - db);
     if (!(s >= 0.0f && s <= 1.0f)) s = 0.5f;
     if (nx == 2) return;  // three crossings cannot happen with agreeing signs; NaN input
-    x[nx++] = {(1.0f - s) * positions[a] + s * positions[b],
-               (1.0f - s) * fld.curvature(a) + s * fld.curvature(b), face_edges[j]};
+    x[nx++] = {(1.0f - s) * positions[a] + s * positions[b], (1.0f - s) * fld.strength(a) + s * fld.strength(b),
+               face_edges[j]};
   }
   if (nx != 2) return;
-  // A maximum along e: in the face's frame (directions agreed with corner 0's), the
-  // derivative decreases along e.
+  // A maximum: in the face's frame (directions agreed with corner 0's), the derivative
+  // decreases along the direction.
   const float s01 = side_sign[0], s02 = side_sign[2];  // corner 2 to 0 is side 2
-  const float d0 = fld.derivative(t[0], dcurv), d1 = s01 * fld.derivative(t[1], dcurv),
-              d2 = s02 * fld.derivative(t[2], dcurv);
+  const float d0 = fld.derivative(t[0]), d1 = s01 * fld.derivative(t[1]), d2 = s02 * fld.derivative(t[2]);
   const glm::vec3 p0 = positions[t[0]], e1 = positions[t[1]] - p0, e2 = positions[t[2]] - p0;
   const glm::vec3 n = glm::cross(e1, e2);
   const float nn = glm::dot(n, n);
   if (!(nn > 0.0f)) return;
   const glm::vec3 grad = ((d1 - d0) * glm::cross(e2, n) + (d2 - d0) * glm::cross(n, e1)) / nn;
-  const glm::vec3 dir = fld.e[t[0]] + s01 * fld.e[t[1]] + s02 * fld.e[t[2]];
+  const glm::vec3 dir = fld.direction(t[0]) + s01 * fld.direction(t[1]) + s02 * fld.direction(t[2]);
   if (!(glm::dot(grad, dir) < 0.0f)) return;
-  // Strength: |k|·fs against the threshold, faded over one more threshold.
   auto alpha = [&](float k) { return std::clamp((k * fs - th_fs) / th_fs, 0.0f, 1.0f); };
   const float a0 = alpha(x[0].strength), a1 = alpha(x[1].strength);
   if (!(a0 > 0.0f || a1 > 0.0f)) return;
-  pushSegment(out, fld.kind, face, x[0].p, x[0].id, a0, x[1].p, x[1].id, a1);
+  pushSegment(out, kind, face, x[0].p, x[0].id, a0, x[1].p, x[1].id, a1);
 }
 
 }  // namespace
@@ -123,16 +137,121 @@ void extractRidges(std::span<const glm::vec3> positions, std::span<const std::ar
   candidateCodes(fields, spec, scratch.vertex_code);
   const uint8_t* code = scratch.vertex_code.data();
   const float fs = spec.feature_size > 0.0f ? spec.feature_size : 1.0f;
-  const Field kinds[2] = {{LineKind::kRidge, 1.0f, fields.k1, fields.pdir1, 0},
-                          {LineKind::kValley, -1.0f, fields.k2, fields.pdir2, 3}};
+  const Field kinds[2] = {{LineKind::kRidge, 1.0f, fields.k1, fields.pdir1, fields.dcurv, 0},
+                          {LineKind::kValley, -1.0f, fields.k2, fields.pdir2, fields.dcurv, 3}};
   for (int k = 0; k < 2; ++k) {  // kinds in order, then faces: deterministic output
     const uint8_t bit = k == 0 ? kRidgeCandidate : kValleyCandidate;
     if (k == 0 ? !spec.ridges : !spec.valleys) continue;
     for (size_t f = 0; f < faces.size(); ++f) {
       if (!adj.face_valid[f] || !(faceCandidates(faces[f], code) & bit)) continue;
-      faceRidge(positions, faces[f], adj.face_edges[f], static_cast<uint32_t>(f), kinds[k], fields.dcurv,
-                spec.threshold, fs, out);
+      faceMaximum(positions, faces[f], adj.face_edges[f], static_cast<uint32_t>(f), kinds[k].kind, kinds[k],
+                  spec.threshold, fs, out);
     }
+  }
+}
+
+void computeApparentRidgeQuantities(std::span<const std::array<uint32_t, 3>> faces, const MeshAdjacency& adj,
+                                    const SurfaceFields& f, const ViewSpec& view, ApparentRidgeQuantities& out) {
+  const size_t nv = f.positions.size();
+  out.ndotv.assign(nv, 0.0f);
+  out.q1.assign(nv, 0.0f);
+  out.t1.assign(nv, glm::vec3(0.0f));
+  out.dt1q1.assign(nv, 0.0f);
+  if (f.normals.size() != nv || f.k1.size() != nv || f.k2.size() != nv || f.pdir1.size() != nv ||
+      f.pdir2.size() != nv || adj.vertex_count != nv || adj.face_count != faces.size())
+    return;
+  const glm::vec3 ortho = glm::length(view.toward_viewer) > 0.0f ? glm::normalize(view.toward_viewer)
+                                                                 : glm::vec3(0.0f, 0.0f, 1.0f);
+  for (size_t i = 0; i < nv; ++i) {
+    const glm::vec3 n = f.normals[i];
+    glm::vec3 vdir = ortho;
+    if (!view.orthographic) {
+      const glm::vec3 d = view.eye - f.positions[i];
+      const float len = glm::length(d);
+      vdir = len > 0.0f ? d / len : n;
+    }
+    const float ndotv = glm::dot(n, vdir);
+    out.ndotv[i] = ndotv;
+    // ŵ in the principal frame, and secθ − 1.
+    float u = glm::dot(vdir, f.pdir1[i]), w = glm::dot(vdir, f.pdir2[i]);
+    const float sin_t = std::sqrt(u * u + w * w);
+    float c = 0.0f;
+    if (sin_t > 1e-6f) {
+      u /= sin_t;
+      w /= sin_t;
+      c = 1.0f / std::max(std::abs(ndotv), kApparentRidgeMinCos) - 1.0f;
+    } else {
+      u = w = 0.0f;
+    }
+    const float k1 = f.k1[i], k2 = f.k2[i];
+    const float q11 = k1 * (1.0f + c * u * u), q12 = k1 * c * u * w;
+    const float q21 = k2 * c * u * w, q22 = k2 * (1.0f + c * w * w);
+    // The largest eigenvalue of QᵀQ and its eigenvector: q1² and t1 (principal frame).
+    const float a = q11 * q11 + q21 * q21, b = q11 * q12 + q21 * q22, d = q12 * q12 + q22 * q22;
+    const float half = 0.5f * (a - d);
+    const float lambda = 0.5f * (a + d) + std::sqrt(half * half + b * b);
+    out.q1[i] = std::sqrt(std::max(lambda, 0.0f));
+    float tx, ty;
+    if (std::abs(b) > 1e-12f * std::max(1.0f, lambda)) {
+      const float x1 = b, y1 = lambda - a, x2 = lambda - d, y2 = b;  // two forms of one vector
+      if (x1 * x1 + y1 * y1 >= x2 * x2 + y2 * y2) {
+        tx = x1;
+        ty = y1;
+      } else {
+        tx = x2;
+        ty = y2;
+      }
+    } else if (a >= d) {
+      tx = 1.0f;
+      ty = 0.0f;
+    } else {
+      tx = 0.0f;
+      ty = 1.0f;
+    }
+    // On the surface: P⁻¹t1 = t1 + (secθ − 1)(t1·ŵ)ŵ.
+    const float tw = tx * u + ty * w;
+    tx += c * tw * u;
+    ty += c * tw * w;
+    const glm::vec3 t = tx * f.pdir1[i] + ty * f.pdir2[i];
+    const float len = glm::length(t);
+    out.t1[i] = len > 0.0f ? t / len : f.pdir1[i];
+  }
+  // Dt1 q1: the area-weighted mean of the gradients of q1 over the faces around a vertex.
+  for (size_t i = 0; i < nv; ++i) {
+    glm::vec3 g(0.0f);
+    for (uint32_t k = adj.vertex_face_begin[i]; k < adj.vertex_face_end[i]; ++k) {
+      const uint32_t fi = adj.vertex_faces[k];
+      if (!adj.face_valid[fi]) continue;
+      const auto& t = faces[fi];
+      const glm::vec3 p0 = f.positions[t[0]], e1 = f.positions[t[1]] - p0, e2 = f.positions[t[2]] - p0;
+      const glm::vec3 n = glm::cross(e1, e2);
+      const float nn = glm::dot(n, n);
+      if (!(nn > 0.0f)) continue;
+      const float q0 = out.q1[t[0]];
+      // The face's gradient times its doubled area |n|: weights by area.
+      g += ((out.q1[t[1]] - q0) * glm::cross(e2, n) + (out.q1[t[2]] - q0) * glm::cross(n, e1)) / std::sqrt(nn);
+    }
+    out.dt1q1[i] = glm::dot(g, out.t1[i]);  // the scale does not move the zero set
+  }
+}
+
+void extractApparentRidges(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
+                           const MeshAdjacency& adj, const ApparentRidgeQuantities& q, float threshold,
+                           float feature_size, LineSet& out) {
+  const size_t nv = positions.size();
+  if (!(threshold > 0.0f) || q.q1.size() != nv || q.t1.size() != nv || q.dt1q1.size() != nv ||
+      q.ndotv.size() != nv || adj.face_count != faces.size() || adj.vertex_count != nv)
+    return;
+  const float fs = feature_size > 0.0f ? feature_size : 1.0f;
+  const float half = 0.5f * threshold / fs;
+  const ApparentField fld{q.q1, q.t1, q.dt1q1};
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (!adj.face_valid[f]) continue;
+    const auto& t = faces[f];
+    if (!(q.ndotv[t[0]] > 0.0f && q.ndotv[t[1]] > 0.0f && q.ndotv[t[2]] > 0.0f)) continue;
+    if (q.q1[t[0]] < half && q.q1[t[1]] < half && q.q1[t[2]] < half) continue;
+    faceMaximum(positions, t, adj.face_edges[f], static_cast<uint32_t>(f), LineKind::kApparentRidge, fld, threshold,
+                fs, out);
   }
 }
 

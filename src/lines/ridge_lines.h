@@ -45,6 +45,38 @@ void ridgeCandidateVertices(std::span<const std::array<uint32_t, 3>> faces, cons
                             const SurfaceFields& fields, const RidgeSpec& spec, std::vector<uint8_t>& mark,
                             std::vector<uint32_t>& out);
 
+/// Per view, per vertex: what apparent ridges need (Judd, Durand, Adelson, "Apparent Ridges
+/// for Line Drawing", SIGGRAPH 2007, §3–4). The view-dependent curvature operator Q = S·P⁻¹
+/// maps a direction in the image (P projects the tangent plane onto the plane facing the
+/// viewer, P⁻¹ = I + (secθ − 1)·ŵŵᵀ in the tangent plane, ŵ the unit projected view
+/// vector) to the change of the normal; q1 is its largest singular value, t1 the image
+/// direction it belongs to. An apparent ridge is where q1 has a maximum along t1: the
+/// curvature of the shape as the image shows it, so the lines move over the surface as the
+/// view changes and gather towards the contours, where secθ grows.
+struct ApparentRidgeQuantities {
+  std::vector<float> ndotv;     ///< n·v̂ (faces need all three corners > 0)
+  std::vector<float> q1;        ///< the maximum view-dependent curvature, 1/units, ≥ 0
+  std::vector<glm::vec3> t1;    ///< unit surface direction P⁻¹t1 (sign arbitrary)
+  std::vector<float> dt1q1;     ///< the derivative of q1 along t1 (sign follows t1)
+};
+
+/// |cosθ| in secθ is at least this, so q1 stays finite at the contour (where it grows without
+/// bound, and apparent ridges give way to the contour itself).
+inline constexpr float kApparentRidgeMinCos = 1e-4f;
+
+/// Fills `out` (vertexCount entries each) for `view` from the normals, principal curvatures
+/// and directions of `fields`; Dt1 q1 from the area-weighted mean of the faces' gradients
+/// of q1 around each vertex.
+void computeApparentRidgeQuantities(std::span<const std::array<uint32_t, 3>> faces, const MeshAdjacency& adj,
+                                    const SurfaceFields& fields, const ViewSpec& view, ApparentRidgeQuantities& out);
+
+/// Appends the apparent ridges (LineKind::kApparentRidge) of the front-facing valid faces to
+/// `out`: maxima of q1 along t1 where q1·fs exceeds `threshold`, faded in over one more
+/// threshold; endpoint ids the edges' indices.
+void extractApparentRidges(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
+                           const MeshAdjacency& adj, const ApparentRidgeQuantities& q, float threshold,
+                           float feature_size, LineSet& out);
+
 /// Appends the ridge (LineKind::kRidge) and valley (kValley) segments of the valid faces to
 /// `out`, each endpoint id the index of the edge it lies on. Needs fields.k1, k2, pdir1,
 /// pdir2 and dcurv valid at the candidate vertices (ridgeCandidateVertices()).

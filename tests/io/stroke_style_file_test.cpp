@@ -97,7 +97,7 @@ TEST(StrokeStyleFile, ErrorsNameTheFileAndTheKey) {
   const auto cases = {std::pair{R"({"contour": {"cap": "pointy"}})", "contour.cap"},
                       std::pair{R"({"all": {"taper_min": 2}})", "taper_min"},
                       std::pair{R"({"contour": {"wobble": 1}})", "wobble"},
-                      std::pair{R"({"apparent-ridge": {}})", "apparent-ridge"},
+                      std::pair{R"({"silhouette": {}})", "silhouette"},
                       std::pair{R"({"contour": {"brush": "missing.png"}})", "missing.png"},
                       std::pair{R"({"contour": {"dash": [1]}})", "dash"},
                       std::pair{R"({"contour": [1, 2]})", "contour"},
