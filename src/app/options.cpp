@@ -43,7 +43,8 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
       ->capture_default_str();
   cmd.add_option("--lines", o.lines,
                  "Comma-separated line kinds to draw: contour, suggestive, crease, boundary, intersection, "
-                 "isophote, topo, parabolic, ridge, valley, suggestive-highlight, apparent-ridge (or none; docs/lines.md)")
+                 "isophote, topo, parabolic, ridge, valley, suggestive-highlight, apparent-ridge, principal-highlight "
+                 "(or none; docs/lines.md)")
       ->capture_default_str();
   cmd.add_option("--hidden-lines", o.hidden_lines,
                  "Draw the hidden parts of lines too: off, or COLOUR[:WIDTH][:dash=ON,OFF] (pixels), e.g. "
@@ -103,6 +104,10 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
   cmd.add_option("--apparent-ridge-threshold", o.apparent_ridge_threshold,
                  "Apparent ridges (--lines ...,apparent-ridge) where the view-dependent curvature q1 exceeds this / "
                  "feature size (faded in up to twice it)")
+      ->capture_default_str();
+  cmd.add_option("--principal-highlight-threshold", o.principal_highlight_threshold,
+                 "Principal highlights (--lines ...,principal-highlight) where (kd^2 - ko^2)*n.v*fs^2 exceeds this "
+                 "(faded in up to twice it)")
       ->capture_default_str();
 }
 
@@ -277,6 +282,9 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   if (!(o.apparent_ridge_threshold > 0.0f && o.apparent_ridge_threshold <= 1e3f))
     return Error::usage("--apparent-ridge-threshold: must be in (0, 1000]");
   r.line_params.apparent_ridge_threshold = o.apparent_ridge_threshold;
+  if (!(o.principal_highlight_threshold > 0.0f && o.principal_highlight_threshold <= 1e3f))
+    return Error::usage("--principal-highlight-threshold: must be in (0, 1000]");
+  r.line_params.principal_highlight_threshold = o.principal_highlight_threshold;
   if (o.outline != "complete" && o.outline != "contour")
     return Error::usage("--outline: expected complete or contour, got '" + o.outline + "'");
   r.line_params.complete_outline = o.outline == "complete";
@@ -398,6 +406,7 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   s["parabolic-threshold"] = exact(lines.parabolic_threshold);
   s["ridge-threshold"] = exact(lines.ridge_threshold);
   s["apparent-ridge-threshold"] = exact(lines.apparent_ridge_threshold);
+  s["principal-highlight-threshold"] = exact(lines.principal_highlight_threshold);
   s["outline"] = lines.complete_outline ? "complete" : "contour";
   s["hidden-lines"] = formatHiddenLines(style.hidden);
 

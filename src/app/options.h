@@ -55,6 +55,7 @@ struct ViewOptions {
   float parabolic_threshold = LineParams{}.parabolic_threshold;
   float ridge_threshold = LineParams{}.ridge_threshold;
   float apparent_ridge_threshold = LineParams{}.apparent_ridge_threshold;
+  float principal_highlight_threshold = LineParams{}.principal_highlight_threshold;
 };
 
 /// The options of a capture beyond the view and detail ones (`capture` and the Python

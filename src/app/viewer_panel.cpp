@@ -240,6 +240,8 @@ void linesSection(ViewerSession& s, PanelState& st) {
                                 ImGuiSliderFlags_Logarithmic);
   changed |= ImGui::SliderFloat("Apparent-ridge threshold", &lp.apparent_ridge_threshold, 0.005f, 2.0f, "%.3f",
                                 ImGuiSliderFlags_Logarithmic);
+  changed |= ImGui::SliderFloat("Principal-highlight threshold", &lp.principal_highlight_threshold, 0.001f, 1.0f,
+                                "%.3f", ImGuiSliderFlags_Logarithmic);
   if (changed) s.setLineParams(lp);
 }
 

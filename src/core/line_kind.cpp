@@ -16,6 +16,7 @@ const char* lineKindName(LineKind k) {
     case LineKind::kValley: return "valley";
     case LineKind::kSuggestiveHighlight: return "suggestive-highlight";
     case LineKind::kApparentRidge: return "apparent-ridge";
+    case LineKind::kPrincipalHighlight: return "principal-highlight";
   }
   return "unknown";
 }
@@ -28,7 +29,7 @@ std::optional<LineKind> parseLineKind(std::string_view name) {
 
 const char* lineKindList() {
   return "contour, suggestive, crease, boundary, intersection, isophote, topo, parabolic, ridge, valley, "
-         "suggestive-highlight, apparent-ridge";
+         "suggestive-highlight, apparent-ridge, principal-highlight";
 }
 
 }  // namespace lodline

@@ -30,12 +30,15 @@ enum class LineKind : uint8_t {
   kSuggestiveHighlight = 10,
   /// apparent ridges, maxima of the view-dependent curvature (Judd et al. 2007)
   kApparentRidge = 11,
+  /// principal highlights, maxima of n·v across the dominant curvature (DeCarlo &
+  /// Rusinkiewicz 2007)
+  kPrincipalHighlight = 12,
 };
-inline constexpr int kLineKindCount = 12;
+inline constexpr int kLineKindCount = 13;
 
 /// "contour", "suggestive", "crease", "boundary", "intersection", "isophote", "topo",
-/// "parabolic", "ridge", "valley", "suggestive-highlight", "apparent-ridge" (the names of
-/// --lines and the stats).
+/// "parabolic", "ridge", "valley", "suggestive-highlight", "apparent-ridge",
+/// "principal-highlight" (the names of --lines and the stats).
 const char* lineKindName(LineKind k);
 /// The kind named `name`, if any.
 std::optional<LineKind> parseLineKind(std::string_view name);

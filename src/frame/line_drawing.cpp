@@ -112,6 +112,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   p.valleys = enabled[static_cast<int>(LineKind::kValley)];
   p.suggestive_highlights = enabled[static_cast<int>(LineKind::kSuggestiveHighlight)];
   p.apparent_ridges = enabled[static_cast<int>(LineKind::kApparentRidge)];
+  p.principal_highlights = enabled[static_cast<int>(LineKind::kPrincipalHighlight)];
   const bool dw = p.suggestive || p.suggestive_highlights;  // both test Dw kr on kr = 0
 
   const WorkerPool::Awake awake(pool_.get());
@@ -202,6 +203,11 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     computeApparentRidgeQuantities(mesh_.faces, shape_.adjacency(), fields, ViewSpec::fromCamera(camera), apparent_);
     extractApparentRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), apparent_, p.apparent_ridge_threshold, fs,
                           segments_);
+  }
+  if (p.principal_highlights) {
+    computePrincipalHighlightQuantities(fields, ViewSpec::fromCamera(camera), fs, principal_);
+    extractPrincipalHighlights(mesh_.positions, mesh_.faces, shape_.adjacency(), principal_,
+                               p.principal_highlight_threshold, segments_);
   }
   timings_.extract = sw.lap();
   chainStrokes(segments_, strokes_, chain_scratch_);

@@ -113,7 +113,8 @@ class LineDrawing {
   std::vector<uint32_t> needed_;     // vertices whose Dw kr this frame needs (lazy derivatives)
   std::vector<uint8_t> needed_mark_;
   std::vector<uint32_t> ridge_needed_;
-  ApparentRidgeQuantities apparent_;  // per view, when apparent ridges are drawn  // vertices whose tensor ridges read (lazy derivatives)
+  ApparentRidgeQuantities apparent_;  // per view, when apparent ridges are drawn
+  PrincipalHighlightQuantities principal_;  // per view, when principal highlights are drawn  // vertices whose tensor ridges read (lazy derivatives)
   std::vector<float> motion_gain_;   // per vertex, the suggestive contours' motion fade
   LineScratch scratch_;
   LineSet segments_, silhouette_;

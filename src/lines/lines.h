@@ -97,6 +97,10 @@ struct LineParams {
   /// Apparent ridges where q1·fs (q1: the maximum view-dependent curvature) exceeds this,
   /// faded in over one more threshold. Default 0.1.
   float apparent_ridge_threshold = 0.1f;
+  bool principal_highlights = false;  ///< principal highlights (lines/ridge_lines.h)
+  /// Principal highlights where (k_d² − k_o²)·n·v·fs² exceeds this, faded in over one more
+  /// threshold (k_d, k_o: the dominant and the other principal curvature). Default 0.01.
+  float principal_highlight_threshold = 0.01f;
   /// Also extract the mesh's own silhouette (edges between a front- and a back-facing face)
   /// each frame, so the presenter can draw it where the interpolated contour leaves the
   /// object's outline (coarse meshes; docs/visibility.md). Default on (`--outline complete`).

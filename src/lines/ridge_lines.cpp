@@ -46,6 +46,15 @@ struct Field {  // one kind's view of the shape: curvature, direction, its deriv
   float derivative(uint32_t v) const { return sign * dcurv[v][component]; }
 };
 
+struct HighlightField {  // DeCarlo & Rusinkiewicz 2007: v̂·e of the dominant direction e
+  std::span<const float> strength_;
+  std::span<const glm::vec3> e;
+  std::span<const float> d;
+  float strength(uint32_t v) const { return strength_[v]; }
+  const glm::vec3& direction(uint32_t v) const { return e[v]; }
+  float derivative(uint32_t v) const { return d[v]; }
+};
+
 struct ApparentField {  // Judd et al. 2007: q1, the direction of t1 on the surface, Dt1 q1
   std::span<const float> q1;
   std::span<const glm::vec3> t1;
@@ -59,7 +68,7 @@ struct ApparentField {  // Judd et al. 2007: q1, the direction of t1 on the surf
 // of the derivative, with the directions' signs agreed along each edge, where the derivative
 // decreases along the direction. Endpoint alpha fades from 0 at th_fs (on strength·fs) to 1
 // at twice it.
-template <class F>
+template <bool kMaximum = true, class F>
 void faceMaximum(std::span<const glm::vec3> positions, const std::array<uint32_t, 3>& t,
                  const std::array<uint32_t, 3>& face_edges, uint32_t face, LineKind kind, const F& fld,
                  float th_fs, float fs, LineSet& out) {
@@ -87,17 +96,19 @@ void faceMaximum(std::span<const glm::vec3> positions, const std::array<uint32_t
                face_edges[j]};
   }
   if (nx != 2) return;
-  // A maximum: in the face's frame (directions agreed with corner 0's), the derivative
-  // decreases along the direction.
-  const float s01 = side_sign[0], s02 = side_sign[2];  // corner 2 to 0 is side 2
-  const float d0 = fld.derivative(t[0]), d1 = s01 * fld.derivative(t[1]), d2 = s02 * fld.derivative(t[2]);
-  const glm::vec3 p0 = positions[t[0]], e1 = positions[t[1]] - p0, e2 = positions[t[2]] - p0;
-  const glm::vec3 n = glm::cross(e1, e2);
-  const float nn = glm::dot(n, n);
-  if (!(nn > 0.0f)) return;
-  const glm::vec3 grad = ((d1 - d0) * glm::cross(e2, n) + (d2 - d0) * glm::cross(n, e1)) / nn;
-  const glm::vec3 dir = fld.direction(t[0]) + s01 * fld.direction(t[1]) + s02 * fld.direction(t[2]);
-  if (!(glm::dot(grad, dir) < 0.0f)) return;
+  if constexpr (kMaximum) {
+    // A maximum: in the face's frame (directions agreed with corner 0's), the derivative
+    // decreases along the direction.
+    const float s01 = side_sign[0], s02 = side_sign[2];  // corner 2 to 0 is side 2
+    const float d0 = fld.derivative(t[0]), d1 = s01 * fld.derivative(t[1]), d2 = s02 * fld.derivative(t[2]);
+    const glm::vec3 p0 = positions[t[0]], e1 = positions[t[1]] - p0, e2 = positions[t[2]] - p0;
+    const glm::vec3 n = glm::cross(e1, e2);
+    const float nn = glm::dot(n, n);
+    if (!(nn > 0.0f)) return;
+    const glm::vec3 grad = ((d1 - d0) * glm::cross(e2, n) + (d2 - d0) * glm::cross(n, e1)) / nn;
+    const glm::vec3 dir = fld.direction(t[0]) + s01 * fld.direction(t[1]) + s02 * fld.direction(t[2]);
+    if (!(glm::dot(grad, dir) < 0.0f)) return;
+  }
   auto alpha = [&](float k) { return std::clamp((k * fs - th_fs) / th_fs, 0.0f, 1.0f); };
   const float a0 = alpha(x[0].strength), a1 = alpha(x[1].strength);
   if (!(a0 > 0.0f || a1 > 0.0f)) return;
@@ -252,6 +263,57 @@ void extractApparentRidges(std::span<const glm::vec3> positions, std::span<const
     if (q.q1[t[0]] < half && q.q1[t[1]] < half && q.q1[t[2]] < half) continue;
     faceMaximum(positions, t, adj.face_edges[f], static_cast<uint32_t>(f), LineKind::kApparentRidge, fld, threshold,
                 fs, out);
+  }
+}
+
+void computePrincipalHighlightQuantities(const SurfaceFields& f, const ViewSpec& view, float feature_size,
+                                         PrincipalHighlightQuantities& out) {
+  const size_t nv = f.positions.size();
+  out.ndotv.assign(nv, 0.0f);
+  out.e.assign(nv, glm::vec3(0.0f));
+  out.vdote.assign(nv, 0.0f);
+  out.strength.assign(nv, 0.0f);
+  if (f.normals.size() != nv || f.k1.size() != nv || f.k2.size() != nv || f.pdir1.size() != nv ||
+      f.pdir2.size() != nv)
+    return;
+  const float fs2 = feature_size > 0.0f ? feature_size * feature_size : 1.0f;
+  const glm::vec3 ortho = glm::length(view.toward_viewer) > 0.0f ? glm::normalize(view.toward_viewer)
+                                                                 : glm::vec3(0.0f, 0.0f, 1.0f);
+  for (size_t i = 0; i < nv; ++i) {
+    glm::vec3 vdir = ortho;
+    if (!view.orthographic) {
+      const glm::vec3 d = view.eye - f.positions[i];
+      const float len = glm::length(d);
+      vdir = len > 0.0f ? d / len : f.normals[i];
+    }
+    const float ndotv = glm::dot(f.normals[i], vdir);
+    // The dominant curvature (larger magnitude) and its direction; convex only.
+    const bool first = std::abs(f.k1[i]) >= std::abs(f.k2[i]);
+    const float kd = first ? f.k1[i] : f.k2[i], ko = first ? f.k2[i] : f.k1[i];
+    out.ndotv[i] = ndotv;
+    out.e[i] = first ? f.pdir1[i] : f.pdir2[i];
+    out.vdote[i] = glm::dot(vdir, out.e[i]);
+    out.strength[i] = kd > 0.0f && ndotv > 0.0f ? (kd * kd - ko * ko) * ndotv * fs2 : 0.0f;
+  }
+}
+
+void extractPrincipalHighlights(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
+                                const MeshAdjacency& adj, const PrincipalHighlightQuantities& q, float threshold,
+                                LineSet& out) {
+  const size_t nv = positions.size();
+  if (!(threshold > 0.0f) || q.strength.size() != nv || q.e.size() != nv || q.vdote.size() != nv ||
+      q.ndotv.size() != nv || adj.face_count != faces.size() || adj.vertex_count != nv)
+    return;
+  const HighlightField fld{q.strength, q.e, q.vdote};
+  const float half = 0.5f * threshold;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (!adj.face_valid[f]) continue;
+    const auto& t = faces[f];
+    // Front-facing and convex at every corner (strength is 0 otherwise), strong at one.
+    if (!(q.strength[t[0]] > 0.0f && q.strength[t[1]] > 0.0f && q.strength[t[2]] > 0.0f)) continue;
+    if (q.strength[t[0]] < half && q.strength[t[1]] < half && q.strength[t[2]] < half) continue;
+    faceMaximum<false>(positions, t, adj.face_edges[f], static_cast<uint32_t>(f), LineKind::kPrincipalHighlight, fld,
+                       threshold, 1.0f, out);
   }
 }
 

@@ -77,6 +77,29 @@ void extractApparentRidges(std::span<const glm::vec3> positions, std::span<const
                            const MeshAdjacency& adj, const ApparentRidgeQuantities& q, float threshold,
                            float feature_size, LineSet& out);
 
+/// Per view, per vertex: what principal highlights need (DeCarlo & Rusinkiewicz, "Highlight
+/// Lines for Conveying Shape", NPAR 2007, §4). Along the dominant principal direction e (that
+/// of the larger |k|), n·v̂ changes at the rate −k·(v̂·e): where v̂·e = 0 on a convex part,
+/// n·v̂ has a maximum across the strongly curved direction — the line a headlight's
+/// highlight runs along on a ridge-like shape. Drawn where the anisotropy (k_d² − k_o²)·n·v̂·fs²
+/// exceeds the threshold.
+struct PrincipalHighlightQuantities {
+  std::vector<float> ndotv;
+  std::vector<glm::vec3> e;     ///< the dominant principal direction (sign arbitrary)
+  std::vector<float> vdote;     ///< v̂·e (sign follows e)
+  std::vector<float> strength;  ///< (k_d² − k_o²)·n·v̂·fs² where k_d > 0 and n·v̂ > 0, else 0
+};
+
+void computePrincipalHighlightQuantities(const SurfaceFields& fields, const ViewSpec& view, float feature_size,
+                                         PrincipalHighlightQuantities& out);
+
+/// Appends the principal highlights (LineKind::kPrincipalHighlight): zero crossings of v̂·e
+/// with the directions' signs agreed per edge, in faces whose corners are all convex and
+/// front-facing, where the strength exceeds `threshold` (faded in over one more threshold).
+void extractPrincipalHighlights(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
+                                const MeshAdjacency& adj, const PrincipalHighlightQuantities& q, float threshold,
+                                LineSet& out);
+
 /// Appends the ridge (LineKind::kRidge) and valley (kValley) segments of the valid faces to
 /// `out`, each endpoint id the index of the edge it lies on. Needs fields.k1, k2, pdir1,
 /// pdir2 and dcurv valid at the candidate vertices (ridgeCandidateVertices()).

@@ -198,3 +198,43 @@ TEST(ApparentRidges, ViewDependentCurvatureOfASphere) {
 
 }  // namespace
 }  // namespace lodline
+
+namespace lodline {
+namespace {
+
+// Principal highlights (DeCarlo & Rusinkiewicz 2007) of a torus: across the tube, the dominant
+// curvature 1/r, n·v̂ is largest where the tube's normal is nearest the view direction in
+// the meridian plane — the line a headlight's highlight follows along the ring.
+TEST(PrincipalHighlights, TorusHighlightFollowsTheTubeWhereNormalMeetsTheView) {
+  const float R = 1.0f, r = 0.3f;
+  const TriMesh m = makeTorus(R, r, 192, 96);
+  ShapeCache shape;
+  shape.compute(m);
+  ViewSpec view;
+  view.orthographic = true;
+  view.toward_viewer = glm::normalize(glm::vec3(0.3f, 1.0f, 0.5f));
+  PrincipalHighlightQuantities q;
+  computePrincipalHighlightQuantities(shape.fields(m), view, 1.0f, q);
+  LineSet s;
+  extractPrincipalHighlights(m.positions, m.faces, shape.adjacency(), q, 0.5f, s);
+  ASSERT_GT(s.segmentCount(), 50u);
+  const glm::vec3 d = view.toward_viewer;
+  double worst = 0.0, len = 0.0;
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    const glm::vec3 p = s.points[i];
+    const glm::vec3 radial = glm::normalize(glm::vec3(p.x, 0.0f, p.z));
+    const glm::vec3 centre = R * radial;  // the tube's centre line at this ring angle
+    const glm::vec3 n = glm::normalize(p - centre);
+    const double psi = std::atan2(n.y, glm::dot(n, radial));
+    const double best = std::atan2(d.y, glm::dot(d, radial));  // the normal nearest d
+    worst = std::max(worst, std::abs(glm::degrees(psi - best)));
+  }
+  for (size_t i = 0; i < s.segmentCount(); ++i) len += glm::length(s.points[2 * i + 1] - s.points[2 * i]);
+  std::printf("principal highlight of a torus: %zu segments, length %.2f (ring 6.28), max angle off %.2f deg\n",
+              s.segmentCount(), len, worst);
+  EXPECT_LT(worst, 2.0);
+  EXPECT_GT(len, 0.8 * 2.0 * 3.14159 * R);  // nearly all round the ring
+}
+
+}  // namespace
+}  // namespace lodline
