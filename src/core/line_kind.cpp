@@ -17,6 +17,7 @@ const char* lineKindName(LineKind k) {
     case LineKind::kSuggestiveHighlight: return "suggestive-highlight";
     case LineKind::kApparentRidge: return "apparent-ridge";
     case LineKind::kPrincipalHighlight: return "principal-highlight";
+    case LineKind::kMaterial: return "material";
   }
   return "unknown";
 }
@@ -29,7 +30,8 @@ std::optional<LineKind> parseLineKind(std::string_view name) {
 
 const char* lineKindList() {
   return "contour, suggestive, crease, boundary, intersection, isophote, topo, parabolic, ridge, valley, "
-         "suggestive-highlight, apparent-ridge, principal-highlight";
+         "suggestive-highlight, apparent-ridge, principal-highlight, "
+         "material";
 }
 
 }  // namespace lodline

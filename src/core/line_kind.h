@@ -33,12 +33,14 @@ enum class LineKind : uint8_t {
   /// principal highlights, maxima of n·v across the dominant curvature (DeCarlo &
   /// Rusinkiewicz 2007)
   kPrincipalHighlight = 12,
+  /// edges between faces of different materials (TriMesh::face_materials)
+  kMaterial = 13,
 };
-inline constexpr int kLineKindCount = 13;
+inline constexpr int kLineKindCount = 14;
 
 /// "contour", "suggestive", "crease", "boundary", "intersection", "isophote", "topo",
 /// "parabolic", "ridge", "valley", "suggestive-highlight", "apparent-ridge",
-/// "principal-highlight" (the names of --lines and the stats).
+/// "principal-highlight", "material" (the names of --lines and the stats).
 const char* lineKindName(LineKind k);
 /// The kind named `name`, if any.
 std::optional<LineKind> parseLineKind(std::string_view name);

@@ -22,6 +22,9 @@ struct TriMesh {
   std::vector<std::array<uint32_t, 3>> faces;  ///< vertex indices per triangle
   /// Edges the file marks as sharp/crease (e.g. OBJ `l` lines); may be empty.
   std::vector<EdgeKey> marked_edges;
+  /// Material index per face (OBJ `usemtl`, glTF primitives' materials); empty: one
+  /// material. Material lines (lines/lines.h) run where two faces' indices differ.
+  std::vector<uint32_t> face_materials;
 
   size_t vertexCount() const { return positions.size(); }
   size_t faceCount() const { return faces.size(); }

@@ -36,7 +36,8 @@ struct LineStyle {
 /// sepia, parabolic lines 1.25 px dark green, ridges 1.5 px dark red, valleys 1.5 px dark
 /// blue, suggestive highlights 2 px white (drawn over toon or shaded fills, as DeCarlo &
 /// Rusinkiewicz 2007 draw them; give them a colour for `--style lines` on white), apparent
-/// ridges 1.5 px near-black, principal highlights 2 px white (like suggestive highlights).
+/// ridges 1.5 px near-black, principal highlights 2 px white (like suggestive highlights),
+/// material boundaries 1.5 px dark grey.
 struct LineStyles {
   std::array<LineStyle, kLineKindCount> kinds{{
       {true, {0.0f, 0.0f, 0.0f, 1.0f}, 2.5f},
@@ -52,6 +53,7 @@ struct LineStyles {
       {false, {1.0f, 1.0f, 1.0f, 1.0f}, 2.0f},
       {false, {0.10f, 0.08f, 0.08f, 1.0f}, 1.5f},
       {false, {1.0f, 1.0f, 1.0f, 1.0f}, 2.0f},
+      {false, {0.20f, 0.20f, 0.22f, 1.0f}, 1.5f},
   }};
   LineStyle& operator[](LineKind k) { return kinds[static_cast<int>(k)]; }
   const LineStyle& operator[](LineKind k) const { return kinds[static_cast<int>(k)]; }

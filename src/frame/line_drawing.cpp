@@ -22,6 +22,8 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
   shape_.setWorkerPool(pool_.get());
   scratch_.pool = pool_.get();
   bounds_ = computeBounds(mesh_.positions);
+  if (mesh_.face_materials.size() == mesh_.faces.size()) full_face_materials_ = mesh_.face_materials;
+  else mesh_.face_materials.clear();
   Stopwatch sw;
   shape_.compute(mesh_);
   feature_size_ = computeFeatureSize(shape_.k1(), shape_.k2(), bounds_.radius);
@@ -60,19 +62,25 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
 
 void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
                              std::span<const std::array<uint32_t, 3>> faces,
-                             std::span<const uint32_t> changed) {
+                             std::span<const uint32_t> changed, std::span<const uint32_t> face_ids) {
   faces_in_.assign(faces.begin(), faces.end());
-  updateMesh(positions, faces_in_, changed);
+  updateMesh(positions, faces_in_, changed, face_ids);
 }
 
 void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
                              std::vector<std::array<uint32_t, 3>>& faces,
-                             std::span<const uint32_t> changed) {
+                             std::span<const uint32_t> changed, std::span<const uint32_t> face_ids) {
   const WorkerPool::Awake awake(pool_.get());
   Stopwatch sw;
   mesh_.positions.assign(positions.begin(), positions.end());
   mesh_.faces.swap(faces);
   mesh_.marked_edges.clear();  // marked edges refer to full-detail vertex ids
+  mesh_.face_materials.clear();
+  if (!full_face_materials_.empty() && face_ids.size() == mesh_.faces.size()) {
+    mesh_.face_materials.resize(face_ids.size());
+    for (size_t i = 0; i < face_ids.size(); ++i)
+      mesh_.face_materials[i] = face_ids[i] < full_face_materials_.size() ? full_face_materials_[face_ids[i]] : 0;
+  }
   shape_.update(mesh_, changed);
   timings_.shape = sw.lap();
 }
@@ -113,6 +121,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   p.suggestive_highlights = enabled[static_cast<int>(LineKind::kSuggestiveHighlight)];
   p.apparent_ridges = enabled[static_cast<int>(LineKind::kApparentRidge)];
   p.principal_highlights = enabled[static_cast<int>(LineKind::kPrincipalHighlight)];
+  p.materials = enabled[static_cast<int>(LineKind::kMaterial)];
   const bool dw = p.suggestive || p.suggestive_highlights;  // both test Dw kr on kr = 0
 
   const WorkerPool::Awake awake(pool_.get());

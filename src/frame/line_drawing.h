@@ -39,12 +39,14 @@ class LineDrawing {
   /// Replaces the mesh by an adapted one (level of detail): `positions` per vertex slot,
   /// `faces` indexing them; `changed` lists the vertices whose position or incident faces
   /// changed since the last call. Shape quantities are updated incrementally (bit-identical
-  /// to a full recompute). Unused slots may hold any finite position.
+  /// to a full recompute). Unused slots may hold any finite position. `face_ids`, when given
+  /// (one per face), names each face's face in the full-detail mesh, whose material it takes
+  /// (material lines); without it the adapted mesh has no materials.
   void updateMesh(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
-                  std::span<const uint32_t> changed);
+                  std::span<const uint32_t> changed, std::span<const uint32_t> face_ids = {});
   /// The same, taking `faces` by swapping buffers (it gets the previous face array back).
   void updateMesh(std::span<const glm::vec3> positions, std::vector<std::array<uint32_t, 3>>& faces,
-                  std::span<const uint32_t> changed);
+                  std::span<const uint32_t> changed, std::span<const uint32_t> face_ids = {});
 
   /// Recomputes the lines for `camera`. Kinds disabled in `enabled` are not extracted.
   /// `smoothing` < 1 blends normals, kr and Dw kr with the previous frames' values by that
@@ -109,6 +111,7 @@ class LineDrawing {
   TemporalSmoother smoother_;
   std::span<const glm::vec3> shading_normals_;
   ViewQuantities view_;
+  std::vector<uint32_t> full_face_materials_;  // of the full-detail mesh (empty: one material)
   std::vector<std::array<uint32_t, 3>> faces_in_;  // updateMesh(span): copy, then swap in
   std::vector<uint32_t> needed_;     // vertices whose Dw kr this frame needs (lazy derivatives)
   std::vector<uint8_t> needed_mark_;

@@ -115,7 +115,7 @@ Status LodDrawing::adaptPm(PmLevel& level, const Camera& camera, int width, int 
     }
     for (uint32_t s : changed_) mask[s] = nodes[s] != kPmNone && full[origin[nodes[s]]];
   }
-  drawing_.updateMesh(lod.positions(), faces_, changed_);
+  drawing_.updateMesh(lod.positions(), faces_, changed_, lod.activeFaceIds());
   mesh_changed_ = true;
   return {};
 }

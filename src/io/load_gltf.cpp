@@ -12,6 +12,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <unordered_map>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -279,7 +280,11 @@ Result<std::vector<GltfMeshNode>> loadGltf(const std::filesystem::path& path) {
       for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
         const std::string where = name + ": mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(pi);
         if (Status s = appendPrimitive(model, mesh.primitives[pi], where, g.mesh, weld); !s) return s.error();
+        // The primitive's material (index + 1; 0: none) for its faces: material lines.
+        g.mesh.face_materials.resize(g.mesh.faces.size(), static_cast<uint32_t>(mesh.primitives[pi].material + 1));
       }
+      const auto& fm = g.mesh.face_materials;
+      if (std::adjacent_find(fm.begin(), fm.end(), std::not_equal_to<>()) == fm.end()) g.mesh.face_materials.clear();
       if (!g.mesh.faces.empty()) {
         // Drop vertices no triangle uses (those of point and line primitives).
         std::vector<uint32_t> used(g.mesh.positions.size(), UINT32_MAX);

@@ -135,6 +135,9 @@ Status validateMesh(const TriMesh& mesh, const std::string& what) {
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
       return Error::runtime(what + ": face " + std::to_string(f) + " repeats a vertex");
   }
+  if (!mesh.face_materials.empty() && mesh.face_materials.size() != mesh.faces.size())
+    return Error::runtime(what + ": " + std::to_string(mesh.face_materials.size()) + " face materials for " +
+                          std::to_string(mesh.faces.size()) + " faces");
   return {};
 }
 
@@ -161,12 +164,14 @@ Result<TriMesh> loadMesh(const std::filesystem::path& path) {
   // vertex is dropped. Complaints of add_face go to the capture, not to stderr.
   OmMesh om;
   size_t repeated = 0;
+  std::vector<uint32_t> om_face_material;  // per OpenMesh face, in the order they were added
   {
     OmMessageCapture capture;
     om.reserve(pm.positions.size(), 3 * pm.positions.size(), pm.faceCount());
     for (const glm::vec3& p : pm.positions) om.add_vertex(OmMesh::Point(p.x, p.y, p.z));
     std::vector<OmMesh::VertexHandle> handles;
     std::vector<uint32_t> scratch;
+    const bool materials = pm.face_materials.size() == pm.faceCount();
     for (size_t f = 0; f < pm.faceCount(); ++f) {
       const std::span<const uint32_t> poly(pm.corners.data() + pm.face_start[f], pm.face_start[f + 1] - pm.face_start[f]);
       if (repeatsVertex(poly, scratch)) {
@@ -175,9 +180,12 @@ Result<TriMesh> loadMesh(const std::filesystem::path& path) {
       }
       handles.clear();
       for (uint32_t v : poly) handles.emplace_back(static_cast<int>(v));
-      if (om.add_face(handles).is_valid()) continue;
-      for (auto& h : handles) h = om.add_vertex(OmMesh::Point(om.point(h)));
-      om.add_face(handles);
+      bool added = om.add_face(handles).is_valid();
+      if (!added) {
+        for (auto& h : handles) h = om.add_vertex(OmMesh::Point(om.point(h)));
+        added = om.add_face(handles).is_valid();
+      }
+      if (added && materials) om_face_material.push_back(pm.face_materials[f]);
     }
     (void)capture.text();
   }
@@ -193,7 +201,10 @@ Result<TriMesh> loadMesh(const std::filesystem::path& path) {
   for (const auto fh : om.faces()) {
     poly.clear();
     for (const auto vh : om.fv_range(fh)) poly.push_back(static_cast<uint32_t>(vh.idx()));
-    for (size_t k = 1; k + 1 < poly.size(); ++k) mesh.faces.push_back({poly[0], poly[k], poly[k + 1]});
+    for (size_t k = 1; k + 1 < poly.size(); ++k) {
+      mesh.faces.push_back({poly[0], poly[k], poly[k + 1]});
+      if (om_face_material.size() == om.n_faces()) mesh.face_materials.push_back(om_face_material[fh.idx()]);
+    }
   }
   if (mesh.faces.empty() && repeated > 0)
     return Error::runtime(name + ": no usable faces (every face repeats a vertex)");

@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <unordered_map>
@@ -336,6 +337,9 @@ Result<PolygonMesh> Reader::obj() {
   std::vector<long long> raw;  // corners: ≥ 0 resolved 0-based index, checked at the end
   std::vector<size_t> raw_line;
   std::vector<PendingEdge> edges;
+  std::vector<std::string> materials{""};  // "": faces before any usemtl; then usemtl names
+  uint32_t material = 0;
+  std::vector<uint32_t> face_material;
   beginFace();
   size_t line = 0;
   // Resolves an OBJ index token ("7", "-2", "7/1/3", "7//3") against the vertices so far.
@@ -373,6 +377,12 @@ Result<PolygonMesh> Reader::obj() {
       if (k < 3) return errorAtLine(line, "face has " + std::to_string(k) + " vertices (at least 3 needed)");
       if (raw.size() >= kMaxCount) return errorAtLine(line, "too many face corners");
       mesh_.face_start.push_back(static_cast<uint32_t>(raw.size()));
+      face_material.push_back(material);
+    } else if (key == "usemtl") {
+      const std::string_view w = t.wordOnLine('#');
+      const auto it = std::find(materials.begin(), materials.end(), w);
+      material = static_cast<uint32_t>(it - materials.begin());
+      if (it == materials.end()) materials.emplace_back(w);
     } else if (key == "l") {
       long long prev = -1;
       for (std::string_view w = t.wordOnLine('#'); !w.empty(); w = t.wordOnLine('#')) {
@@ -382,7 +392,7 @@ Result<PolygonMesh> Reader::obj() {
         prev = v;
       }
     }
-    t.skipLine();  // other statements (vt, vn, g, o, s, usemtl, mtllib, ...) are ignored
+    t.skipLine();  // other statements (vt, vn, g, o, s, mtllib, ...) are ignored
   }
   const size_t n = mesh_.positions.size();
   mesh_.corners.reserve(raw.size());
@@ -398,6 +408,9 @@ Result<PolygonMesh> Reader::obj() {
                                      std::to_string(n) + " vertices)");
     mesh_.marked_edges.push_back({static_cast<uint32_t>(e.a), static_cast<uint32_t>(e.b)});
   }
+  // Kept when the faces use two materials or more.
+  if (std::adjacent_find(face_material.begin(), face_material.end(), std::not_equal_to<>()) != face_material.end())
+    mesh_.face_materials = std::move(face_material);
   return finish();
 }
 

@@ -47,6 +47,9 @@ struct PolygonMesh {
   std::vector<uint32_t> face_start;   ///< faceCount() + 1 offsets into `corners`
   std::vector<uint32_t> corners;      ///< vertex index of each face corner
   std::vector<EdgeKey> marked_edges;  ///< OBJ `l` segments (sharp edges)
+  /// Per face, the index of its material in order of first use (OBJ `usemtl`); empty when
+  /// the file names fewer than two materials.
+  std::vector<uint32_t> face_materials;
 
   size_t faceCount() const { return face_start.empty() ? 0 : face_start.size() - 1; }
 };

@@ -418,6 +418,21 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
   }
   extractZeroSets(mesh.positions, mesh.faces, adj, std::span(in, n), std::span(types, n), scratch, out);
   extractEdgeLines(mesh, adj, face_normals, params, scratch, out, crease_vertices);
+  if (params.materials) extractMaterialLines(mesh, adj, out);
+}
+
+void extractMaterialLines(const TriMesh& mesh, const MeshAdjacency& adj, LineSet& out) {
+  const auto& mat = mesh.face_materials;
+  if (mat.size() != mesh.faces.size() || adj.face_count != mesh.faces.size() ||
+      adj.vertex_count != mesh.positions.size())
+    return;
+  for (size_t e = 0; e < adj.edges.size(); ++e) {
+    if (adj.edge_face_count[e] != 2) continue;
+    if (mat[adj.edge_faces[e][0]] == mat[adj.edge_faces[e][1]]) continue;
+    const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
+    pushSegment(out, LineKind::kMaterial, static_cast<uint32_t>(e), mesh.positions[a], a, 1.0f, mesh.positions[b], b,
+                1.0f);
+  }
 }
 
 void LineExtractor::extract(const TriMesh& mesh, const ShapeCache& shape, const ViewSpec& view,

@@ -97,6 +97,10 @@ struct LineParams {
   /// Apparent ridges where q1·fs (q1: the maximum view-dependent curvature) exceeds this,
   /// faded in over one more threshold. Default 0.1.
   float apparent_ridge_threshold = 0.1f;
+  /// Material boundaries: edges whose two faces have different TriMesh::face_materials
+  /// (Freestyle's and Line Art's "material boundaries"). On the adapted mesh they are exact
+  /// too: a progressive mesh never collapses a vertex on one (pm/progressive_mesh.h).
+  bool materials = false;
   bool principal_highlights = false;  ///< principal highlights (lines/ridge_lines.h)
   /// Principal highlights where (k_d² − k_o²)·n·v·fs² exceeds this, faded in over one more
   /// threshold (k_d, k_o: the dominant and the other principal curvature). Default 0.01.
@@ -179,6 +183,10 @@ void extractZeroSet(std::span<const glm::vec3> positions,
 void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
                      const MeshAdjacency& adjacency, std::span<const ZeroSetInput> inputs,
                      std::span<const LineKind> types, LineScratch& scratch, LineSet& out);
+
+/// Appends a LineKind::kMaterial segment for every edge whose two faces have different
+/// mesh.face_materials (nothing when that is empty); endpoint ids the vertex indices.
+void extractMaterialLines(const TriMesh& mesh, const MeshAdjacency& adjacency, LineSet& out);
 
 /// Appends creases (dihedral angle, marked and non-manifold edges) and boundaries, as
 /// enabled in `params`. `face_normals` holds faceCount unit normals (zero: degenerate, never

@@ -144,7 +144,8 @@ class AdaptiveMesh {
   uint32_t slotCount() const { return slot_count_; }
   /// Active faces as slot triples (counter-clockwise); `out` is resized to activeFaceCount().
   void exportFaces(std::vector<std::array<uint32_t, 3>>& out) const;
-  /// Active faces as PM face ids (ids of the input faces they stand for).
+  /// Active faces as PM face ids (ids of the input faces they stand for), in exportFaces()'s
+  /// order.
   std::span<const uint32_t> activeFaceIds() const { return active_faces_; }
   /// The active mesh with compact (renumbered) vertices and displayed positions;
   /// `node_ids[i]` is the PM node of vertex i (pm().origin[] maps it to an input vertex).

@@ -169,6 +169,7 @@ void Builder::buildAdjacency() {
     for (uint32_t v : fv_[f]) vface_[v] = f;
   }
   auto head = [&](uint32_t h) { return fv_[h / 3][next3(h % 3)]; };
+  const bool materials = mesh_.face_materials.size() == nf_;
   for (uint32_t f = 0; f < nf_; ++f) {
     if (degenerate[f]) continue;
     for (uint32_t i = 0; i < 3; ++i) {
@@ -180,6 +181,12 @@ void Builder::buildAdjacency() {
         if (head(out[k]) == b) ++same;
       if (twins == 1 && same == 1) {
         fn_[f][i] = twin;
+        // A material boundary keeps its vertices (material lines stay exact at every level of
+        // detail; Hoppe 1996 §3.3 keeps such discontinuity curves too, less strictly).
+        if (materials && mesh_.face_materials[f] != mesh_.face_materials[twin]) {
+          flags_[a] |= kPmFrozen;
+          flags_[b] |= kPmFrozen;
+        }
       } else if (twins == 0 && same == 1) {
         flags_[a] |= kPmBoundary;
         flags_[b] |= kPmBoundary;
@@ -429,7 +436,11 @@ Result<ProgressiveMesh> Builder::run() {
 
 uint64_t meshContentHash(const TriMesh& mesh) {
   uint64_t h = hashBytes(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
-  return hashBytes(mesh.faces.data(), mesh.faces.size() * sizeof(mesh.faces[0]), h);
+  h = hashBytes(mesh.faces.data(), mesh.faces.size() * sizeof(mesh.faces[0]), h);
+  // Materials change the build (their boundaries are kept); a mesh without keeps its hash.
+  if (!mesh.face_materials.empty())
+    h = hashBytes(mesh.face_materials.data(), mesh.face_materials.size() * sizeof(uint32_t), h);
+  return h;
 }
 
 uint64_t buildParamsHash(const PmBuildParams& p) {

@@ -49,7 +49,9 @@ struct VertexSplit {
 /// Flags per input vertex.
 enum PmVertexFlags : uint8_t {
   kPmBoundary = 1,  ///< on an open boundary: kept in the base mesh
-  kPmFrozen = 2,    ///< non-manifold, isolated or on a degenerate face: never collapsed
+  /// non-manifold, isolated, on a degenerate face or on a material boundary
+  /// (TriMesh::face_materials): never collapsed
+  kPmFrozen = 2,
 };
 
 /// Build settings (they are part of the cache key).
@@ -117,7 +119,8 @@ struct ProgressiveMesh {
 Result<ProgressiveMesh> buildProgressiveMesh(const TriMesh& mesh, const PmBuildParams& params = {},
                                              const PmProgress& progress = {});
 
-/// 64-bit hash of the mesh arrays (positions and faces bytes), the cache key of a model.
+/// 64-bit hash of the mesh arrays (positions and faces bytes, and the face materials when
+/// there are any), the cache key of a model.
 uint64_t meshContentHash(const TriMesh& mesh);
 
 /// Hash of the build parameters (part of the cache key).
