@@ -229,6 +229,8 @@ int runSweep(const SweepOptions& o) {
   if (static_cast<int>(o.dry_run) + static_cast<int>(o.emit_commands) + static_cast<int>(o.collect) > 1)
     return reportError(Error::usage("sweep: --dry-run, --emit-commands and --collect exclude each other"));
   if (o.collect && o.force) return reportError(Error::usage("sweep: --collect renders nothing, so --force does not apply"));
+  if (o.sheet.columns < 0 || o.sheet.columns > 64)
+    return reportError(Error::usage("--columns: must be 1..64 (0: automatic)"));
   if (o.sheet.cell_width < 0 || o.sheet.cell_width > 4096)
     return reportError(Error::usage("--cell-width: must be 0..4096 px"));
   std::string stat_names;
@@ -428,6 +430,8 @@ Command addSweepCommand(CLI::App& parent) {
   cmd->add_option("--caption", o->sheet.captions, "Result column to print under each contact-sheet cell (repeatable)")
       ->allow_extra_args(false);
   cmd->add_option("--cell-width", o->sheet.cell_width, "Contact-sheet cell width in px (default: the render width, at most 320)");
+  cmd->add_option("--columns", o->sheet.columns,
+                  "Cells per row of a --zip contact sheet (default: one row up to 5 runs, else a square)");
   cmd->add_option("--title", o->sheet.title, "Contact-sheet title (default: the model and the axes)");
   cmd->add_option("--font", o->font, "TrueType font of the contact-sheet labels")->capture_default_str();
   // Every drawing option of `render`, fixed for every run (the same as after `--`).

@@ -99,6 +99,8 @@ struct SheetOptions {
   std::string title;                  ///< first title line; empty = the model and the axes
   std::vector<std::string> captions;  ///< columns printed under each cell
   int cell_width = 0;                 ///< px; 0 = the first render's width, at most 320
+  /// Cells per row of a --zip sheet; 0 = all in one row up to 5 runs, else a square.
+  int columns = 0;
 };
 
 /// Contact sheets in `dir`: sheet.png, or one sheet_KEY-VALUE....png per combination of the

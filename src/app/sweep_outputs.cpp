@@ -172,7 +172,9 @@ Result<std::vector<std::filesystem::path>> writeSheets(const Plan& plan, const s
     if (zip || axes.size() == 1) {
       for (size_t i = 0; i < plan.runs.size(); ++i) members.push_back(i);
       const int n = static_cast<int>(members.size());
-      sheet.columns = zip ? (n <= 5 ? n : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))))) : n;
+      sheet.columns = !zip ? n
+                      : o.columns > 0 ? std::min(o.columns, n)
+                      : (n <= 5 ? n : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n)))));
       sheet.rows = (n + sheet.columns - 1) / sheet.columns;
       if (!zip) {
         sheet.column_axis = axes[0].key;

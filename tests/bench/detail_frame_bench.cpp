@@ -12,6 +12,8 @@
 // 0.25 s (fade_ms, part of strokes_ms); compare them with the case above them.
 //   ./build/tests/bench/detail_frame_bench --benchmark_counters_tabular=true
 // (armadillo and the 1.1M knot at T = 16 px², and the knot at T = 7 px², ~100k faces)
+// The `line_kind/` cases time each line kind's share of the lines stage (docs/lines.md):
+//   ./build/tests/bench/detail_frame_bench --benchmark_filter=line_kind --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -301,6 +303,56 @@ void sceneFrame(benchmark::State& state, float target_area) {
   state.counters["knot_full_recomputes"] = kf;
 }
 
+// The CPU cost of each line kind per controlled frame (docs/lines.md): two scenes of the same
+// model adapted side by side in one loop, one drawing contours only, the other contours and
+// `kind`; lines_ms is the lines stage (view quantities, extraction, chaining, and the
+// per-view quantities and derivative tensors the kind needs), shape_ms the shape update.
+// Medians over the frames of a slow orbit (1 degree per frame), 1280x720.
+void lineKindFrame(benchmark::State& state, const std::string& name, float target_area, LineKind kind) {
+  auto model = loadModel(name);
+  if (!model) {
+    state.SkipWithError(("cannot load " + name + " (run scripts/setup.sh)").c_str());
+    return;
+  }
+  auto make = [&](bool with_kind) {
+    SceneDrawing scene = sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm), name);
+    SceneDrawing::Object& o = scene.objects()[0];
+    for (auto& k : o.style.lines.kinds) k.enabled = false;
+    o.style.lines[LineKind::kContour].enabled = true;
+    if (with_kind) o.style.lines[kind].enabled = true;
+    return scene;
+  };
+  SceneDrawing base = make(false), with = make(true);
+  FrameParams frame;
+  DetailParams detail;
+  detail.target_area = target_area;
+  const float aspect = frame.aspect();
+  for (SceneDrawing* s : {&base, &with})
+    (void)s->converge(orbitCamera(s->bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width, frame.height, detail,
+                      1.0f / 30.0f, 300);
+  std::vector<double> base_lines, with_lines, base_shape, with_shape, segments;
+  float az = 0.0f;
+  for (auto _ : state) {
+    const Camera cam = orbitCamera(base.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
+    az += 1.0f;
+    (void)base.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
+    (void)with.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
+    const Stages b = stagesOf(base), w = stagesOf(with);
+    base_lines.push_back(b.lines);
+    with_lines.push_back(w.lines);
+    base_shape.push_back(b.shape);
+    with_shape.push_back(w.shape);
+    segments.push_back(with.objects()[0].drawing->drawing().segments().counts[static_cast<int>(kind)]);
+  }
+  state.SetLabel(lineKindName(kind));
+  state.counters["contour_lines_ms"] = bench::median(base_lines);
+  state.counters["lines_ms"] = bench::median(with_lines);
+  state.counters["kind_ms"] = bench::median(with_lines) - bench::median(base_lines);
+  state.counters["contour_shape_ms"] = bench::median(base_shape);
+  state.counters["shape_ms"] = bench::median(with_shape);
+  state.counters["segments"] = bench::median(segments);
+}
+
 }  // namespace
 }  // namespace lodline
 
@@ -322,6 +374,15 @@ int main(int argc, char** argv) {
                                [](benchmark::State& s) { lodline::sceneFrame(s, 16.0f); })
       ->Iterations(30)
       ->Unit(benchmark::kMillisecond);
+  for (const char* name : {"armadillo.off", "knot1m"})
+    for (int k = 0; k < lodline::kLineKindCount; ++k) {
+      const auto kind = static_cast<lodline::LineKind>(k);
+      if (kind == lodline::LineKind::kContour || kind == lodline::LineKind::kIntersection) continue;
+      const std::string label = std::string("line_kind/") + name + "/T:16/" + lodline::lineKindName(kind);
+      benchmark::RegisterBenchmark(label.c_str(), [name, kind](benchmark::State& s) {
+        lodline::lineKindFrame(s, name, 16.0f, kind);
+      })->Iterations(30)->Unit(benchmark::kMillisecond);
+    }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
