@@ -2,7 +2,7 @@
 # Every line kind on one model, at full detail and at T = 16 and 64, as a `lodline sweep`
 # contact sheet (docs/lines.md), then the specks per kind of each run from its stats.
 #
-#   scripts/line_kinds_sheet.sh MODEL OUT_DIR [SIZE]
+#   scripts/line_kinds_sheet.sh MODEL OUT_DIR [SIZE [CELL_WIDTH]]
 #
 # Needs build/lodline. Rows: kinds (each with the contour), columns: full detail, T = 16, 64.
 set -euo pipefail
@@ -10,6 +10,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 model=$1
 out=$2
 size=${3:-320x320}
+cell=${4:-0}
 kinds=(
   "contour,suggestive"
   "contour,suggestive-highlight,principal-highlight"
@@ -28,10 +29,10 @@ for k in "${kinds[@]}"; do
   done
 done
 ta=${ta%;}
-"$here/build/lodline" sweep "$model" --size "$size" --style lines --zip -j 2 \
-  --vary "lines=$lines" --vary "lod=$lod" --vary "target-area=$ta" --caption specks --columns 3 \
-  --title "$(basename "$model"): line kinds (rows) at full detail, T = 16, T = 64" -o "$out" \
-  -- --line-style "suggestive-highlight=#d08a00:2" --line-style "principal-highlight=#c03070:2" >&2
+# Toon style: the highlight kinds are white, as DeCarlo & Rusinkiewicz draw them, over the fills.
+"$here/build/lodline" sweep "$model" --size "$size" --style toon --zip -j 2 \
+  --vary "lines=$lines" --vary "lod=$lod" --vary "target-area=$ta" --caption specks --columns 3 --cell-width "$cell" \
+  --title "$(basename "$model"): line kinds (rows) at full detail, T = 16, T = 64" -o "$out" >&2
 # Specks per kind (strokes shorter than 3 px), per run.
 python3 - "$out" <<'PY'
 import csv, json, pathlib, sys
