@@ -137,6 +137,13 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     smoother_.reset();
     shading_normals_ = {};
   }
+  // The other kinds' curvatures, smoothed over time like kr (docs/lines.md); kr itself is
+  // computed from the raw ones and smoothed on its own.
+  SurfaceFields curv = fields;
+  if (smooth && (p.parabolic || p.ridges || p.valleys || p.principal_highlights || p.apparent_ridges)) {
+    curv.k1 = smoother_.blendScalar(TemporalSmoother::kK1, shape_.k1(), smoothing);
+    curv.k2 = smoother_.blendScalar(TemporalSmoother::kK2, shape_.k2(), smoothing);
+  }
   const float fs = feature_size_ > 0.0f && std::isfinite(feature_size_) ? feature_size_ : 1.0f;
   const float sc_threshold = p.suggestive_threshold / (fs * fs);
   computeViewQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, view_, pool_.get());
@@ -193,7 +200,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     level.parabolic = p.parabolic;
     level.feature_size = fs;
     level.parabolic_threshold = p.parabolic_threshold;
-    computeLevelQuantities(fields, level, view_, pool_.get());
+    computeLevelQuantities(curv, level, view_, pool_.get());
   }
   timings_.view = sw.lap();
   extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_,
@@ -201,6 +208,8 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   if (p.ridges || p.valleys) {  // lines/ridge_lines.h: the raw (unsmoothed) curvature
     const RidgeSpec ridge{p.ridges, p.valleys, p.ridge_threshold, fs};
     SurfaceFields rf = shape_.fields(mesh_);
+    rf.k1 = curv.k1;
+    rf.k2 = curv.k2;
     if (shape_.params().lazy_derivatives) {  // derivative tensors only where a ridge can be
       ridgeCandidateVertices(mesh_.faces, shape_.adjacency(), rf, ridge, needed_mark_, ridge_needed_);
       shape_.ensureDerivatives(mesh_, ridge_needed_);
@@ -209,12 +218,25 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     extractRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), rf, ridge, scratch_, segments_);
   }
   if (p.apparent_ridges) {  // per view: the (smoothed) normals, the raw curvature
-    computeApparentRidgeQuantities(mesh_.faces, shape_.adjacency(), fields, ViewSpec::fromCamera(camera), apparent_);
+    computeApparentRidgeQuantities(mesh_.faces, shape_.adjacency(), curv, ViewSpec::fromCamera(camera), apparent_);
+    if (smooth) {
+      // Smoothed in bounded forms: q1 grows without bound towards the contour, and a vertex
+      // that was near it would keep a large average for many frames. q1 is capped at twice
+      // the threshold (where the fade saturates: the same alpha), Dt1 q1 compressed as
+      // d/(1 + |d|/D) with D = threshold/fs² (same sign, same zero set where |d| << D).
+      const float q_cap = 2.0f * p.apparent_ridge_threshold / fs;
+      const float d_scale = p.apparent_ridge_threshold / (fs * fs);
+      for (float& q : apparent_.q1) q = std::min(q, q_cap);
+      for (float& d : apparent_.dt1q1) d = d / (1.0f + std::abs(d) / d_scale);
+      const auto q1 = smoother_.blendScalar(TemporalSmoother::kQ1, apparent_.q1, smoothing);
+      std::copy(q1.begin(), q1.end(), apparent_.q1.begin());
+      smoother_.blendDirected(TemporalSmoother::kDt1q1, apparent_.t1, apparent_.dt1q1, smoothing);
+    }
     extractApparentRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), apparent_, p.apparent_ridge_threshold, fs,
                           segments_);
   }
   if (p.principal_highlights) {
-    computePrincipalHighlightQuantities(fields, ViewSpec::fromCamera(camera), fs, principal_);
+    computePrincipalHighlightQuantities(curv, ViewSpec::fromCamera(camera), fs, principal_);
     extractPrincipalHighlights(mesh_.positions, mesh_.faces, shape_.adjacency(), principal_,
                                p.principal_highlight_threshold, segments_);
   }

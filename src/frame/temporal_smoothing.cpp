@@ -47,6 +47,16 @@ void TemporalSmoother::followHierarchy(const AdaptiveMesh& lod) {
       dwkr_.resize(n, 0.0f);
     }
     if (view_state) dwkr_frame_.resize(std::max<size_t>(dwkr_frame_.size(), n), 0);
+    for (Extra& e : extra_) {
+      if (!e.on) continue;
+      e.prev.assign(e.v.begin(), e.v.end());
+      if (e.v.size() < n) e.v.resize(n, 0.0f);
+      e.fresh.resize(std::max<size_t>(e.fresh.size(), n), 1);
+    }
+    if (t1_on_) {
+      prev_t1_.assign(t1_.begin(), t1_.end());
+      if (t1_.size() < n) t1_.resize(n, glm::vec3(1, 0, 0));
+    }
     auto old_slot = [&](uint32_t node) {
       const uint32_t s = node != kPmNone ? node_slot_[node] : kNoSlot;
       return s < prev_normals_.size() ? s : kNoSlot;
@@ -61,6 +71,25 @@ void TemporalSmoother::followHierarchy(const AdaptiveMesh& lod) {
         a = old_slot(pm.split(now).vt);
         b = old_slot(pm.split(now).vu);
         if (a == kNoSlot) std::swap(a, b);
+      }
+      for (Extra& e : extra_) {
+        if (!e.on) continue;
+        const bool has_a = a < e.prev.size(), has_b = b < e.prev.size();
+        e.fresh[s] = !has_a;
+        if (has_a) e.v[s] = has_b ? 0.5f * (e.prev[a] + e.prev[b]) : e.prev[a];
+      }
+      if (t1_on_ && a < prev_t1_.size()) {
+        glm::vec3 t = prev_t1_[a];
+        if (b < prev_t1_.size()) {  // the children's directions, agreed, averaged
+          const glm::vec3 tb = prev_t1_[b];
+          const glm::vec3 m = t + (glm::dot(t, tb) < 0.0f ? -tb : tb);
+          if (glm::length(m) > 1e-12f) t = glm::normalize(m);
+          // The value's sign follows the direction: the second child's counts flipped.
+          Extra& d = extra_[kDt1q1];
+          if (d.on && glm::dot(prev_t1_[a], tb) < 0.0f && a < d.prev.size() && b < d.prev.size())
+            d.v[s] = 0.5f * (d.prev[a] - d.prev[b]);
+        }
+        t1_[s] = t;
       }
       if (a == kNoSlot) {
         fresh_[s] = 1;  // several levels at once: no meaningful history
@@ -87,6 +116,8 @@ void TemporalSmoother::followHierarchy(const AdaptiveMesh& lod) {
     // Everything was rebuilt (fully refined/coarsened): no meaningful history.
     initialized_ = false;
     view_initialized_ = false;
+    for (Extra& e : extra_) e.on = false;
+    t1_on_ = false;
   }
   // The new map.
   for (uint32_t s : changed_) {
@@ -167,6 +198,57 @@ void TemporalSmoother::blendSuggestive(ViewQuantities& view, std::span<const uin
     dwkr_frame_[i] = dw_frame_;
     view.dwkr[i] = dwkr_[i];
     suggestiveTest(view.ndotv[i], view.dwkr[i], sc_threshold, view.sc_num[i], view.sc_den[i]);
+  }
+}
+
+std::span<const float> TemporalSmoother::blendScalar(Channel c, std::span<const float> raw, float w) {
+  Extra& e = extra_[c];
+  const size_t n = raw.size();
+  if (!e.on) {
+    e.v.assign(raw.begin(), raw.end());
+    e.fresh.assign(n, 0);
+    e.on = true;
+    return e.v;
+  }
+  e.v.resize(n, 0.0f);
+  e.fresh.resize(n, 1);
+  for (size_t i = 0; i < n; ++i) {
+    e.v[i] = e.fresh[i] ? raw[i] : (1.0f - w) * e.v[i] + w * raw[i];
+    e.fresh[i] = 0;
+  }
+  return e.v;
+}
+
+void TemporalSmoother::blendDirected(Channel c, std::span<glm::vec3> dir, std::span<float> value, float w) {
+  Extra& e = extra_[c];
+  const size_t n = dir.size();
+  if (value.size() != n) return;
+  if (!e.on || !t1_on_) {
+    t1_.assign(dir.begin(), dir.end());
+    e.v.assign(value.begin(), value.end());
+    e.fresh.assign(n, 0);
+    e.on = t1_on_ = true;
+    return;
+  }
+  t1_.resize(n, glm::vec3(1, 0, 0));
+  e.v.resize(n, 0.0f);
+  e.fresh.resize(n, 1);
+  for (size_t i = 0; i < n; ++i) {
+    glm::vec3 d = dir[i];
+    float v = value[i];
+    if (!e.fresh[i]) {
+      if (glm::dot(d, t1_[i]) < 0.0f) {  // agree with the smoothed direction
+        d = -d;
+        v = -v;
+      }
+      const glm::vec3 b = (1.0f - w) * t1_[i] + w * d;
+      const float len = glm::length(b);
+      d = len > 1e-12f ? b / len : d;
+      v = (1.0f - w) * e.v[i] + w * v;
+    }
+    e.fresh[i] = 0;
+    t1_[i] = dir[i] = d;
+    e.v[i] = value[i] = v;
   }
 }
 

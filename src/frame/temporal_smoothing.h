@@ -7,6 +7,7 @@
 // mean of its two children's values to the parent.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -32,8 +33,17 @@ float smoothingWeight(float alpha, float seconds, float fps);
 
 class TemporalSmoother {
  public:
+  /// Per-vertex quantities of the other line kinds (docs/lines.md), smoothed like kr: the
+  /// principal curvatures (ridges, valleys, parabolic lines, principal highlights) and the
+  /// apparent ridges' q1 and Dt1 q1 (the latter with its direction t1).
+  enum Channel { kK1 = 0, kK2, kQ1, kDt1q1, kChannelCount };
+
   /// Forgets all state: the next blend() takes the raw values as they are.
-  void reset() { initialized_ = false; }
+  void reset() {
+    initialized_ = false;
+    for (Extra& e : extra_) e.on = false;
+    t1_on_ = false;
+  }
 
   /// Carries the state across the last adapt() of `lod` (slots whose PM node changed inherit
   /// from the hierarchy as described above). Call once per adapt, before blend().
@@ -59,7 +69,23 @@ class TemporalSmoother {
   void blendSuggestive(ViewQuantities& view, std::span<const uint32_t> vertices, float w,
                        float sc_threshold);
 
+  /// Blends this frame's `raw` values of channel `c` into its state (weight `w`; vertices
+  /// without history take their raw value) and returns the smoothed values.
+  std::span<const float> blendScalar(Channel c, std::span<const float> raw, float w);
+  /// Blends a direction known only up to sign (`dir`, unit) and a value whose sign follows it
+  /// (`value`, channel `c`), in place: each raw pair is first turned to agree with the
+  /// smoothed direction, then both are blended (the direction renormalised).
+  void blendDirected(Channel c, std::span<glm::vec3> dir, std::span<float> value, float w);
+
  private:
+  struct Extra {
+    bool on = false;
+    std::vector<float> v, prev;
+    std::vector<uint8_t> fresh;  // per slot: no history
+  };
+  std::array<Extra, kChannelCount> extra_;
+  bool t1_on_ = false;
+  std::vector<glm::vec3> t1_, prev_t1_;
   bool initialized_ = false;
   bool view_initialized_ = false;
   std::vector<glm::vec3> normals_;

@@ -161,3 +161,46 @@ TEST(Smoothing, FollowsTheVertexHierarchyThroughSplitsAndCollapses) {
 
 }  // namespace
 }  // namespace lodline
+
+namespace lodline {
+namespace {
+
+// The other kinds' channels (docs/lines.md): a scalar is blended like kr; a direction known
+// only up to sign and a value whose sign follows it are blended after agreeing with the
+// smoothed direction, so a solver that flips the sign every other frame changes nothing.
+TEST(TemporalSmoother, ScalarAndDirectedChannels) {
+  TemporalSmoother s;
+  const float w = 0.25f;
+  std::vector<float> raw{1.0f, 2.0f};
+  EXPECT_EQ(s.blendScalar(TemporalSmoother::kK1, raw, w)[0], 1.0f);  // the first frame as it is
+  raw = {3.0f, 2.0f};
+  const auto k = s.blendScalar(TemporalSmoother::kK1, raw, w);
+  EXPECT_FLOAT_EQ(k[0], 0.75f * 1.0f + 0.25f * 3.0f);
+  EXPECT_FLOAT_EQ(k[1], 2.0f);
+
+  std::vector<glm::vec3> dir{{1, 0, 0}};
+  std::vector<float> val{0.5f};
+  s.blendDirected(TemporalSmoother::kDt1q1, dir, val, w);
+  for (int frame = 0; frame < 20; ++frame) {
+    const float sign = frame % 2 ? -1.0f : 1.0f;  // the raw direction flips every frame
+    dir = {sign * glm::vec3(1, 0, 0)};
+    val = {sign * 0.5f};
+    s.blendDirected(TemporalSmoother::kDt1q1, dir, val, w);
+    EXPECT_NEAR(dir[0].x, 1.0f, 1e-6f) << frame;
+    EXPECT_NEAR(val[0], 0.5f, 1e-6f) << frame;
+  }
+  // A direction that turns is followed, renormalised.
+  for (int frame = 0; frame < 60; ++frame) {
+    dir = {glm::vec3(0, 1, 0)};
+    val = {0.5f};
+    s.blendDirected(TemporalSmoother::kDt1q1, dir, val, w);
+  }
+  EXPECT_NEAR(dir[0].y, 1.0f, 1e-3f);
+  EXPECT_NEAR(glm::length(dir[0]), 1.0f, 1e-5f);
+  s.reset();  // forgets: the next frame is taken as it is
+  raw = {7.0f, 7.0f};
+  EXPECT_EQ(s.blendScalar(TemporalSmoother::kK1, raw, w)[0], 7.0f);
+}
+
+}  // namespace
+}  // namespace lodline
