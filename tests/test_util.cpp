@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include <cstdio>
+#include <cstdlib>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,7 +14,10 @@
 namespace lodline::test {
 
 std::filesystem::path dataMesh(const std::string& name) {
-  const std::filesystem::path p = std::filesystem::path(LODLINE_DATA_MESHES) / name;
+  // LODLINE_DATA_MESHES in the environment: the meshes elsewhere (a benchmark bundle run on
+  // another machine, scripts/gpu_bench_bundle.sh).
+  const char* env = std::getenv("LODLINE_DATA_MESHES");
+  const std::filesystem::path p = std::filesystem::path(env && *env ? env : LODLINE_DATA_MESHES) / name;
   return std::filesystem::exists(p) ? p : std::filesystem::path();
 }
 

@@ -34,8 +34,15 @@ std::string currentContextDescription();
 /// every backend tried and why each failed.
 Result<std::unique_ptr<GlContext>> createHeadlessContext(ContextBackend which);
 
+/// The EGL platform of a headless context: Mesa's surfaceless platform
+/// (EGL_MESA_platform_surfaceless), or an EGL device (EGL_EXT_platform_device, the first one
+/// that gives a context) — what NVIDIA's driver offers on a machine without a display. kAuto
+/// tries surfaceless, then the devices, unless LODLINE_EGL_PLATFORM (device or surfaceless)
+/// names one.
+enum class EglPlatform { kAuto, kSurfaceless, kDevice };
+
 // Backend factories (each in its own translation unit: GL/osmesa.h clashes with glad).
-Result<std::unique_ptr<GlContext>> createEglContext();
+Result<std::unique_ptr<GlContext>> createEglContext(EglPlatform platform = EglPlatform::kAuto);
 Result<std::unique_ptr<GlContext>> createOsMesaContext();
 
 }  // namespace lodline

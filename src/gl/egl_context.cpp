@@ -1,8 +1,12 @@
-// Headless OpenGL through EGL on Mesa's surfaceless platform (EGL_MESA_platform_surfaceless):
-// no display, no window; rendering goes into FBOs. Sequence measured to work on Debian 12 /
-// Mesa 22.3 (docs/design.md §7).
+// Headless OpenGL through EGL on Mesa's surfaceless platform (EGL_MESA_platform_surfaceless)
+// or, where that is missing (NVIDIA's driver without a display), on an EGL device
+// (EGL_EXT_platform_device): no display, no window; rendering goes into FBOs. Sequence
+// measured to work on Debian 12 / Mesa 22.3 (docs/design.md §7).
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+
+#include <cstdlib>
+#include <string>
 
 #include <glad/gl.h>
 
@@ -14,6 +18,12 @@ namespace {
 #ifndef EGL_PLATFORM_SURFACELESS_MESA
 #define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
 #endif
+
+bool hasExtension(const char* list, const char* name) {
+  if (!list) return false;
+  const std::string l = std::string(" ") + list + " ";
+  return l.find(std::string(" ") + name + " ") != std::string::npos;
+}
 
 std::string eglErrorString(EGLint e) {
   switch (e) {
@@ -48,17 +58,8 @@ class EglContext final : public GlContext {
   EGLContext ctx_;
 };
 
-}  // namespace
-
-Result<std::unique_ptr<GlContext>> createEglContext() {
-  const char* client_exts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!client_exts || std::string(client_exts).find("EGL_MESA_platform_surfaceless") == std::string::npos)
-    return Error::runtime("EGL_MESA_platform_surfaceless is not supported by this libEGL");
-  auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-      eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  if (!get_platform_display) return Error::runtime("eglGetPlatformDisplayEXT is missing");
-  EGLDisplay dpy = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-  if (dpy == EGL_NO_DISPLAY) return Error::runtime("no surfaceless EGL display");
+// A core-profile context on `dpy` (initialised here; terminated again on failure).
+Result<std::unique_ptr<GlContext>> contextOn(EGLDisplay dpy) {
   EGLint major = 0, minor = 0;
   if (!eglInitialize(dpy, &major, &minor))
     return Error::runtime("eglInitialize failed: " + eglErrorString(eglGetError()));
@@ -92,6 +93,59 @@ Result<std::unique_ptr<GlContext>> createEglContext() {
   if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(eglGetProcAddress)))
     return Error::runtime("could not load OpenGL functions through EGL");
   return std::unique_ptr<GlContext>(std::move(context));
+}
+
+}  // namespace
+
+Result<std::unique_ptr<GlContext>> createEglContext(EglPlatform platform) {
+  // LODLINE_EGL_PLATFORM=device|surfaceless overrides kAuto (e.g. to run the device path,
+  // which a GPU machine takes, on Mesa's software device: scripts/gpu_bench_bundle.sh).
+  if (const char* env = std::getenv("LODLINE_EGL_PLATFORM"); env && platform == EglPlatform::kAuto) {
+    if (std::string(env) == "device") platform = EglPlatform::kDevice;
+    else if (std::string(env) == "surfaceless") platform = EglPlatform::kSurfaceless;
+  }
+  const char* client_exts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+      eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  if (!get_platform_display) return Error::runtime("eglGetPlatformDisplayEXT is missing");
+  std::string why;
+  if (platform != EglPlatform::kDevice) {
+    if (!hasExtension(client_exts, "EGL_MESA_platform_surfaceless")) {
+      why = "EGL_MESA_platform_surfaceless is not supported by this libEGL";
+    } else {
+      EGLDisplay dpy = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+      if (dpy == EGL_NO_DISPLAY) {
+        why = "no surfaceless EGL display";
+      } else {
+        auto ctx = contextOn(dpy);
+        if (ctx) return ctx;
+        why = "surfaceless: " + ctx.error().message;
+      }
+    }
+    if (platform == EglPlatform::kSurfaceless) return Error::runtime(why);
+  }
+  // EGL devices (a GPU without a display, or Mesa's software device).
+  auto fail = [&](const std::string& msg) {
+    return Error::runtime(why.empty() ? msg : why + "; then " + msg);
+  };
+  if (!hasExtension(client_exts, "EGL_EXT_platform_device"))
+    return fail("EGL_EXT_platform_device is not supported by this libEGL");
+  auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  if (!query_devices) return fail("eglQueryDevicesEXT is missing");
+  EGLDeviceEXT devices[16];
+  EGLint count = 0;
+  if (!query_devices(16, devices, &count) || count == 0) return fail("no EGL device");
+  std::string device_errors;
+  for (EGLint i = 0; i < count; ++i) {
+    EGLDisplay dpy = get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+    if (dpy == EGL_NO_DISPLAY) continue;
+    auto ctx = contextOn(dpy);
+    if (ctx) return ctx;
+    device_errors += (device_errors.empty() ? "" : "; ") + std::string("device ") + std::to_string(i) + ": " +
+                     ctx.error().message;
+  }
+  return fail(std::to_string(count) + " EGL device(s), none gave a context" +
+              (device_errors.empty() ? std::string() : " (" + device_errors + ")"));
 }
 
 }  // namespace lodline

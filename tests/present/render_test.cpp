@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <set>
 
@@ -63,6 +64,21 @@ TEST(HeadlessRender, EglContextIsCoreProfile) {
   EXPECT_GE(major, 3);
   EXPECT_TRUE(mask & GL_CONTEXT_CORE_PROFILE_BIT);
   EXPECT_FALSE((*ctx)->description().empty());
+}
+
+// The EGL device platform (what NVIDIA's driver offers without a display) gives the same kind
+// of context; Mesa offers a software device, so it is tested here on llvmpipe.
+TEST(HeadlessRender, EglDevicePlatformGivesACoreContext) {
+  auto ctx = createEglContext(EglPlatform::kDevice);
+  if (!ctx.ok() && ctx.error().message.find("EGL_EXT_platform_device is not supported") != std::string::npos)
+    GTEST_SKIP() << ctx.error().message;
+  ASSERT_TRUE(ctx.ok()) << ctx.error().message;
+  GLint major = 0, mask = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
+  EXPECT_GE(major, 3);
+  EXPECT_TRUE(mask & GL_CONTEXT_CORE_PROFILE_BIT);
+  std::printf("EGL device context: %s\n", (*ctx)->description().c_str());
 }
 
 // The silhouette of a sphere is a closed ring of the radius the projection predicts.
