@@ -16,6 +16,8 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${LODLINE_BUILD_DIR:-$here/build}  # the Release build to pack
 mode=${1:-}
+cleanup=()  # temporary directories, removed however the script ends
+trap 'rm -rf "${cleanup[@]}"' EXIT
 
 pack() {
   local out=$1
@@ -26,7 +28,7 @@ pack() {
   [ -f "$here/data/meshes/armadillo.off" ] || { echo "gpu_bench_bundle: data/meshes/armadillo.off is missing (scripts/setup.sh)" >&2; exit 1; }
   local stage
   stage=$(mktemp -d)
-  trap 'rm -rf "$stage"' RETURN
+  cleanup+=("$stage")
   local root="$stage/lodline-gpu-bench"
   mkdir -p "$root/bin" "$root/lib" "$root/lib/glvnd" "$root/data"
   cp "$bin" "$bench" "$root/bin/"
@@ -49,7 +51,11 @@ set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 filter=${1:-detail_frame/}
 lib="$here/lib"
-if ! (ldconfig -p 2>/dev/null | grep -q 'libEGL\.so\.1 '); then lib="$lib:$here/lib/glvnd"; fi
+# libglvnd's libEGL from the bundle only where the system has none (ldconfig is often not on
+# a user's PATH).
+if ! ( (ldconfig -p 2>/dev/null || /sbin/ldconfig -p 2>/dev/null) | grep -q 'libEGL\.so\.1 '); then
+  lib="$lib:$here/lib/glvnd"
+fi
 export LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 export LODLINE_DATA_MESHES="$here/data"
 unset DISPLAY WAYLAND_DISPLAY
@@ -85,7 +91,7 @@ case "$mode" in
     # Unpacked in another directory and run from there, on this machine's GL (llvmpipe
     # here): the bundle must not read the source tree or the build tree.
     tmp=$(mktemp -d)
-    trap 'rm -rf "$tmp"' EXIT
+    cleanup+=("$tmp")
     pack "$tmp/bundle.tar.gz"
     mkdir "$tmp/target"
     tar -C "$tmp/target" -xzf "$tmp/bundle.tar.gz"

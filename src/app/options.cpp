@@ -43,8 +43,8 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
       ->capture_default_str();
   cmd.add_option("--lines", o.lines,
                  "Comma-separated line kinds to draw: contour, suggestive, crease, boundary, intersection, "
-                 "isophote, topo, parabolic, ridge, valley, suggestive-highlight, apparent-ridge, principal-highlight "
-                 "(or none; docs/lines.md)")
+                 "isophote, topo, parabolic, ridge, valley, suggestive-highlight, apparent-ridge, principal-highlight, "
+                 "material (or none; docs/lines.md)")
       ->capture_default_str();
   cmd.add_option("--hidden-lines", o.hidden_lines,
                  "Draw the hidden parts of lines too: off, or COLOUR[:WIDTH][:dash=ON,OFF] (pixels), e.g. "

@@ -78,8 +78,13 @@ void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
   mesh_.face_materials.clear();
   if (!full_face_materials_.empty() && face_ids.size() == mesh_.faces.size()) {
     mesh_.face_materials.resize(face_ids.size());
-    for (size_t i = 0; i < face_ids.size(); ++i)
-      mesh_.face_materials[i] = face_ids[i] < full_face_materials_.size() ? full_face_materials_[face_ids[i]] : 0;
+    for (size_t i = 0; i < face_ids.size(); ++i) {
+      if (face_ids[i] >= full_face_materials_.size()) {  // not a full-detail face: no materials
+        mesh_.face_materials.clear();
+        break;
+      }
+      mesh_.face_materials[i] = full_face_materials_[face_ids[i]];
+    }
   }
   shape_.update(mesh_, changed);
   timings_.shape = sw.lap();
@@ -140,9 +145,17 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   // The other kinds' curvatures, smoothed over time like kr (docs/lines.md); kr itself is
   // computed from the raw ones and smoothed on its own.
   SurfaceFields curv = fields;
-  if (smooth && (p.parabolic || p.ridges || p.valleys || p.principal_highlights || p.apparent_ridges)) {
+  const bool curvature_kinds = p.parabolic || p.ridges || p.valleys || p.principal_highlights || p.apparent_ridges;
+  if (smooth && curvature_kinds) {
     curv.k1 = smoother_.blendScalar(TemporalSmoother::kK1, shape_.k1(), smoothing);
     curv.k2 = smoother_.blendScalar(TemporalSmoother::kK2, shape_.k2(), smoothing);
+  } else {  // a channel not blended this frame has no history when its kind comes back
+    smoother_.resetChannel(TemporalSmoother::kK1);
+    smoother_.resetChannel(TemporalSmoother::kK2);
+  }
+  if (!smooth || !p.apparent_ridges) {
+    smoother_.resetChannel(TemporalSmoother::kQ1);
+    smoother_.resetChannel(TemporalSmoother::kDt1q1);
   }
   const float fs = feature_size_ > 0.0f && std::isfinite(feature_size_) ? feature_size_ : 1.0f;
   const float sc_threshold = p.suggestive_threshold / (fs * fs);
@@ -205,19 +218,20 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   timings_.view = sw.lap();
   extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_,
                motion_fade ? std::span<const float>(motion_gain_) : std::span<const float>());
-  if (p.ridges || p.valleys) {  // lines/ridge_lines.h: the raw (unsmoothed) curvature
+  if (p.ridges || p.valleys) {  // lines/ridge_lines.h: k1, k2 smoothed in sequences, C raw
     const RidgeSpec ridge{p.ridges, p.valleys, p.ridge_threshold, fs};
     SurfaceFields rf = shape_.fields(mesh_);
     rf.k1 = curv.k1;
     rf.k2 = curv.k2;
     if (shape_.params().lazy_derivatives) {  // derivative tensors only where a ridge can be
-      ridgeCandidateVertices(mesh_.faces, shape_.adjacency(), rf, ridge, needed_mark_, ridge_needed_);
+      ridgeCandidateVertices(mesh_.faces, shape_.adjacency(), rf, ridge, scratch_.vertex_code, needed_mark_,
+                             ridge_needed_);
       shape_.ensureDerivatives(mesh_, ridge_needed_);
       rf.dcurv = shape_.dcurv();
     }
     extractRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), rf, ridge, scratch_, segments_);
   }
-  if (p.apparent_ridges) {  // per view: the (smoothed) normals, the raw curvature
+  if (p.apparent_ridges) {  // per view, from the normals and k1, k2 (smoothed in sequences)
     computeApparentRidgeQuantities(mesh_.faces, shape_.adjacency(), curv, ViewSpec::fromCamera(camera), apparent_);
     if (smooth) {
       // Smoothed in bounded forms: q1 grows without bound towards the contour, and a vertex

@@ -115,9 +115,9 @@ class LineDrawing {
   std::vector<std::array<uint32_t, 3>> faces_in_;  // updateMesh(span): copy, then swap in
   std::vector<uint32_t> needed_;     // vertices whose Dw kr this frame needs (lazy derivatives)
   std::vector<uint8_t> needed_mark_;
-  std::vector<uint32_t> ridge_needed_;
+  std::vector<uint32_t> ridge_needed_;  // vertices whose tensor ridges read (lazy derivatives)
   ApparentRidgeQuantities apparent_;  // per view, when apparent ridges are drawn
-  PrincipalHighlightQuantities principal_;  // per view, when principal highlights are drawn  // vertices whose tensor ridges read (lazy derivatives)
+  PrincipalHighlightQuantities principal_;  // per view, when principal highlights are drawn
   std::vector<float> motion_gain_;   // per vertex, the suggestive contours' motion fade
   LineScratch scratch_;
   LineSet segments_, silhouette_;

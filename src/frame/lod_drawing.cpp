@@ -79,7 +79,8 @@ void LodDrawing::adaptCluster(ClusterLevel& level, const Camera& camera, int wid
   // Positions never move (a representative keeps its own); the shape cache finds the face
   // slots that changed itself, so the changed-vertex list stays empty.
   changed_.clear();
-  drawing_.updateMesh(level.clustering->mesh().positions, level.clustering->faces(), changed_);
+  drawing_.updateMesh(level.clustering->mesh().positions, level.clustering->faces(), changed_,
+                      level.clustering->faceIds());
   mesh_changed_ = true;
 }
 

@@ -76,6 +76,11 @@ class TemporalSmoother {
   /// (`value`, channel `c`), in place: each raw pair is first turned to agree with the
   /// smoothed direction, then both are blended (the direction renormalised).
   void blendDirected(Channel c, std::span<glm::vec3> dir, std::span<float> value, float w);
+  /// Forgets channel `c` (kDt1q1: with its direction): its next blend takes the raw values.
+  void resetChannel(Channel c) {
+    extra_[c].on = false;
+    if (c == kDt1q1) t1_on_ = false;
+  }
 
  private:
   struct Extra {

@@ -130,6 +130,8 @@ Result<std::unique_ptr<GlContext>> createEglContext(EglPlatform platform) {
   };
   if (!hasExtension(client_exts, "EGL_EXT_platform_device"))
     return fail("EGL_EXT_platform_device is not supported by this libEGL");
+  if (!hasExtension(client_exts, "EGL_EXT_device_enumeration") && !hasExtension(client_exts, "EGL_EXT_device_base"))
+    return fail("EGL_EXT_device_enumeration is not supported by this libEGL");
   auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
   if (!query_devices) return fail("eglQueryDevicesEXT is missing");
   EGLDeviceEXT devices[16];

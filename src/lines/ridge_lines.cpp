@@ -118,12 +118,11 @@ void faceMaximum(std::span<const glm::vec3> positions, const std::array<uint32_t
 }  // namespace
 
 void ridgeCandidateVertices(std::span<const std::array<uint32_t, 3>> faces, const MeshAdjacency& adj,
-                            const SurfaceFields& fields, const RidgeSpec& spec, std::vector<uint8_t>& mark,
-                            std::vector<uint32_t>& out) {
+                            const SurfaceFields& fields, const RidgeSpec& spec, std::vector<uint8_t>& code,
+                            std::vector<uint8_t>& mark, std::vector<uint32_t>& out) {
   out.clear();
   const size_t nv = fields.positions.size();
   if (!(spec.ridges || spec.valleys) || adj.face_count != faces.size() || adj.vertex_count != nv) return;
-  std::vector<uint8_t> code;
   candidateCodes(fields, spec, code);
   mark.assign(nv, 0);
   for (size_t f = 0; f < faces.size(); ++f) {
@@ -230,6 +229,7 @@ void computeApparentRidgeQuantities(std::span<const std::array<uint32_t, 3>> fac
   // Dt1 q1: the area-weighted mean of the gradients of q1 over the faces around a vertex.
   for (size_t i = 0; i < nv; ++i) {
     glm::vec3 g(0.0f);
+    float weight = 0.0f;
     for (uint32_t k = adj.vertex_face_begin[i]; k < adj.vertex_face_end[i]; ++k) {
       const uint32_t fi = adj.vertex_faces[k];
       if (!adj.face_valid[fi]) continue;
@@ -239,10 +239,12 @@ void computeApparentRidgeQuantities(std::span<const std::array<uint32_t, 3>> fac
       const float nn = glm::dot(n, n);
       if (!(nn > 0.0f)) continue;
       const float q0 = out.q1[t[0]];
-      // The face's gradient times its doubled area |n|: weights by area.
-      g += ((out.q1[t[1]] - q0) * glm::cross(e2, n) + (out.q1[t[2]] - q0) * glm::cross(n, e1)) / std::sqrt(nn);
+      // The face's gradient times its doubled area |n|, then divided by the ring's Σ|n|.
+      const float area2 = std::sqrt(nn);
+      g += ((out.q1[t[1]] - q0) * glm::cross(e2, n) + (out.q1[t[2]] - q0) * glm::cross(n, e1)) / area2;
+      weight += area2;
     }
-    out.dt1q1[i] = glm::dot(g, out.t1[i]);  // the scale does not move the zero set
+    out.dt1q1[i] = weight > 0.0f ? glm::dot(g, out.t1[i]) / weight : 0.0f;  // 1/units²
   }
 }
 
@@ -273,6 +275,7 @@ void computePrincipalHighlightQuantities(const SurfaceFields& f, const ViewSpec&
   out.e.assign(nv, glm::vec3(0.0f));
   out.vdote.assign(nv, 0.0f);
   out.strength.assign(nv, 0.0f);
+  out.first.assign(nv, 0);
   if (f.normals.size() != nv || f.k1.size() != nv || f.k2.size() != nv || f.pdir1.size() != nv ||
       f.pdir2.size() != nv)
     return;
@@ -291,6 +294,7 @@ void computePrincipalHighlightQuantities(const SurfaceFields& f, const ViewSpec&
     const bool first = std::abs(f.k1[i]) >= std::abs(f.k2[i]);
     const float kd = first ? f.k1[i] : f.k2[i], ko = first ? f.k2[i] : f.k1[i];
     out.ndotv[i] = ndotv;
+    out.first[i] = first ? 1 : 0;
     out.e[i] = first ? f.pdir1[i] : f.pdir2[i];
     out.vdote[i] = glm::dot(vdir, out.e[i]);
     out.strength[i] = kd > 0.0f && ndotv > 0.0f ? (kd * kd - ko * ko) * ndotv * fs2 : 0.0f;
@@ -302,6 +306,7 @@ void extractPrincipalHighlights(std::span<const glm::vec3> positions, std::span<
                                 LineSet& out) {
   const size_t nv = positions.size();
   if (!(threshold > 0.0f) || q.strength.size() != nv || q.e.size() != nv || q.vdote.size() != nv ||
+      q.first.size() != nv ||
       q.ndotv.size() != nv || adj.face_count != faces.size() || adj.vertex_count != nv)
     return;
   const HighlightField fld{q.strength, q.e, q.vdote};
@@ -312,6 +317,9 @@ void extractPrincipalHighlights(std::span<const glm::vec3> positions, std::span<
     // Front-facing and convex at every corner (strength is 0 otherwise), strong at one.
     if (!(q.strength[t[0]] > 0.0f && q.strength[t[1]] > 0.0f && q.strength[t[2]] > 0.0f)) continue;
     if (q.strength[t[0]] < half && q.strength[t[1]] < half && q.strength[t[2]] < half) continue;
+    // The same principal direction (that of k1, or of k2) at every corner: v̂·e1 and v̂·e2
+    // are not comparable.
+    if (q.first[t[0]] != q.first[t[1]] || q.first[t[1]] != q.first[t[2]]) continue;
     faceMaximum<false>(positions, t, adj.face_edges[f], static_cast<uint32_t>(f), LineKind::kPrincipalHighlight, fld,
                        threshold, 1.0f, out);
   }

@@ -40,10 +40,11 @@ struct RidgeSpec {
 
 /// The vertices whose derivative tensor extractRidges() reads (corners of faces where a line
 /// of a requested kind can be: all three corners dominant and above half the threshold), in
-/// increasing order. `mark` is scratch, vertexCount bytes after the call (all zero).
+/// increasing order. `code` and `mark` are scratch (vertexCount bytes each; `mark` all zero
+/// after the call).
 void ridgeCandidateVertices(std::span<const std::array<uint32_t, 3>> faces, const MeshAdjacency& adj,
-                            const SurfaceFields& fields, const RidgeSpec& spec, std::vector<uint8_t>& mark,
-                            std::vector<uint32_t>& out);
+                            const SurfaceFields& fields, const RidgeSpec& spec, std::vector<uint8_t>& code,
+                            std::vector<uint8_t>& mark, std::vector<uint32_t>& out);
 
 /// Per view, per vertex: what apparent ridges need (Judd, Durand, Adelson, "Apparent Ridges
 /// for Line Drawing", SIGGRAPH 2007, §3–4). The view-dependent curvature operator Q = S·P⁻¹
@@ -57,7 +58,7 @@ struct ApparentRidgeQuantities {
   std::vector<float> ndotv;     ///< n·v̂ (faces need all three corners > 0)
   std::vector<float> q1;        ///< the maximum view-dependent curvature, 1/units, ≥ 0
   std::vector<glm::vec3> t1;    ///< unit surface direction P⁻¹t1 (sign arbitrary)
-  std::vector<float> dt1q1;     ///< the derivative of q1 along t1 (sign follows t1)
+  std::vector<float> dt1q1;     ///< the derivative of q1 along t1, 1/units² (sign follows t1)
 };
 
 /// |cosθ| in secθ is at least this, so q1 stays finite at the contour (where it grows without
@@ -66,7 +67,8 @@ inline constexpr float kApparentRidgeMinCos = 1e-4f;
 
 /// Fills `out` (vertexCount entries each) for `view` from the normals, principal curvatures
 /// and directions of `fields`; Dt1 q1 from the area-weighted mean of the faces' gradients
-/// of q1 around each vertex.
+/// of q1 around each vertex (the mean, not the sum: a vertex's ring area must not scale it,
+/// or the crossings between vertices would move).
 void computeApparentRidgeQuantities(std::span<const std::array<uint32_t, 3>> faces, const MeshAdjacency& adj,
                                     const SurfaceFields& fields, const ViewSpec& view, ApparentRidgeQuantities& out);
 
@@ -88,6 +90,7 @@ struct PrincipalHighlightQuantities {
   std::vector<glm::vec3> e;     ///< the dominant principal direction (sign arbitrary)
   std::vector<float> vdote;     ///< v̂·e (sign follows e)
   std::vector<float> strength;  ///< (k_d² − k_o²)·n·v̂·fs² where k_d > 0 and n·v̂ > 0, else 0
+  std::vector<uint8_t> first;   ///< 1 where e is e1 (|k1| ≥ |k2|), 0 where it is e2
 };
 
 void computePrincipalHighlightQuantities(const SurfaceFields& fields, const ViewSpec& view, float feature_size,
@@ -95,7 +98,8 @@ void computePrincipalHighlightQuantities(const SurfaceFields& fields, const View
 
 /// Appends the principal highlights (LineKind::kPrincipalHighlight): zero crossings of v̂·e
 /// with the directions' signs agreed per edge, in faces whose corners are all convex and
-/// front-facing, where the strength exceeds `threshold` (faded in over one more threshold).
+/// front-facing and dominated by the same principal direction, where the strength exceeds
+/// `threshold` (faded in over one more threshold).
 void extractPrincipalHighlights(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
                                 const MeshAdjacency& adj, const PrincipalHighlightQuantities& q, float threshold,
                                 LineSet& out);

@@ -80,6 +80,9 @@ class VertexClustering {
   /// compacted by moving faces from the end), so incremental shape updates (ShapeCache
   /// compares face slots) touch only where the clustering changed.
   std::span<const std::array<uint32_t, 3>> faces() const { return out_faces_; }
+  /// The input face each of faces() stands for, in the same order (its material, for
+  /// material lines).
+  std::span<const uint32_t> faceIds() const { return slot_face_; }
   /// Per input vertex: its representative (itself for a representative) or kClusterCulled.
   std::span<const uint32_t> representatives() const { return rep_; }
   /// Per input vertex: the clustering radius R of the last frame in model units (0 when
