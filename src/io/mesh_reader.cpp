@@ -337,7 +337,8 @@ Result<PolygonMesh> Reader::obj() {
   std::vector<long long> raw;  // corners: ≥ 0 resolved 0-based index, checked at the end
   std::vector<size_t> raw_line;
   std::vector<PendingEdge> edges;
-  std::vector<std::string> materials{""};  // "": faces before any usemtl; then usemtl names
+  // Material index by usemtl name, in order of first use ("": faces before any usemtl).
+  std::unordered_map<std::string, uint32_t> materials{{"", 0}};
   uint32_t material = 0;
   std::vector<uint32_t> face_material;
   beginFace();
@@ -379,10 +380,9 @@ Result<PolygonMesh> Reader::obj() {
       mesh_.face_start.push_back(static_cast<uint32_t>(raw.size()));
       face_material.push_back(material);
     } else if (key == "usemtl") {
-      const std::string_view w = t.wordOnLine('#');
-      const auto it = std::find(materials.begin(), materials.end(), w);
-      material = static_cast<uint32_t>(it - materials.begin());
-      if (it == materials.end()) materials.emplace_back(w);
+      const auto [it, added] = materials.try_emplace(std::string(t.wordOnLine('#')),
+                                                      static_cast<uint32_t>(materials.size()));
+      material = it->second;
     } else if (key == "l") {
       long long prev = -1;
       for (std::string_view w = t.wordOnLine('#'); !w.empty(); w = t.wordOnLine('#')) {
