@@ -22,6 +22,9 @@ class GlContext {
  public:
   virtual ~GlContext() = default;
   virtual ContextBackend backend() const = 0;
+  /// Makes this context current on the calling thread (several contexts may live in one
+  /// process, e.g. two Python renderers: each makes its own current before drawing).
+  virtual void makeCurrent() = 0;
   /// currentContextDescription() of this context.
   std::string description() const;
 };

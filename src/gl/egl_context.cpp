@@ -44,10 +44,14 @@ std::string eglErrorString(EGLint e) {
 class EglContext final : public GlContext {
  public:
   EglContext(EGLDisplay dpy, EGLContext ctx) : dpy_(dpy), ctx_(ctx) {}
+  // The display is not terminated: EGL displays are one per platform and device, shared by
+  // every context of the process, and eglTerminate would end the others too.
   ~EglContext() override {
-    eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (eglGetCurrentContext() == ctx_) eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(dpy_, ctx_);
-    eglTerminate(dpy_);
+  }
+  void makeCurrent() override {
+    if (eglGetCurrentContext() != ctx_) eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_);
   }
   EglContext(const EglContext&) = delete;
   EglContext& operator=(const EglContext&) = delete;
@@ -58,13 +62,13 @@ class EglContext final : public GlContext {
   EGLContext ctx_;
 };
 
-// A core-profile context on `dpy` (initialised here; terminated again on failure).
+// A core-profile context on `dpy` (initialised here; left initialised on failure, since other
+// contexts of the process may use the same display).
 Result<std::unique_ptr<GlContext>> contextOn(EGLDisplay dpy) {
   EGLint major = 0, minor = 0;
   if (!eglInitialize(dpy, &major, &minor))
     return Error::runtime("eglInitialize failed: " + eglErrorString(eglGetError()));
   if (!eglBindAPI(EGL_OPENGL_API)) {
-    eglTerminate(dpy);
     return Error::runtime("eglBindAPI(EGL_OPENGL_API) failed: " + eglErrorString(eglGetError()));
   }
   // Core profile without the forward-compatible flag, so glLineWidth > 1 works (docs/design.md §7).
@@ -80,13 +84,11 @@ Result<std::unique_ptr<GlContext>> contextOn(EGLDisplay dpy) {
   }
   if (ctx == EGL_NO_CONTEXT) {
     const std::string err = eglErrorString(eglGetError());
-    eglTerminate(dpy);
     return Error::runtime("eglCreateContext (OpenGL 4.5/3.3 core) failed: " + err);
   }
   if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
     const std::string err = eglErrorString(eglGetError());
     eglDestroyContext(dpy, ctx);
-    eglTerminate(dpy);
     return Error::runtime("eglMakeCurrent failed: " + err);
   }
   auto context = std::make_unique<EglContext>(dpy, ctx);

@@ -63,6 +63,7 @@ class OsMesaContext final : public GlContext {
   OsMesaContext& operator=(const OsMesaContext&) = delete;
   ContextBackend backend() const override { return ContextBackend::kOsMesa; }
   bool current() const { return ok_; }
+  void makeCurrent() override { api_.make_current(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1); }
 
  private:
   OsMesaApi api_;

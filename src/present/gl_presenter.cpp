@@ -6,12 +6,23 @@
 
 namespace lodline {
 
-GlPresenter::~GlPresenter() = default;
+// The GL objects are deleted in this presenter's own context (another may be current).
+GlPresenter::~GlPresenter() { bind(); }
+
+void GlPresenter::bind() const {
+  if (context_) context_->makeCurrent();
+}
 
 size_t GlPresenter::facesDrawn(size_t object) const { return renderer_->faceCount(object); }
 size_t GlPresenter::segmentsDrawn(size_t object) const { return renderer_->segmentsDrawn(object); }
-Image GlPresenter::readColour() { return target_->readback(); }
-void GlPresenter::readDepth(DepthImage& out) { target_->readDepth(out); }
+Image GlPresenter::readColour() {
+  bind();
+  return target_->readback();
+}
+void GlPresenter::readDepth(DepthImage& out) {
+  bind();
+  target_->readDepth(out);
+}
 
 Result<std::unique_ptr<GlPresenter>> GlPresenter::createOnCurrentContext() {
   std::unique_ptr<GlPresenter> p(new GlPresenter());
@@ -35,6 +46,7 @@ Result<std::unique_ptr<GlPresenter>> GlPresenter::createHeadless(ContextBackend 
 std::string GlPresenter::backendName() const { return context_ ? lodline::backendName(context_->backend()) : "window"; }
 
 Status GlPresenter::ensureTarget(const FrameParams& frame) {
+  bind();
   if (target_ && target_->width() == frame.width && target_->height() == frame.height) return {};
   auto target = OffscreenTarget::create(frame.width, frame.height, frame.msaa);
   if (!target) return target.error();
@@ -44,6 +56,7 @@ Status GlPresenter::ensureTarget(const FrameParams& frame) {
 }
 
 Status GlPresenter::uploadMeshes(const SceneDrawing& scene, bool all_meshes) {
+  bind();
   if (renderer_->objectCount() != scene.size()) {
     if (Status s = renderer_->setObjectCount(scene.size()); !s) return s;
     all_meshes = true;
@@ -58,6 +71,7 @@ Status GlPresenter::uploadMeshes(const SceneDrawing& scene, bool all_meshes) {
 }
 
 Status GlPresenter::drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
+  bind();
   if (Status s = ensureTarget(frame); !s) return s;
   GLint previous = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
@@ -68,9 +82,13 @@ Status GlPresenter::drawSurfaces(const Camera& camera, const FrameParams& frame,
   return {};
 }
 
-void GlPresenter::uploadLines(size_t object, const ScreenLines& lines) { renderer_->setLines(object, lines); }
+void GlPresenter::uploadLines(size_t object, const ScreenLines& lines) {
+  bind();
+  renderer_->setLines(object, lines);
+}
 
 void GlPresenter::drawLines(const FrameParams& frame, std::span<const ObjectStyle> styles) {
+  bind();
   GLint previous = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
   target_->bind();
@@ -84,6 +102,7 @@ void GlPresenter::blitToBound() const {
 }
 
 Status GlPresenter::readSurface(SurfaceImage& out) {
+  bind();
   if (!surface_) {
     auto t = SurfaceTarget::create(target_->width(), target_->height());
     if (!t) return t.error();

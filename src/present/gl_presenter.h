@@ -47,6 +47,8 @@ class GlPresenter final : public ScenePresenter {
  private:
   GlPresenter() = default;
   Status ensureTarget(const FrameParams& frame);
+  /// Makes this presenter's own context current (headless; a window's stays as it is).
+  void bind() const;
   // Declared first, destroyed last: the GL objects below need the context.
   std::unique_ptr<GlContext> context_;  // null on a window's context
   std::unique_ptr<Renderer> renderer_;

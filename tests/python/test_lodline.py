@@ -1,6 +1,7 @@
 """The lodline Python module (docs/python.md): renders equal the CLI's, numpy inputs act as
 their files do, captures yield their frames with metrics, memory stays flat, errors are
 exceptions with lodline's message, and the GIL is released while drawing."""
+import gc
 import os
 import resource
 import subprocess
@@ -236,3 +237,16 @@ def test_gil_released_while_rendering(cache):
     t.join()
     # Were the GIL held while drawing, this loop would stall for whole renders.
     assert max(gaps) < 0.5 * one, f"longest stall {max(gaps):.3f} s against a render of {one:.3f} s"
+
+
+def test_two_renderers_each_keep_their_context(cache):
+    # Each renderer draws in its own GL context; dropping one leaves the other drawing the same
+    # image (it used to end the shared EGL display and leave no context current: a black image).
+    r1, r2 = lodline.Renderer(), lodline.Renderer()
+    r1.render(KNOT, size=(64, 48), cache_dir=cache)
+    before = r2.render(KNOT, size=(64, 48), cache_dir=cache).image
+    del r1
+    gc.collect()
+    after = r2.render(KNOT, size=(64, 48), cache_dir=cache).image
+    assert after.mean() > 100
+    assert np.array_equal(after, before)
