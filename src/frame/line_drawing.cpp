@@ -232,7 +232,8 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     extractRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), rf, ridge, scratch_, segments_);
   }
   if (p.apparent_ridges) {  // per view, from the normals and k1, k2 (smoothed in sequences)
-    computeApparentRidgeQuantities(mesh_.faces, shape_.adjacency(), curv, ViewSpec::fromCamera(camera), apparent_);
+    computeApparentRidgeQuantities(mesh_.faces, shape_.adjacency(), curv, ViewSpec::fromCamera(camera), apparent_,
+                                   pool_.get());
     if (smooth) {
       // Smoothed in bounded forms: q1 grows without bound towards the contour, and a vertex
       // that was near it would keep a large average for many frames. q1 is capped at twice
@@ -250,7 +251,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
                           segments_);
   }
   if (p.principal_highlights) {
-    computePrincipalHighlightQuantities(curv, ViewSpec::fromCamera(camera), fs, principal_);
+    computePrincipalHighlightQuantities(curv, ViewSpec::fromCamera(camera), fs, principal_, pool_.get());
     extractPrincipalHighlights(mesh_.positions, mesh_.faces, shape_.adjacency(), principal_,
                                p.principal_highlight_threshold, segments_);
   }

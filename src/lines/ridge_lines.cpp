@@ -161,7 +161,8 @@ void extractRidges(std::span<const glm::vec3> positions, std::span<const std::ar
 }
 
 void computeApparentRidgeQuantities(std::span<const std::array<uint32_t, 3>> faces, const MeshAdjacency& adj,
-                                    const SurfaceFields& f, const ViewSpec& view, ApparentRidgeQuantities& out) {
+                                    const SurfaceFields& f, const ViewSpec& view, ApparentRidgeQuantities& out,
+                                    WorkerPool* pool) {
   const size_t nv = f.positions.size();
   out.ndotv.assign(nv, 0.0f);
   out.q1.assign(nv, 0.0f);
@@ -172,80 +173,88 @@ void computeApparentRidgeQuantities(std::span<const std::array<uint32_t, 3>> fac
     return;
   const glm::vec3 ortho = glm::length(view.toward_viewer) > 0.0f ? glm::normalize(view.toward_viewer)
                                                                  : glm::vec3(0.0f, 0.0f, 1.0f);
-  for (size_t i = 0; i < nv; ++i) {
-    const glm::vec3 n = f.normals[i];
-    glm::vec3 vdir = ortho;
-    if (!view.orthographic) {
-      const glm::vec3 d = view.eye - f.positions[i];
-      const float len = glm::length(d);
-      vdir = len > 0.0f ? d / len : n;
-    }
-    const float ndotv = glm::dot(n, vdir);
-    out.ndotv[i] = ndotv;
-    // ŵ in the principal frame, and secθ − 1.
-    float u = glm::dot(vdir, f.pdir1[i]), w = glm::dot(vdir, f.pdir2[i]);
-    const float sin_t = std::sqrt(u * u + w * w);
-    float c = 0.0f;
-    if (sin_t > 1e-6f) {
-      u /= sin_t;
-      w /= sin_t;
-      c = 1.0f / std::max(std::abs(ndotv), kApparentRidgeMinCos) - 1.0f;
-    } else {
-      u = w = 0.0f;
-    }
-    const float k1 = f.k1[i], k2 = f.k2[i];
-    const float q11 = k1 * (1.0f + c * u * u), q12 = k1 * c * u * w;
-    const float q21 = k2 * c * u * w, q22 = k2 * (1.0f + c * w * w);
-    // The largest eigenvalue of QᵀQ and its eigenvector: q1² and t1 (principal frame).
-    const float a = q11 * q11 + q21 * q21, b = q11 * q12 + q21 * q22, d = q12 * q12 + q22 * q22;
-    const float half = 0.5f * (a - d);
-    const float lambda = 0.5f * (a + d) + std::sqrt(half * half + b * b);
-    out.q1[i] = std::sqrt(std::max(lambda, 0.0f));
-    float tx, ty;
-    if (std::abs(b) > 1e-12f * std::max(1.0f, lambda)) {
-      const float x1 = b, y1 = lambda - a, x2 = lambda - d, y2 = b;  // two forms of one vector
-      if (x1 * x1 + y1 * y1 >= x2 * x2 + y2 * y2) {
-        tx = x1;
-        ty = y1;
-      } else {
-        tx = x2;
-        ty = y2;
+  auto view_dependent = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const glm::vec3 n = f.normals[i];
+      glm::vec3 vdir = ortho;
+      if (!view.orthographic) {
+        const glm::vec3 d = view.eye - f.positions[i];
+        const float len = glm::length(d);
+        vdir = len > 0.0f ? d / len : n;
       }
-    } else if (a >= d) {
-      tx = 1.0f;
-      ty = 0.0f;
-    } else {
-      tx = 0.0f;
-      ty = 1.0f;
+      const float ndotv = glm::dot(n, vdir);
+      out.ndotv[i] = ndotv;
+      // ŵ in the principal frame, and secθ − 1.
+      float u = glm::dot(vdir, f.pdir1[i]), w = glm::dot(vdir, f.pdir2[i]);
+      const float sin_t = std::sqrt(u * u + w * w);
+      float c = 0.0f;
+      if (sin_t > 1e-6f) {
+        u /= sin_t;
+        w /= sin_t;
+        c = 1.0f / std::max(std::abs(ndotv), kApparentRidgeMinCos) - 1.0f;
+      } else {
+        u = w = 0.0f;
+      }
+      const float k1 = f.k1[i], k2 = f.k2[i];
+      const float q11 = k1 * (1.0f + c * u * u), q12 = k1 * c * u * w;
+      const float q21 = k2 * c * u * w, q22 = k2 * (1.0f + c * w * w);
+      // The largest eigenvalue of QᵀQ and its eigenvector: q1² and t1 (principal frame).
+      const float a = q11 * q11 + q21 * q21, b = q11 * q12 + q21 * q22, d = q12 * q12 + q22 * q22;
+      const float half = 0.5f * (a - d);
+      const float lambda = 0.5f * (a + d) + std::sqrt(half * half + b * b);
+      out.q1[i] = std::sqrt(std::max(lambda, 0.0f));
+      float tx, ty;
+      if (std::abs(b) > 1e-12f * std::max(1.0f, lambda)) {
+        const float x1 = b, y1 = lambda - a, x2 = lambda - d, y2 = b;  // two forms of one vector
+        if (x1 * x1 + y1 * y1 >= x2 * x2 + y2 * y2) {
+          tx = x1;
+          ty = y1;
+        } else {
+          tx = x2;
+          ty = y2;
+        }
+      } else if (a >= d) {
+        tx = 1.0f;
+        ty = 0.0f;
+      } else {
+        tx = 0.0f;
+        ty = 1.0f;
+      }
+      // On the surface: P⁻¹t1 = t1 + (secθ − 1)(t1·ŵ)ŵ.
+      const float tw = tx * u + ty * w;
+      tx += c * tw * u;
+      ty += c * tw * w;
+      const glm::vec3 t = tx * f.pdir1[i] + ty * f.pdir2[i];
+      const float len = glm::length(t);
+      out.t1[i] = len > 0.0f ? t / len : f.pdir1[i];
     }
-    // On the surface: P⁻¹t1 = t1 + (secθ − 1)(t1·ŵ)ŵ.
-    const float tw = tx * u + ty * w;
-    tx += c * tw * u;
-    ty += c * tw * w;
-    const glm::vec3 t = tx * f.pdir1[i] + ty * f.pdir2[i];
-    const float len = glm::length(t);
-    out.t1[i] = len > 0.0f ? t / len : f.pdir1[i];
-  }
+  };
+  if (pool) pool->forRange(nv, 4096, view_dependent);
+  else view_dependent(0, nv);
   // Dt1 q1: the area-weighted mean of the gradients of q1 over the faces around a vertex.
-  for (size_t i = 0; i < nv; ++i) {
-    glm::vec3 g(0.0f);
-    float weight = 0.0f;
-    for (uint32_t k = adj.vertex_face_begin[i]; k < adj.vertex_face_end[i]; ++k) {
-      const uint32_t fi = adj.vertex_faces[k];
-      if (!adj.face_valid[fi]) continue;
-      const auto& t = faces[fi];
-      const glm::vec3 p0 = f.positions[t[0]], e1 = f.positions[t[1]] - p0, e2 = f.positions[t[2]] - p0;
-      const glm::vec3 n = glm::cross(e1, e2);
-      const float nn = glm::dot(n, n);
-      if (!(nn > 0.0f)) continue;
-      const float q0 = out.q1[t[0]];
-      // The face's gradient times its doubled area |n|, then divided by the ring's Σ|n|.
-      const float area2 = std::sqrt(nn);
-      g += ((out.q1[t[1]] - q0) * glm::cross(e2, n) + (out.q1[t[2]] - q0) * glm::cross(n, e1)) / area2;
-      weight += area2;
+  auto gradient = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      glm::vec3 g(0.0f);
+      float weight = 0.0f;
+      for (uint32_t k = adj.vertex_face_begin[i]; k < adj.vertex_face_end[i]; ++k) {
+        const uint32_t fi = adj.vertex_faces[k];
+        if (!adj.face_valid[fi]) continue;
+        const auto& t = faces[fi];
+        const glm::vec3 p0 = f.positions[t[0]], e1 = f.positions[t[1]] - p0, e2 = f.positions[t[2]] - p0;
+        const glm::vec3 n = glm::cross(e1, e2);
+        const float nn = glm::dot(n, n);
+        if (!(nn > 0.0f)) continue;
+        const float q0 = out.q1[t[0]];
+        // The face's gradient times its doubled area |n|, then divided by the ring's Σ|n|.
+        const float area2 = std::sqrt(nn);
+        g += ((out.q1[t[1]] - q0) * glm::cross(e2, n) + (out.q1[t[2]] - q0) * glm::cross(n, e1)) / area2;
+        weight += area2;
+      }
+      out.dt1q1[i] = weight > 0.0f ? glm::dot(g, out.t1[i]) / weight : 0.0f;  // 1/units²
     }
-    out.dt1q1[i] = weight > 0.0f ? glm::dot(g, out.t1[i]) / weight : 0.0f;  // 1/units²
-  }
+  };
+  if (pool) pool->forRange(nv, 4096, gradient);
+  else gradient(0, nv);
 }
 
 void extractApparentRidges(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
@@ -269,7 +278,7 @@ void extractApparentRidges(std::span<const glm::vec3> positions, std::span<const
 }
 
 void computePrincipalHighlightQuantities(const SurfaceFields& f, const ViewSpec& view, float feature_size,
-                                         PrincipalHighlightQuantities& out) {
+                                         PrincipalHighlightQuantities& out, WorkerPool* pool) {
   const size_t nv = f.positions.size();
   out.ndotv.assign(nv, 0.0f);
   out.e.assign(nv, glm::vec3(0.0f));
@@ -282,23 +291,27 @@ void computePrincipalHighlightQuantities(const SurfaceFields& f, const ViewSpec&
   const float fs2 = feature_size > 0.0f ? feature_size * feature_size : 1.0f;
   const glm::vec3 ortho = glm::length(view.toward_viewer) > 0.0f ? glm::normalize(view.toward_viewer)
                                                                  : glm::vec3(0.0f, 0.0f, 1.0f);
-  for (size_t i = 0; i < nv; ++i) {
-    glm::vec3 vdir = ortho;
-    if (!view.orthographic) {
-      const glm::vec3 d = view.eye - f.positions[i];
-      const float len = glm::length(d);
-      vdir = len > 0.0f ? d / len : f.normals[i];
+  auto per_vertex = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      glm::vec3 vdir = ortho;
+      if (!view.orthographic) {
+        const glm::vec3 d = view.eye - f.positions[i];
+        const float len = glm::length(d);
+        vdir = len > 0.0f ? d / len : f.normals[i];
+      }
+      const float ndotv = glm::dot(f.normals[i], vdir);
+      // The dominant curvature (larger magnitude) and its direction; convex only.
+      const bool first = std::abs(f.k1[i]) >= std::abs(f.k2[i]);
+      const float kd = first ? f.k1[i] : f.k2[i], ko = first ? f.k2[i] : f.k1[i];
+      out.ndotv[i] = ndotv;
+      out.first[i] = first ? 1 : 0;
+      out.e[i] = first ? f.pdir1[i] : f.pdir2[i];
+      out.vdote[i] = glm::dot(vdir, out.e[i]);
+      out.strength[i] = kd > 0.0f && ndotv > 0.0f ? (kd * kd - ko * ko) * ndotv * fs2 : 0.0f;
     }
-    const float ndotv = glm::dot(f.normals[i], vdir);
-    // The dominant curvature (larger magnitude) and its direction; convex only.
-    const bool first = std::abs(f.k1[i]) >= std::abs(f.k2[i]);
-    const float kd = first ? f.k1[i] : f.k2[i], ko = first ? f.k2[i] : f.k1[i];
-    out.ndotv[i] = ndotv;
-    out.first[i] = first ? 1 : 0;
-    out.e[i] = first ? f.pdir1[i] : f.pdir2[i];
-    out.vdote[i] = glm::dot(vdir, out.e[i]);
-    out.strength[i] = kd > 0.0f && ndotv > 0.0f ? (kd * kd - ko * ko) * ndotv * fs2 : 0.0f;
-  }
+  };
+  if (pool) pool->forRange(nv, 4096, per_vertex);
+  else per_vertex(0, nv);
 }
 
 void extractPrincipalHighlights(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,

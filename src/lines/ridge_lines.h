@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/line_kind.h"
+#include "core/worker_pool.h"
 #include "lines/lines.h"
 #include "shape/adjacency.h"
 #include "shape/shape_cache.h"
@@ -69,8 +70,10 @@ inline constexpr float kApparentRidgeMinCos = 1e-4f;
 /// and directions of `fields`; Dt1 q1 from the area-weighted mean of the faces' gradients
 /// of q1 around each vertex (the mean, not the sum: a vertex's ring area must not scale it,
 /// or the crossings between vertices would move).
+/// `pool` (optional) splits the vertices over its threads; the result is the same.
 void computeApparentRidgeQuantities(std::span<const std::array<uint32_t, 3>> faces, const MeshAdjacency& adj,
-                                    const SurfaceFields& fields, const ViewSpec& view, ApparentRidgeQuantities& out);
+                                    const SurfaceFields& fields, const ViewSpec& view, ApparentRidgeQuantities& out,
+                                    WorkerPool* pool = nullptr);
 
 /// Appends the apparent ridges (LineKind::kApparentRidge) of the front-facing valid faces to
 /// `out`: maxima of q1 along t1 where q1·fs exceeds `threshold`, faded in over one more
@@ -94,7 +97,7 @@ struct PrincipalHighlightQuantities {
 };
 
 void computePrincipalHighlightQuantities(const SurfaceFields& fields, const ViewSpec& view, float feature_size,
-                                         PrincipalHighlightQuantities& out);
+                                         PrincipalHighlightQuantities& out, WorkerPool* pool = nullptr);
 
 /// Appends the principal highlights (LineKind::kPrincipalHighlight): zero crossings of v̂·e
 /// with the directions' signs agreed per edge, in faces whose corners are all convex and

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/worker_pool.h"
 #include "io/generate.h"
 #include "lines/lines.h"
 #include "lines/ridge_lines.h"
@@ -234,6 +235,35 @@ TEST(PrincipalHighlights, TorusHighlightFollowsTheTubeWhereNormalMeetsTheView) {
               s.segmentCount(), len, worst);
   EXPECT_LT(worst, 2.0);
   EXPECT_GT(len, 0.8 * 2.0 * 3.14159 * R);  // nearly all round the ring
+}
+
+}  // namespace
+}  // namespace lodline
+
+namespace lodline {
+namespace {
+
+// The per-view quantities of apparent ridges and principal highlights split over worker
+// threads equal the serial ones, bit for bit.
+TEST(ApparentRidges, WorkerThreadsGiveTheSerialQuantities) {
+  const TriMesh m = makeTorusKnot(2, 3, 1.0f, 0.2f, 600, 24, 0.18f);  // 28,800 faces
+  ShapeCache shape;
+  shape.compute(m);
+  ViewSpec view;
+  view.eye = {0.3f, 1.2f, 3.5f};
+  WorkerPool pool(3);
+  ApparentRidgeQuantities a, b;
+  computeApparentRidgeQuantities(m.faces, shape.adjacency(), shape.fields(m), view, a);
+  computeApparentRidgeQuantities(m.faces, shape.adjacency(), shape.fields(m), view, b, &pool);
+  EXPECT_EQ(a.q1, b.q1);
+  EXPECT_EQ(a.t1, b.t1);
+  EXPECT_EQ(a.dt1q1, b.dt1q1);
+  PrincipalHighlightQuantities c, d;
+  computePrincipalHighlightQuantities(shape.fields(m), view, 0.01f, c);
+  computePrincipalHighlightQuantities(shape.fields(m), view, 0.01f, d, &pool);
+  EXPECT_EQ(c.vdote, d.vdote);
+  EXPECT_EQ(c.strength, d.strength);
+  EXPECT_EQ(c.first, d.first);
 }
 
 }  // namespace
