@@ -289,16 +289,18 @@ TEST_F(OutputFaults, KilledCaptureLeavesAPlayablePartAndTheNextRunRecovers) {
 // SIGINT during build: the build stops; the cache holds nothing or a complete file, and the
 // next run gets a valid progressive mesh.
 TEST_F(OutputFaults, InterruptedAndKilledBuildsNeverLeaveACorruptCache) {
-  // A model whose build takes a while (about half a second here).
+  // A model whose build takes a while (about a second here; the signals come within 0.6 s,
+  // so most rounds stop it mid-build — a level-6 sphere, 0.14 s since lodline stopped
+  // linking OSMesa and LLVM, often finished first).
   const std::string big = (dir_ / "sphere.off").string();
-  ASSERT_TRUE(saveOff(big, makeIcoSphere(1.0f, 6)).ok());
+  ASSERT_TRUE(saveOff(big, makeIcoSphere(1.0f, 7)).ok());
   std::mt19937 rng(3);
   int killed = 0;
   for (int round = 0; round < 8; ++round) {
     ProcessOptions opt;
     opt.env = {xdg()};
     test::Process p(test::lodlineArgs({"build", big, "--force", "--cache-dir", cache_.string()}), opt);
-    std::this_thread::sleep_for(std::chrono::milliseconds(100 + rng() % 900));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50 + rng() % 550));
     p.signal(round % 2 == 0 ? SIGKILL : SIGINT);
     const ProcessResult r = p.wait();
     killed += r.signal != 0;
