@@ -1,9 +1,11 @@
 #include "app/options.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
 #include <glm/geometric.hpp>
@@ -111,23 +113,36 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
       ->capture_default_str();
 }
 
-Result<OrbitView> parseOrbitView(const std::string& s) {
-  const auto bad = Error::usage("--view: invalid value '" + s +
-                                "' (expected AZ,EL,DIST, e.g. 30,20,3; DIST in bounding radii, 0 = frame the model)");
-  OrbitView v;
-  float vals[3];
+namespace {
+
+// "A,B,C": three finite numbers (spaces before each allowed), or nothing.
+std::optional<std::array<float, 3>> parseThreeFloats(const std::string& s) {
+  std::array<float, 3> vals{};
   std::stringstream ss(s);
   std::string item;
   int n = 0;
   while (std::getline(ss, item, ',')) {
-    if (n >= 3) return bad;
+    if (n >= 3) return std::nullopt;
     const char* b = item.data();
     while (*b == ' ') ++b;
     auto [p, ec] = std::from_chars(b, item.data() + item.size(), vals[n]);
-    if (ec != std::errc() || p != item.data() + item.size() || !std::isfinite(vals[n])) return bad;
+    if (ec != std::errc() || p != item.data() + item.size() || !std::isfinite(vals[n])) return std::nullopt;
     ++n;
   }
-  if (n != 3 || vals[2] < 0.0f || vals[1] < -90.0f || vals[1] > 90.0f) return bad;
+  if (n != 3) return std::nullopt;
+  return vals;
+}
+
+}  // namespace
+
+Result<OrbitView> parseOrbitView(const std::string& s) {
+  const auto bad = Error::usage("--view: invalid value '" + s +
+                                "' (expected AZ,EL,DIST, e.g. 30,20,3; DIST in bounding radii, 0 = frame the model)");
+  OrbitView v;
+  const auto parsed = parseThreeFloats(s);
+  if (!parsed) return bad;
+  const auto& vals = *parsed;
+  if (vals[2] < 0.0f || vals[1] < -90.0f || vals[1] > 90.0f) return bad;
   v.azimuth_deg = vals[0];
   v.elevation_deg = vals[1];
   v.distance = vals[2];
@@ -258,20 +273,10 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
     return Error::usage("--topo-spacing: must be in [0.001, 1] (a fraction of the bounding-box diagonal)");
   r.line_params.topo_spacing = o.topo_spacing;
   {
-    const auto bad = Error::usage("--topo-axis: expected X,Y,Z (a non-zero direction), got '" + o.topo_axis + "'");
-    float a[3];
-    std::stringstream axis(o.topo_axis);
-    std::string part;
-    int count = 0;
-    while (std::getline(axis, part, ',')) {
-      if (count == 3) return bad;
-      char* end = nullptr;
-      a[count] = std::strtof(part.c_str(), &end);
-      if (part.empty() || *end != '\0' || !std::isfinite(a[count])) return bad;
-      ++count;
-    }
-    if (count != 3 || (a[0] == 0.0f && a[1] == 0.0f && a[2] == 0.0f)) return bad;
-    r.line_params.topo_axis = glm::normalize(glm::vec3(a[0], a[1], a[2]));
+    const auto a = parseThreeFloats(o.topo_axis);
+    if (!a || ((*a)[0] == 0.0f && (*a)[1] == 0.0f && (*a)[2] == 0.0f))
+      return Error::usage("--topo-axis: expected X,Y,Z (a non-zero direction), got '" + o.topo_axis + "'");
+    r.line_params.topo_axis = glm::normalize(glm::vec3((*a)[0], (*a)[1], (*a)[2]));
   }
   if (!(o.parabolic_threshold >= 0.0f && o.parabolic_threshold <= 1e3f))
     return Error::usage("--parabolic-threshold: must be in [0, 1000]");

@@ -200,8 +200,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   if (motion_fade)
     suggestiveMotionGain(mesh_.positions, view_, smoother_.krChange(), camera, image_height, dt,
                          p.suggestive_motion_fade_start, p.suggestive_motion_fade_end, motion_gain_, pool_.get());
-  if (p.isophotes || p.topo || p.parabolic || !view_.isophote.empty() || !view_.topo.empty() ||
-      !view_.parabolic.empty()) {
+  {  // with none of the level kinds on, this only clears their arrays
     LevelSpec level;
     level.isophotes = p.isophotes;
     level.light = lightInModelSpace(camera, p.light_dir_eye);
@@ -220,9 +219,8 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
                motion_fade ? std::span<const float>(motion_gain_) : std::span<const float>());
   if (p.ridges || p.valleys) {  // lines/ridge_lines.h: k1, k2 smoothed in sequences, C raw
     const RidgeSpec ridge{p.ridges, p.valleys, p.ridge_threshold, fs};
-    SurfaceFields rf = shape_.fields(mesh_);
-    rf.k1 = curv.k1;
-    rf.k2 = curv.k2;
+    SurfaceFields rf = curv;
+    rf.dcurv = shape_.dcurv();  // curv's is cleared unless the suggestive kinds use it
     if (shape_.params().lazy_derivatives) {  // derivative tensors only where a ridge can be
       ridgeCandidateVertices(mesh_.faces, shape_.adjacency(), rf, ridge, scratch_.vertex_code, needed_mark_,
                              ridge_needed_);

@@ -380,28 +380,22 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
     if (params.contours_require_positive_kr) in[n].test_num = view.kr;
     types[n++] = LineKind::kContour;
   }
-  if (params.suggestive && view.sc_num.size() == mesh.positions.size()) {
-    in[n].value = view.kr;
-    in[n].test_num = view.sc_num;
-    in[n].test_den = view.sc_den;
-    in[n].gate = view.ndotv;
-    in[n].gate_min = params.suggestive_min_ndotv;
-    in[n].fade = params.suggestive_fade / (fs * fs);
-    in[n].gain = suggestive_gain;
-    types[n++] = LineKind::kSuggestive;
-  }
-  if (params.suggestive_highlights && view.sh_num.size() == mesh.positions.size() &&
-      view.sc_den.size() == mesh.positions.size()) {
-    in[n].value = view.kr;
-    in[n].test_num = view.sh_num;
-    in[n].test_den = view.sc_den;
-    in[n].gate = view.ndotv;
-    in[n].gate_min = params.suggestive_min_ndotv;
-    in[n].fade = params.suggestive_fade / (fs * fs);
-    types[n++] = LineKind::kSuggestiveHighlight;
-  }
-  // The level-set kinds (lines/level_lines.h), where their quantities were computed.
+  // Both suggestive kinds: kr = 0, tested by num/cosθ, gated and faded alike.
   const size_t nv = mesh.positions.size();
+  auto kr_zero = [&](std::span<const float> test_num, LineKind type, std::span<const float> gain) {
+    in[n].value = view.kr;
+    in[n].test_num = test_num;
+    in[n].test_den = view.sc_den;
+    in[n].gate = view.ndotv;
+    in[n].gate_min = params.suggestive_min_ndotv;
+    in[n].fade = params.suggestive_fade / (fs * fs);
+    in[n].gain = gain;
+    types[n++] = type;
+  };
+  if (params.suggestive && view.sc_num.size() == nv) kr_zero(view.sc_num, LineKind::kSuggestive, suggestive_gain);
+  if (params.suggestive_highlights && view.sh_num.size() == nv && view.sc_den.size() == nv)
+    kr_zero(view.sh_num, LineKind::kSuggestiveHighlight, {});
+  // The level-set kinds (lines/level_lines.h), where their quantities were computed.
   if (params.isophotes && view.isophote.size() == nv && view.isophote_test.size() == nv) {
     in[n].value = view.isophote;
     in[n].test_num = view.isophote_test;

@@ -46,22 +46,15 @@ struct Field {  // one kind's view of the shape: curvature, direction, its deriv
   float derivative(uint32_t v) const { return sign * dcurv[v][component]; }
 };
 
-struct HighlightField {  // DeCarlo & Rusinkiewicz 2007: v̂·e of the dominant direction e
+// A field given by three per-vertex arrays (apparent ridges: q1, t1, Dt1 q1; principal
+// highlights: their strength, the dominant direction e, v̂·e).
+struct ArrayField {
   std::span<const float> strength_;
-  std::span<const glm::vec3> e;
-  std::span<const float> d;
+  std::span<const glm::vec3> direction_;
+  std::span<const float> derivative_;
   float strength(uint32_t v) const { return strength_[v]; }
-  const glm::vec3& direction(uint32_t v) const { return e[v]; }
-  float derivative(uint32_t v) const { return d[v]; }
-};
-
-struct ApparentField {  // Judd et al. 2007: q1, the direction of t1 on the surface, Dt1 q1
-  std::span<const float> q1;
-  std::span<const glm::vec3> t1;
-  std::span<const float> dt1q1;
-  float strength(uint32_t v) const { return q1[v]; }
-  const glm::vec3& direction(uint32_t v) const { return t1[v]; }
-  float derivative(uint32_t v) const { return dt1q1[v]; }
+  const glm::vec3& direction(uint32_t v) const { return direction_[v]; }
+  float derivative(uint32_t v) const { return derivative_[v]; }
 };
 
 // The maximum of fld.strength along fld.direction in face f, if one crosses it: the zero set
@@ -266,7 +259,7 @@ void extractApparentRidges(std::span<const glm::vec3> positions, std::span<const
     return;
   const float fs = feature_size > 0.0f ? feature_size : 1.0f;
   const float half = 0.5f * threshold / fs;
-  const ApparentField fld{q.q1, q.t1, q.dt1q1};
+  const ArrayField fld{q.q1, q.t1, q.dt1q1};
   for (size_t f = 0; f < faces.size(); ++f) {
     if (!adj.face_valid[f]) continue;
     const auto& t = faces[f];
@@ -322,7 +315,7 @@ void extractPrincipalHighlights(std::span<const glm::vec3> positions, std::span<
       q.first.size() != nv ||
       q.ndotv.size() != nv || adj.face_count != faces.size() || adj.vertex_count != nv)
     return;
-  const HighlightField fld{q.strength, q.e, q.vdote};
+  const ArrayField fld{q.strength, q.e, q.vdote};
   const float half = 0.5f * threshold;
   for (size_t f = 0; f < faces.size(); ++f) {
     if (!adj.face_valid[f]) continue;

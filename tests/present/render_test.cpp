@@ -55,14 +55,19 @@ Look linesOnly(int w, int h) {
   return l;
 }
 
-TEST(HeadlessRender, EglContextIsCoreProfile) {
-  auto ctx = createHeadlessContext(ContextBackend::kEgl);
-  ASSERT_TRUE(ctx.ok()) << ctx.error().message;
+// The current context is OpenGL ≥ 3 core.
+void expectCurrentCoreProfile() {
   GLint major = 0, mask = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
   EXPECT_GE(major, 3);
   EXPECT_TRUE(mask & GL_CONTEXT_CORE_PROFILE_BIT);
+}
+
+TEST(HeadlessRender, EglContextIsCoreProfile) {
+  auto ctx = createHeadlessContext(ContextBackend::kEgl);
+  ASSERT_TRUE(ctx.ok()) << ctx.error().message;
+  expectCurrentCoreProfile();
   EXPECT_FALSE((*ctx)->description().empty());
 }
 
@@ -73,11 +78,7 @@ TEST(HeadlessRender, EglDevicePlatformGivesACoreContext) {
   if (!ctx.ok() && ctx.error().message.find("EGL_EXT_platform_device is not supported") != std::string::npos)
     GTEST_SKIP() << ctx.error().message;
   ASSERT_TRUE(ctx.ok()) << ctx.error().message;
-  GLint major = 0, mask = 0;
-  glGetIntegerv(GL_MAJOR_VERSION, &major);
-  glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
-  EXPECT_GE(major, 3);
-  EXPECT_TRUE(mask & GL_CONTEXT_CORE_PROFILE_BIT);
+  expectCurrentCoreProfile();
   std::printf("EGL device context: %s\n", (*ctx)->description().c_str());
 }
 
