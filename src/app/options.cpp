@@ -56,6 +56,11 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
                  "complete: where the interpolated contour leaves the object's outline (coarse meshes), the "
                  "mesh's own silhouette edges draw it; contour: the interpolated contour only")
       ->capture_default_str();
+  cmd.add_option("--contour-creases", o.contour_creases,
+                 "on: where a crease is itself a silhouette (its two faces face opposite ways) the contour "
+                 "runs along it, not across the faces beside it (CAD parts' sharp rims); off: n.v = 0 "
+                 "interpolated from vertex normals everywhere, as rtsc draws it (docs/lines.md)")
+      ->capture_default_str();
   cmd.add_option("--chamfer", o.chamfer,
                  "Chamfer highlights on sharp edges: auto (with --style shaded), on (also over "
                  "toon) or off")
@@ -293,6 +298,9 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   if (o.outline != "complete" && o.outline != "contour")
     return Error::usage("--outline: expected complete or contour, got '" + o.outline + "'");
   r.line_params.complete_outline = o.outline == "complete";
+  if (o.contour_creases != "on" && o.contour_creases != "off")
+    return Error::usage("--contour-creases: expected on or off, got '" + o.contour_creases + "'");
+  r.line_params.contours_follow_creases = o.contour_creases == "on";
   auto hidden = parseHiddenLines(o.hidden_lines);
   if (!hidden) return hidden.error();
   r.style.hidden = *hidden;
@@ -413,6 +421,7 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   s["apparent-ridge-threshold"] = exact(lines.apparent_ridge_threshold);
   s["principal-highlight-threshold"] = exact(lines.principal_highlight_threshold);
   s["outline"] = lines.complete_outline ? "complete" : "contour";
+  s["contour-creases"] = lines.contours_follow_creases ? "on" : "off";
   s["hidden-lines"] = formatHiddenLines(style.hidden);
 
   const DetailParams& d = detail.params;

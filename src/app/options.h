@@ -32,6 +32,7 @@ struct ViewOptions {
   std::string lines = "contour,suggestive,crease,boundary,intersection";
   std::string hidden_lines = "off";  ///< off or COLOUR[:WIDTH][:dash=ON,OFF]
   std::string outline = "complete";  ///< complete (mesh silhouette fills contour gaps) or contour
+  std::string contour_creases = "on";  ///< on: the contour runs along silhouette creases; off
   std::vector<std::string> line_styles;  ///< "KIND=COLOUR[:WIDTH]", repeatable
   std::string stroke_style = "plain";    ///< a preset (plain, ink, pencil, marker) or a .json file
   // Chamfer edge highlights (ChamferParams; Wei, Shi, Yong 2014).

@@ -88,7 +88,7 @@ void vertexCodes(const ZeroSetInput& in, int k, size_t begin, size_t end, uint8_
 void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_t, 3>& corner,
                   const std::array<uint32_t, 3>& face_edges, uint32_t f, const uint8_t (&c)[3],
                   const ZeroSetInput& in, bool has_test, bool has_den, bool has_gain, LineKind type, LineSet& dst,
-                  uint32_t& interior_id) {
+                  uint32_t edge_count, uint32_t& interior_id) {
   // The crossing on the edge (a, b), always interpolated from its lower vertex index to its
   // higher, so the two faces of an edge compute bit-identical points (and share the edge's
   // id: exact chaining).
@@ -115,9 +115,17 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
   const bool s0 = c[0] & kNegative, s1 = c[1] & kNegative, s2 = c[2] & kNegative;
   const int i = (s0 == s1) ? 2 : (s0 == s2 ? 1 : 0);
   const int i2 = (i + 2) % 3;
-  const uint32_t e1 = face_edges[i];   // joins corners i and i + 1
-  const uint32_t e2 = face_edges[i2];  // joins corners i + 2 and i
   const Crossing x1 = crossingOf(corner[i], corner[(i + 1) % 3]), x2 = crossingOf(corner[i2], corner[i]);
+  // A crossing exactly at a vertex (its value is 0: t is 0 or 1, the point is the vertex's
+  // position) is one point for every face around it: the vertex's id.
+  auto idOf = [&](const Crossing& x, uint32_t edge) {
+    return in.value[x.a] == 0.0f ? edge_count + x.a : in.value[x.b] == 0.0f ? edge_count + x.b : edge;
+  };
+  const uint32_t e1 = idOf(x1, face_edges[i]);    // joins corners i and i + 1
+  const uint32_t e2 = idOf(x2, face_edges[i2]);   // joins corners i + 2 and i
+  // Both at the lone corner (nothing but a point), or joining two vertices where the caller
+  // draws the edges itself.
+  if (e1 == e2 || (in.skip_vertex_pairs && e1 >= edge_count && e2 >= edge_count)) return;
   auto point = [&](const Crossing& x) { return x.s * positions[x.a] + x.t * positions[x.b]; };
   if (!has_test) {
     pushSegment(dst, type, f, point(x1), e1, 1.0f, point(x2), e2, 1.0f);
@@ -207,7 +215,7 @@ void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::
   }
 
   // Pass 2, per face: join the two crossings, keeping the pieces that pass the test; each
-  // (part of the faces, zero set) into its own set with ids inside faces from ne up, appended
+  // (part of the faces, zero set) into its own set with ids inside faces from ne + nv up, appended
   // below in zero-set order, then face order, with the ids shifted: the same output as one
   // pass per zero set over all faces.
   const uint8_t* valid = adj.face_valid.data();
@@ -250,20 +258,21 @@ void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::
           const uint8_t ck[3] = {static_cast<uint8_t>(c0 >> (3 * k)), static_cast<uint8_t>(c1 >> (3 * k)),
                                  static_cast<uint8_t>(c2 >> (3 * k))};
           faceSegments(positions, tri[f], adj.face_edges[f], f, ck, *in[k], has_test[k], has_den[k], has_gain[k],
-                       type[k], dst[k], interior[k]);
+                       type[k], dst[k], static_cast<uint32_t>(ne), interior[k]);
         }
       }
     }
   };
+  const uint32_t base = static_cast<uint32_t>(ne + nv);  // the first id inside a face
   const size_t parts = (!scratch.pool || nf < 16384) ? 1 : 4 * scratch.pool->threadCount();
   scratch.part_sets.resize(parts * count);
   scratch.part_interior.assign(parts * count, 0);
   auto run_part = [&](size_t c) {
     LineSet* dst = &scratch.part_sets[c * count];
-    uint32_t ids[2] = {static_cast<uint32_t>(ne), static_cast<uint32_t>(ne)};
+    uint32_t ids[2] = {base, base};
     for (size_t k = 0; k < count; ++k) dst[k].clear();
     faces_pass(nf * c / parts, nf * (c + 1) / parts, dst, ids);
-    for (size_t k = 0; k < count; ++k) scratch.part_interior[c * count + k] = ids[k] - static_cast<uint32_t>(ne);
+    for (size_t k = 0; k < count; ++k) scratch.part_interior[c * count + k] = ids[k] - base;
   };
   if (parts == 1) {
     run_part(0);
@@ -272,14 +281,14 @@ void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::
       for (size_t c = begin; c < end; ++c) run_part(c);
     });
   }
-  uint32_t interior_id = std::max(scratch.next_interior_id, static_cast<uint32_t>(ne));
+  uint32_t interior_id = std::max(scratch.next_interior_id, base);
   for (size_t k = 0; k < count; ++k) {
     for (size_t c = 0; c < parts; ++c) {
       const LineSet& part = scratch.part_sets[c * count + k];
-      const uint32_t shift = interior_id - static_cast<uint32_t>(ne);
+      const uint32_t shift = interior_id - base;
       out.points.insert(out.points.end(), part.points.begin(), part.points.end());
       out.alpha.insert(out.alpha.end(), part.alpha.begin(), part.alpha.end());
-      for (uint32_t id : part.point_ids) out.point_ids.push_back(id >= ne ? id + shift : id);
+      for (uint32_t id : part.point_ids) out.point_ids.push_back(id >= base ? id + shift : id);
       out.kinds.insert(out.kinds.end(), part.kinds.begin(), part.kinds.end());
       out.sources.insert(out.sources.end(), part.sources.begin(), part.sources.end());
       for (int j = 0; j < kLineKindCount; ++j) out.counts[j] += part.counts[j];
@@ -295,14 +304,16 @@ void extractZeroSet(std::span<const glm::vec3> positions, std::span<const std::a
   extractZeroSets(positions, faces, adj, std::span(&in, 1), std::span(&type, 1), scratch, out);
 }
 
-void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
-                      std::span<const glm::vec3> face_normals, const LineParams& params,
-                      LineScratch& scratch, LineSet& out, std::span<const uint8_t> crease_vertices) {
+namespace {
+
+// Marks each edge in scratch.edge_mark: 1 crease (when `want_creases`), 2 boundary (when
+// `want_boundaries`), 0 otherwise. False when the inputs do not fit the mesh.
+bool classifyEdges(const TriMesh& mesh, const MeshAdjacency& adj, std::span<const glm::vec3> face_normals,
+                   const LineParams& params, bool want_creases, bool want_boundaries, LineScratch& scratch,
+                   std::span<const uint8_t> crease_vertices) {
   const bool masked = crease_vertices.size() == mesh.positions.size();
   const size_t ne = adj.edges.size();
-  if (adj.vertex_count != mesh.positions.size() || face_normals.size() != adj.face_count) return;
-  const bool want_creases = params.creases;
-  if (!want_creases && !params.boundaries) return;
+  if (adj.vertex_count != mesh.positions.size() || face_normals.size() != adj.face_count) return false;
   const float cos_limit =
       std::cos(params.crease_angle_deg * std::numbers::pi_v<float> / 180.0f);
   scratch.edge_mark.assign(ne, 0);  // 1 crease, 2 boundary
@@ -316,7 +327,7 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
     for (size_t e = begin; e < end; ++e) {
       const uint32_t count = adj.edge_face_count[e];
       if (count == 1) {
-        scratch.edge_mark[e] = params.boundaries ? 2 : scratch.edge_mark[e];
+        scratch.edge_mark[e] = want_boundaries ? 2 : scratch.edge_mark[e];
       } else if (count == 2) {
         if (!want_creases || scratch.edge_mark[e]) continue;
         if (masked && (!crease_vertices[adj.edges[e][0]] || !crease_vertices[adj.edges[e][1]])) continue;
@@ -334,26 +345,108 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
   } else {
     classify(0, ne);
   }
-  for (size_t e = 0; e < ne; ++e) {
+  return true;
+}
+
+// Appends the edges scratch.edge_mark marks: creases if params.creases, boundaries if
+// params.boundaries.
+void pushEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj, const LineParams& params, const LineScratch& scratch,
+                   LineSet& out) {
+  for (size_t e = 0; e < adj.edges.size(); ++e) {
     const uint8_t m = scratch.edge_mark[e];
-    if (m == 0 || (m == 1 && !want_creases)) continue;
+    if (m == 0 || (m == 1 && !params.creases) || (m == 2 && !params.boundaries)) continue;
     const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
     pushSegment(out, m == 2 ? LineKind::kBoundary : LineKind::kCrease, static_cast<uint32_t>(e),
                 mesh.positions[a], a, 1.0f, mesh.positions[b], b, 1.0f);
   }
 }
 
+// Facing of face f from `view`: the sign of n·(eye − p) at its first corner (perspective), or
+// of n·toward_viewer (orthographic); 0 for a degenerate face.
+int faceFacing(const TriMesh& mesh, std::span<const glm::vec3> face_normals, const ViewSpec& view, uint32_t f) {
+  const glm::vec3& n = face_normals[f];
+  if (glm::dot(n, n) == 0.0f) return 0;
+  const glm::vec3 to_eye = view.orthographic ? view.toward_viewer : view.eye - mesh.positions[mesh.faces[f][0]];
+  return glm::dot(n, to_eye) > 0.0f ? 1 : -1;
+}
+
+// The contour's value with the vertices of silhouette creases (crease edges whose faces face
+// opposite ways, in scratch.edge_mark; listed in scratch.silhouette_creases) at 0
+// (LineParams::contours_follow_creases); `ndotv` itself when there is none.
+std::span<const float> contourValue(const TriMesh& mesh, const MeshAdjacency& adj,
+                                    std::span<const glm::vec3> face_normals, const ViewQuantities& view,
+                                    LineScratch& scratch) {
+  bool copied = false;
+  scratch.silhouette_creases.clear();
+  for (size_t e = 0; e < adj.edges.size(); ++e) {
+    if (scratch.edge_mark[e] != 1 || adj.edge_face_count[e] != 2) continue;
+    const int a = faceFacing(mesh, face_normals, view.view, adj.edge_faces[e][0]);
+    const int b = faceFacing(mesh, face_normals, view.view, adj.edge_faces[e][1]);
+    if (a == 0 || b == 0 || a == b) continue;
+    scratch.silhouette_creases.push_back(static_cast<uint32_t>(e));
+    if (!copied) {
+      scratch.contour_value.assign(view.ndotv.begin(), view.ndotv.end());
+      copied = true;
+    }
+    scratch.contour_value[adj.edges[e][0]] = 0.0f;
+    scratch.contour_value[adj.edges[e][1]] = 0.0f;
+  }
+  return copied ? std::span<const float>(scratch.contour_value) : std::span<const float>(view.ndotv);
+}
+
+// Where the smooth contour meets a silhouette crease, the faces' own facing (which decides
+// the crease) and the interpolated n·v (which decides the smooth contour) may disagree by a
+// face: the crease then runs an edge or two past the meeting point, a spur with a free end
+// beside a vertex where three contour ends meet. Such spurs are dropped from
+// scratch.silhouette_creases, so the contour stays one line through the meeting point.
+void pruneCreaseSpurs(const MeshAdjacency& adj, const LineSet& out, LineScratch& scratch) {
+  const uint32_t ne = static_cast<uint32_t>(adj.edges.size()), nv = adj.vertex_count;
+  auto& ends = scratch.vertex_ends;
+  ends.assign(nv, 0);
+  auto count = [&](uint32_t id) {
+    if (id >= ne && id - ne < nv && ends[id - ne] < 255) ++ends[id - ne];
+  };
+  for (size_t k = 0; k < out.kinds.size(); ++k)
+    if (out.kinds[k] == LineKind::kContour) {
+      count(out.point_ids[2 * k]);
+      count(out.point_ids[2 * k + 1]);
+    }
+  auto& list = scratch.silhouette_creases;
+  for (uint32_t e : list) {
+    count(ne + adj.edges[e][0]);
+    count(ne + adj.edges[e][1]);
+  }
+  for (int round = 0; round < 4; ++round) {  // a spur is an edge or two long
+    bool changed = false;
+    for (uint32_t& e : list) {
+      if (e == kNoIndex) continue;
+      const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
+      if ((ends[a] == 1 && ends[b] >= 3) || (ends[b] == 1 && ends[a] >= 3)) {
+        --ends[a];
+        --ends[b];
+        e = kNoIndex;
+        changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  list.erase(std::remove(list.begin(), list.end(), kNoIndex), list.end());
+}
+
+}  // namespace
+
+void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
+                      std::span<const glm::vec3> face_normals, const LineParams& params,
+                      LineScratch& scratch, LineSet& out, std::span<const uint8_t> crease_vertices) {
+  if (!params.creases && !params.boundaries) return;
+  if (classifyEdges(mesh, adj, face_normals, params, params.creases, params.boundaries, scratch, crease_vertices))
+    pushEdgeLines(mesh, adj, params, scratch, out);
+}
+
 void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adj, std::span<const glm::vec3> face_normals,
                            const ViewSpec& view, LineSet& out) {
   out.clear();
-  // Facing of a face: the sign of n·(eye − p) at its first corner (perspective), or of
-  // n·toward_viewer (orthographic); 0 for degenerate faces.
-  auto facing = [&](uint32_t f) -> int {
-    const glm::vec3& n = face_normals[f];
-    if (glm::dot(n, n) == 0.0f) return 0;
-    const glm::vec3 to_eye = view.orthographic ? view.toward_viewer : view.eye - mesh.positions[mesh.faces[f][0]];
-    return glm::dot(n, to_eye) > 0.0f ? 1 : -1;
-  };
+  auto facing = [&](uint32_t f) { return faceFacing(mesh, face_normals, view, f); };
   for (size_t e = 0; e < adj.edges.size(); ++e) {
     if (adj.edge_face_count[e] != 2) continue;
     const int a = facing(adj.edge_faces[e][0]), b = facing(adj.edge_faces[e][1]);
@@ -375,8 +468,15 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
   ZeroSetInput in[6];
   LineKind types[6];
   size_t n = 0;
+  // Edges first: the contour follows the creases that are silhouettes.
+  const bool follow = params.contours && params.contours_follow_creases && view.ndotv.size() == mesh.positions.size();
+  const bool classified = (follow || params.creases || params.boundaries) &&
+                          classifyEdges(mesh, adj, face_normals, params, params.creases || follow, params.boundaries,
+                                        scratch, crease_vertices);
+  const bool on_creases = follow && classified;
   if (params.contours) {
-    in[n].value = view.ndotv;
+    in[n].value = on_creases ? contourValue(mesh, adj, face_normals, view, scratch) : view.ndotv;
+    in[n].skip_vertex_pairs = on_creases;
     if (params.contours_require_positive_kr) in[n].test_num = view.kr;
     types[n++] = LineKind::kContour;
   }
@@ -411,7 +511,18 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
     types[n++] = LineKind::kParabolic;
   }
   extractZeroSets(mesh.positions, mesh.faces, adj, std::span(in, n), std::span(types, n), scratch, out);
-  extractEdgeLines(mesh, adj, face_normals, params, scratch, out, crease_vertices);
+  // The contour along silhouette creases, with the ids of points at vertices (edgeCount +
+  // vertex) that the zero set's crossings at those vertices use too.
+  const uint32_t ne = static_cast<uint32_t>(adj.edges.size());
+  if (on_creases && !scratch.silhouette_creases.empty()) pruneCreaseSpurs(adj, out, scratch);
+  if (on_creases)
+    for (uint32_t e : scratch.silhouette_creases) {
+      const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
+      const uint32_t f0 = adj.edge_faces[e][0], f1 = adj.edge_faces[e][1];
+      const uint32_t front = faceFacing(mesh, face_normals, view.view, f0) > 0 ? f0 : f1;
+      pushSegment(out, LineKind::kContour, front, mesh.positions[a], ne + a, 1.0f, mesh.positions[b], ne + b, 1.0f);
+    }
+  if (classified) pushEdgeLines(mesh, adj, params, scratch, out);
   if (params.materials) extractMaterialLines(mesh, adj, out);
 }
 

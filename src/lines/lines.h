@@ -36,6 +36,14 @@ struct LineParams {
   /// Keep contour points only where kr > 0 (trims the contour loops hidden behind the
   /// surface; docs/design.md §3.6). Default off.
   bool contours_require_positive_kr = false;
+  /// Where a crease (below) is itself a silhouette — its two faces face opposite ways — the
+  /// contour runs along the crease edge. Vertex normals average across a sharp edge, so the
+  /// interpolated n·v = 0 would otherwise wander over the faces beside it, as far as a face's
+  /// width on a coarse adapted mesh (a wavy, broken outline along a CAD part's sharp rim).
+  /// The contour's n·v is set to 0 at the crease's vertices, so the one zero-set extractor
+  /// puts the line on the edge and joins it to the smooth contour where that meets the
+  /// crease (docs/lines.md). Default on.
+  bool contours_follow_creases = true;
   bool suggestive = true;  ///< suggestive contours, kr = 0 where Dw kr > 0. Default on
   /// Keep suggestive points where tanθ·Dw kr > suggestive_threshold / fs² (fs = feature
   /// size). Default 0.01 (rtsc's default, with the same feature-size definition).
@@ -116,8 +124,9 @@ struct LineSet {
   std::vector<glm::vec3> points;    ///< 2 per segment, model units
   std::vector<float> alpha;         ///< 1 per point, in [0, 1] (fade; 1 when not faded)
   /// 1 per point: two points of the same type with equal id are the same point (exactly
-  /// equal positions); used by chainStrokes(). Edge crossings use the edge index, crease and
-  /// boundary endpoints the vertex index, points inside a face ids ≥ edgeCount.
+  /// equal positions); used by chainStrokes(). Edge crossings use the edge index, zero-set
+  /// points exactly at a vertex (its value is 0) edgeCount + the vertex index, points inside
+  /// a face ids ≥ edgeCount + vertexCount; crease and boundary endpoints the vertex index.
   std::vector<uint32_t> point_ids;
   std::vector<LineKind> kinds;      ///< 1 per segment
   /// 1 per segment: the face it crosses (zero-set lines) or the edge it lies on (creases,
@@ -154,12 +163,18 @@ struct ZeroSetInput {
   float fade = 0.0f;  ///< > 0: endpoint alpha = num/(num + fade·den), clamped; 0: alpha 1
   /// Optional: per-vertex factor in [0, 1] on the alpha (interpolated like the test).
   std::span<const float> gain;
+  /// Leave out segments that join two vertices whose value is exactly 0 (the caller draws
+  /// the edges it means itself: the contour along silhouette creases).
+  bool skip_vertex_pairs = false;
 };
 
 /// Scratch buffers of the extractors (per-edge crossings, marks); reuse between calls.
 struct LineScratch {
   std::vector<uint8_t> vertex_code;  // per vertex: value sign, test, gate (extractZeroSet)
   std::vector<uint8_t> edge_mark;
+  std::vector<float> contour_value;         // n·v with silhouette creases' vertices at 0
+  std::vector<uint32_t> silhouette_creases;  // their edges
+  std::vector<uint8_t> vertex_ends;          // contour ends per vertex (spurs along creases)
   uint32_t next_interior_id = 0;
   /// Optional threads (not owned) for the per-edge and per-face passes; the output is the
   /// same.

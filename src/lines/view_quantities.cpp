@@ -165,6 +165,7 @@ void computeViewQuantities(const SurfaceFields& s, const ViewSpec& view, float s
                            ViewQuantities& out, WorkerPool* pool) {
   const size_t nv = s.positions.size();
   const bool with_derivs = s.dcurv.size() == nv && nv > 0;
+  out.view = view;
   out.ndotv.resize(nv);
   out.kr.resize(nv);
   out.dwkr.resize(with_derivs ? nv : 0);

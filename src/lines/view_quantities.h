@@ -41,6 +41,7 @@ struct ViewSpec {
 /// Caller-owned outputs of computeViewQuantities(); every array gets vertexCount floats.
 /// Reused between frames (no allocation once sized).
 struct ViewQuantities {
+  ViewSpec view;              ///< the view they were computed for
   std::vector<float> ndotv;   ///< n·v̂ = cosθ (> 0 front-facing)
   std::vector<float> kr;      ///< kr·sin²θ = k1·u² + k2·v² (same zero set and sign as kr)
   std::vector<float> dwkr;    ///< Dw kr = C(ŵ,ŵ,ŵ) − 2·τ²·cotθ, 1/units²; 0 where sinθ < 1e-6

@@ -406,6 +406,89 @@ TEST(Creases, CubeEdgesAndMarkedEdges) {
   EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kCrease)], 0u);
 }
 
+// A closed cylinder of radius 1 from y = −1 to 1: `stacks` rings of `slices` quads on the
+// side, fans to a centre vertex on the caps (sharp 90° rims), outward.
+TriMesh makeCappedCylinder(int slices, int stacks) {
+  TriMesh m;
+  for (int i = 0; i <= stacks; ++i)
+    for (int j = 0; j < slices; ++j) {
+      const float a = 2.0f * std::numbers::pi_v<float> * j / slices;
+      m.positions.push_back({std::cos(a), -1.0f + 2.0f * i / stacks, std::sin(a)});
+    }
+  auto at = [&](int i, int j) { return static_cast<uint32_t>(i * slices + (j % slices)); };
+  for (int i = 0; i < stacks; ++i)
+    for (int j = 0; j < slices; ++j) {
+      m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+      m.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+    }
+  const uint32_t bottom = static_cast<uint32_t>(m.positions.size()), top = bottom + 1;
+  m.positions.push_back({0, -1, 0});
+  m.positions.push_back({0, 1, 0});
+  for (int j = 0; j < slices; ++j) {
+    m.faces.push_back({bottom, at(0, j), at(0, j + 1)});
+    m.faces.push_back({top, at(stacks, j + 1), at(stacks, j)});
+  }
+  return m;
+}
+
+// Where a crease is itself a silhouette the contour runs along it, and joins the smooth
+// contour where that meets the crease (LineParams::contours_follow_creases).
+TEST(Contours, FollowSilhouetteCreases) {
+  // A cube seen corner-on: the contour is the hexagon of its silhouette edges, one loop.
+  const TriMesh cube = makeSubdividedCube(2);
+  ShapeCache cube_shape;
+  cube_shape.compute(cube);
+  LineExtractor ex;
+  LineSet lines;
+  StrokeSet strokes;
+  ChainScratch chain;
+  ViewSpec view;
+  view.eye = {3.1f, 2.3f, 2.7f};
+  ex.extract(cube, cube_shape, view, only(LineKind::kContour), 0.1f, lines);
+  EXPECT_EQ(lines.counts[static_cast<int>(LineKind::kContour)], 12u);  // 6 edges × 2 segments
+  for (const glm::vec3& p : lines.points) {
+    const glm::vec3 a = glm::abs(p);
+    EXPECT_GE(int(a.x > 0.9999f) + int(a.y > 0.9999f) + int(a.z > 0.9999f), 2) << p.x << " " << p.y << " " << p.z;
+  }
+  chainStrokes(lines, strokes, chain);
+  ASSERT_EQ(strokes.strokeCount(), 1u);
+  EXPECT_EQ(strokes.closed[0], 1);
+  // Without it, vertex normals averaged over the cube's corners put n·v = 0 inside faces.
+  LineParams off = only(LineKind::kContour);
+  off.contours_follow_creases = false;
+  ex.extract(cube, cube_shape, view, off, 0.1f, lines);
+  size_t off_edges = 0;
+  for (const glm::vec3& p : lines.points) {
+    const glm::vec3 a = glm::abs(p);
+    off_edges += int(a.x > 0.9999f) + int(a.y > 0.9999f) + int(a.z > 0.9999f) < 2;
+  }
+  EXPECT_GT(off_edges, 0u);
+
+  // A capped cylinder seen from above: the far half of the top rim and the near half of the
+  // bottom rim are silhouette creases; the two side lines are smooth contour. One closed
+  // loop, and no contour point inside a cap.
+  const TriMesh cyl = makeCappedCylinder(48, 6);
+  ShapeCache cyl_shape;
+  cyl_shape.compute(cyl);
+  view.eye = {0.0f, 2.5f, 5.0f};
+  ex.extract(cyl, cyl_shape, view, only(LineKind::kContour), 0.1f, lines);
+  size_t on_rims = 0;
+  for (const glm::vec3& p : lines.points) {
+    EXPECT_NEAR(p.x * p.x + p.z * p.z, 1.0f, 0.01f) << p.x << " " << p.y << " " << p.z;  // never inside a cap
+    on_rims += std::abs(std::abs(p.y) - 1.0f) < 1e-6f;
+  }
+  EXPECT_GT(on_rims, 40u);  // about half of each rim's 48 vertices, twice per segment
+  chainStrokes(lines, strokes, chain);
+  ASSERT_EQ(strokes.strokeCount(), 1u);
+  EXPECT_EQ(strokes.closed[0], 1);
+  // Without it the rims' contour wanders onto the caps and the loop comes apart.
+  off.contours_follow_creases = false;
+  ex.extract(cyl, cyl_shape, view, off, 0.1f, lines);
+  size_t on_caps = 0;
+  for (const glm::vec3& p : lines.points) on_caps += p.x * p.x + p.z * p.z < 0.98f;
+  EXPECT_GT(on_caps, 0u);
+}
+
 TEST(Boundaries, GridAndCylinderLoops) {
   StrokeSet strokes;
   ChainScratch scratch;
