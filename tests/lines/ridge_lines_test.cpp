@@ -268,3 +268,82 @@ TEST(ApparentRidges, WorkerThreadsGiveTheSerialQuantities) {
 
 }  // namespace
 }  // namespace lodline
+
+namespace lodline {
+namespace {
+
+// Apparent ridges of a turning ellipsoid (Judd, Durand, Adelson 2007, §3: q1 is the normal's
+// variation per unit of *screen* distance, so a view that foreshortens a strongly curved
+// band raises it). A flat oblate ellipsoid (semi-axes 1, 1, c = 0.15) has a sharp rim: its
+// meridian curvature κ(t) = c/(sin²t + c²cos²t)^{3/2} (x = cos t, z = c sin t) peaks at 1/c²
+// there. In the meridian plane that holds the view, tilted φ from the axis, q1 = κ(t)·secθ(t),
+// which also grows without bound towards the contour just below the rim. Whether q1 has a
+// maximum on the visible side of the rim — an apparent ridge — depends on the view: up to a
+// critical tilt φc (60.8° for c = 0.15, found below) the contour's growth swamps the rim's
+// peak and there is none; beyond it there is one, and round the rim it reaches as far as
+// the rim is seen at least that obliquely: tanφ·cosψ ≥ tanφc, ψ the angle round the axis from
+// the point nearest the viewer. Turning the ellipsoid edge-on grows the ridge from nothing
+// into a widening arc. Without the view term (q1 = κ) the ridge would lie along the rim at
+// every view, already at 45°, and the test fails (checked by dropping secθ − 1).
+bool rimMaximum(double c, double phi) {  // q1(t) = κ·secθ has a local maximum on the visible side
+  const double tc = std::atan(-c * std::tan(phi)), step = 1e-5;
+  double prev = 0.0, prev_slope = 0.0;
+  for (double t = tc + step; t < 0.5; t += step) {
+    const double d = std::sin(t) * std::sin(t) + c * c * std::cos(t) * std::cos(t);
+    const double g = c * std::cos(t) * std::sin(phi) + std::sin(t) * std::cos(phi);  // ∝ n·v
+    const double q = c / (d * g);
+    if (t > tc + step) {
+      const double slope = q - prev;
+      if (prev_slope > 0.0 && slope <= 0.0) return true;
+      prev_slope = slope;
+    }
+    prev = q;
+  }
+  return false;
+}
+
+TEST(ApparentRidges, TurningAFlatEllipsoidGrowsItsRimRidge) {
+  const float c = 0.15f;
+  double lo = 0.2, hi = 1.5;  // the critical tilt φc, by bisection
+  for (int k = 0; k < 30; ++k) (rimMaximum(c, 0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  const double phi_c = hi;
+  EXPECT_NEAR(glm::degrees(phi_c), 60.8, 0.1);
+  TriMesh m = makeUvSphere(1.0f, 384, 192);  // uniform in the ellipse parameter t
+  for (auto& p : m.positions) p.z *= c;
+  ShapeCache shape;
+  shape.compute(m);
+  for (float phi_deg : {45.0f, 70.0f, 75.0f, 80.0f}) {
+    const float phi = glm::radians(phi_deg);
+    ViewSpec view;
+    view.orthographic = true;
+    view.toward_viewer = {std::sin(phi), 0.0f, std::cos(phi)};
+    ApparentRidgeQuantities q;
+    computeApparentRidgeQuantities(m.faces, shape.adjacency(), shape.fields(m), view, q);
+    LineSet s;
+    extractApparentRidges(m.positions, m.faces, shape.adjacency(), q, 10.0f, 1.0f, s);
+    // The ridge's reach round the rim: the largest |ψ| of its points on the rim band, seen
+    // (n·v > 0.2: the points at the contour itself, where apparent ridges meet it, aside).
+    double reach = 0.0;
+    size_t on_rim = 0;
+    for (size_t i = 0; i < s.points.size(); ++i) {
+      const glm::vec3 p = s.points[i];
+      if (std::abs(p.z) > 0.3f * c || s.alpha[i] < 0.5f) continue;
+      const glm::vec3 n = glm::normalize(glm::vec3(p.x, p.y, p.z / (c * c)));
+      if (glm::dot(n, view.toward_viewer) < 0.2f) continue;
+      ++on_rim;
+      reach = std::max(reach, std::abs(glm::degrees(std::atan2(double(p.y), double(p.x)))));
+    }
+    const double predicted = phi < phi_c ? 0.0 : glm::degrees(std::acos(std::tan(phi_c) / std::tan(phi)));
+    std::printf("apparent ridge of a flat ellipsoid turned %.0f deg: %zu points on the rim, reach %.1f deg "
+                "(predicted %.1f)\n", phi_deg, on_rim, reach, predicted);
+    if (phi < phi_c) {
+      EXPECT_EQ(on_rim, 0u) << "no rim ridge seen face-on";
+    } else {
+      EXPECT_GT(on_rim, 100u);
+      EXPECT_NEAR(reach, predicted, 5.0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lodline
