@@ -482,7 +482,6 @@ TEST(Contours, FollowSilhouetteCreases) {
   ASSERT_EQ(strokes.strokeCount(), 1u);
   EXPECT_EQ(strokes.closed[0], 1);
   // Without it the rims' contour wanders onto the caps and the loop comes apart.
-  off.contours_follow_creases = false;
   ex.extract(cyl, cyl_shape, view, off, 0.1f, lines);
   size_t on_caps = 0;
   for (const glm::vec3& p : lines.points) on_caps += p.x * p.x + p.z * p.z < 0.98f;
