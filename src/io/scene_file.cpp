@@ -23,6 +23,7 @@ namespace {
 constexpr size_t kMaxObjects = 256;     // objects in a scene, includes expanded
 constexpr int kMaxIncludeDepth = 16;    // nested scene includes
 constexpr size_t kMaxSceneBytes = 16u << 20;
+constexpr size_t kMaxPaintRegions = 64;  // per object
 
 std::string lower(std::string s) {
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -139,6 +140,44 @@ Result<glm::mat4> readTransform(const nlohmann::json& o, const std::string& wher
   return composeTransform(t, r, s);
 }
 
+// "paint": [{"plane": [a, b, c, d], "thickness": w}, ...] → the regions a·x + b·y + c·z ≥ d
+// (or the slab of thickness w above that plane), in the mesh's coordinates.
+Result<std::vector<PaintRegion>> readPaint(const nlohmann::json& o, const std::string& where) {
+  std::vector<PaintRegion> out;
+  if (!o.contains("paint")) return out;
+  const auto& j = o["paint"];
+  const std::string w = where + ".paint";
+  if (!j.is_array() || j.empty() || j.size() > kMaxPaintRegions)
+    return bad(w, "expected an array of 1 to " + std::to_string(kMaxPaintRegions) + " regions");
+  for (size_t i = 0; i < j.size(); ++i) {
+    const std::string wi = w + "[" + std::to_string(i) + "]";
+    if (!j[i].is_object()) return bad(wi, "expected {\"plane\": [a, b, c, d], \"thickness\": w}");
+    for (const auto& [k, v] : j[i].items())
+      if (k != "plane" && k != "thickness") return bad(wi, "unknown key " + quoted(k));
+    const auto& p = j[i].value("plane", nlohmann::json());
+    if (!p.is_array() || p.size() != 4)
+      return bad(wi + ".plane", "expected [a, b, c, d]: the points with a*x + b*y + c*z >= d");
+    PaintRegion r;
+    float c[4];
+    for (int k = 0; k < 4; ++k) {
+      auto n = readNumber(p[k], wi + ".plane");
+      if (!n) return n.error();
+      c[k] = *n;
+    }
+    r.normal = {c[0], c[1], c[2]};
+    if (!(glm::length(r.normal) > 0.0f)) return bad(wi + ".plane", "the normal (a, b, c) must not be zero");
+    r.offset = c[3];
+    if (j[i].contains("thickness")) {
+      auto t = readNumber(j[i]["thickness"], wi + ".thickness");
+      if (!t) return t.error();
+      if (!(*t > 0.0f)) return bad(wi + ".thickness", "must be > 0 (leave it out to paint the half-space)");
+      r.thickness = *t;
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
 Status readFile(const std::filesystem::path& path, std::string& text) {
   if (Status s = checkInputFile(path, "scene file"); !s) return s;
   std::error_code ec;
@@ -180,7 +219,7 @@ Status readObject(Reader& r, const nlohmann::json& o, const std::string& where, 
                   const glm::mat4& parent, float parent_factor, const nlohmann::json& parent_style) {
   if (!o.is_object()) return bad(where, "expected an object");
   static const std::set<std::string> known = {"name",   "mesh",       "scene", "gltf_node",    "translate",
-                                              "matrix", "rotate",     "quaternion", "scale", "detail_factor"};
+                                              "matrix", "rotate",     "quaternion", "scale", "detail_factor", "paint"};
   for (const auto& [k, v] : o.items())
     if (!known.count(k) && !styleKeys().count(k)) return bad(where, "unknown key " + quoted(k));
   const bool has_mesh = o.contains("mesh"), has_scene = o.contains("scene");
@@ -200,6 +239,8 @@ Status readObject(Reader& r, const nlohmann::json& o, const std::string& where, 
     if (!(*f > 0.0f)) return bad(where + ".detail_factor", "must be > 0");
     factor *= *f;
   }
+  auto paint = readPaint(o, where);
+  if (!paint) return paint.error();
   // Style: this entry's keys, then whatever an including entry gave and this one did not.
   nlohmann::json style = nlohmann::json::object();
   for (const auto& [key, option] : styleKeys()) {
@@ -226,6 +267,7 @@ Status readObject(Reader& r, const nlohmann::json& o, const std::string& where, 
   if (!std::filesystem::is_regular_file(file, ec)) return bad(where + "." + key, shownPath(file) + " is not a regular file");
   if (has_scene) {
     if (o.contains("gltf_node")) return bad(where + ".gltf_node", "only for glTF meshes");
+    if (o.contains("paint")) return bad(where + ".paint", "only for meshes (paint the objects of the included scene)");
     return includeScene(r, file, where + ".scene", transform, factor, style);
   }
 
@@ -255,6 +297,7 @@ Status readObject(Reader& r, const nlohmann::json& o, const std::string& where, 
       obj.placement = transform;
       obj.preloaded = std::make_shared<const TriMesh>(std::move(g.mesh));
       obj.detail_factor = factor;
+      obj.paint = *paint;
       obj.style = style;
       obj.source = o;
       obj.source["gltf_node"] = g.node;
@@ -269,6 +312,7 @@ Status readObject(Reader& r, const nlohmann::json& o, const std::string& where, 
     obj.transform = transform;
     obj.placement = transform;
     obj.detail_factor = factor;
+    obj.paint = *paint;
     obj.style = style;
     obj.source = o;
     obj.where = where;
@@ -467,6 +511,9 @@ Result<TriMesh> loadObjectMesh(const SceneObject& object) {
     }
     mesh = std::move(m.value());
   }
+  if (!object.paint.empty())
+    if (auto painted = paintMesh(mesh, object.paint, object.mesh.string() + " (painted by " + object.where + ")"); !painted)
+      return painted.error();
   transformMesh(mesh, object.transform);
   if (Status s = validateMesh(mesh, object.mesh.string() + " (placed by " + object.where + ")"); !s) return s.error();
   return mesh;

@@ -22,6 +22,7 @@
 
 #include "core/mesh.h"
 #include "core/result.h"
+#include "io/mesh_paint.h"
 
 namespace lodline {
 
@@ -46,6 +47,9 @@ struct SceneObject {
   /// Factor on the target area T for this object (Jeong §3.1 per-object detail); products
   /// of nested includes. Default 1; > 1 draws the object coarser.
   float detail_factor = 1.0f;
+  /// "paint": regions of the mesh (its own coordinates) that get materials of their own, so
+  /// meshes without materials get material lines (io/mesh_paint.h); applied by loadObjectMesh.
+  std::vector<PaintRegion> paint;
   /// Style keys given for this object, by render option name ("style", "lines",
   /// "line-style", "line-width", "chamfer", "chamfer-radius", "hidden-lines"), values as
   /// written; the caller resolves them like the command-line options of the same name.
@@ -95,7 +99,7 @@ bool isSceneFile(const std::filesystem::path& path);
 Result<Scene> loadScene(const std::filesystem::path& path);
 
 /// The world-space mesh of one object: read from its file (or taken from the glTF already
-/// read), its transform applied, validated (a transform that overflows is an error naming the
+/// read), painted (SceneObject::paint), its transform applied, validated (a transform that overflows is an error naming the
 /// mesh and the object).
 Result<TriMesh> loadObjectMesh(const SceneObject& object);
 

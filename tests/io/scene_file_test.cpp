@@ -20,6 +20,7 @@ class SceneFile : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_TRUE(saveOff(dir_ / "sphere.off", makeIcoSphere(1.0f, 2)).ok());
+    write("inner.json", R"({"objects": [{"mesh": "sphere.off"}]})");
     std::filesystem::create_directories(dir_ / "sub");
     ASSERT_TRUE(saveOff(dir_ / "sub" / "box.off", makeIcoSphere(0.5f, 1)).ok());
   }
@@ -126,6 +127,26 @@ TEST_F(SceneFile, MeshFilesAreScenesOfOneObject) {
   EXPECT_FALSE(isSceneFile("a.off"));
 }
 
+TEST_F(SceneFile, PaintGivesAMeshMaterialsBeforeItIsPlaced) {
+  // The plane is in the mesh's own coordinates: y >= 0.5 of the unit sphere, then moved up 10.
+  auto s = loadScene(write("scene.json", R"({"objects": [
+      {"mesh": "sphere.off", "translate": [0, 10, 0], "paint": [{"plane": [0, 1, 0, 0.5]}]},
+      {"mesh": "sphere.off"}]})"));
+  ASSERT_TRUE(s) << s.error().message;
+  ASSERT_EQ(s->objects[0].paint.size(), 1u);
+  auto painted = loadObjectMesh(s->objects[0]);
+  ASSERT_TRUE(painted) << painted.error().message;
+  ASSERT_EQ(painted->face_materials.size(), painted->faces.size());
+  for (size_t f = 0; f < painted->faces.size(); ++f) {
+    glm::vec3 c(0.0f);
+    for (uint32_t v : painted->faces[f]) c += painted->positions[v] / 3.0f;
+    EXPECT_EQ(painted->face_materials[f], c.y > 10.5f ? 1u : 0u);
+  }
+  auto plain = loadObjectMesh(s->objects[1]);
+  ASSERT_TRUE(plain);
+  EXPECT_TRUE(plain->face_materials.empty());
+}
+
 TEST_F(SceneFile, BadFilesNameTheFileAndTheKey) {
   struct Case {
     const char* text;
@@ -160,6 +181,14 @@ TEST_F(SceneFile, BadFilesNameTheFileAndTheKey) {
       // A number past double's range: nlohmann throws out_of_range, not parse_error.
       {R"({"objects": [{"mesh": "sphere.off", "scale": 1e999}]})", "invalid JSON: number overflow"},
       {"{\"objects\": [{\"mesh\": \"sphere.off\", \"sc\\u0001ale\": 1}]}", "unknown key \"sc?ale\""},
+      {R"({"objects": [{"mesh": "sphere.off", "paint": []}]})", "objects[0].paint: expected an array of 1 to 64"},
+      {R"({"objects": [{"mesh": "sphere.off", "paint": [{"plane": [0, 1, 0]}]}]})", "paint[0].plane: expected [a, b, c, d]"},
+      {R"({"objects": [{"mesh": "sphere.off", "paint": [{"plane": [0, 0, 0, 1]}]}]})", "paint[0].plane: the normal"},
+      {R"({"objects": [{"mesh": "sphere.off", "paint": [{"plane": [0, 1, 0, 0], "thickness": 0}]}]})",
+       "paint[0].thickness: must be > 0"},
+      {R"({"objects": [{"mesh": "sphere.off", "paint": [{"plane": [0, 1, 0, 0], "colour": 1}]}]})",
+       "paint[0]: unknown key \"colour\""},
+      {R"({"objects": [{"scene": "inner.json", "paint": [{"plane": [0, 1, 0, 0]}]}]})", "paint: only for meshes"},
   };
   for (const Case& c : cases) {
     const std::string msg = error(c.text);
