@@ -14,7 +14,7 @@
 namespace lodline {
 
 LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapeParams& shape_params,
-                         std::shared_ptr<WorkerPool> pool)
+                         std::shared_ptr<WorkerPool> pool, FullMesh use)
     : pool_(pool ? std::move(pool) : std::make_shared<WorkerPool>(shape_params.threads)),
       mesh_(std::move(mesh)),
       params_(params),
@@ -25,39 +25,52 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
   if (mesh_.face_materials.size() == mesh_.faces.size()) full_face_materials_ = mesh_.face_materials;
   else mesh_.face_materials.clear();
   Stopwatch sw;
-  shape_.compute(mesh_);
-  feature_size_ = computeFeatureSize(shape_.k1(), shape_.k2(), bounds_.radius);
-  // Per vertex of the full-detail mesh, the smallest n1·n2 over its edges with two faces
-  // (−2 for marked and non-manifold edges, which are always creases): the vertex lies on a
-  // crease of angle a exactly where this is below cos(a), the extractor's own test.
-  {
-    const MeshAdjacency& adj = shape_.adjacency();
-    const auto face_normals = shape_.faceNormals();
-    full_min_dot_.assign(mesh_.positions.size(), 2.0f);
-    auto lower = [&](uint32_t e, float d) {
-      for (uint32_t v : adj.edges[e]) full_min_dot_[v] = std::min(full_min_dot_[v], d);
-    };
-    std::vector<uint32_t> marked_edge_ids;  // marked and non-manifold edges
-    for (const EdgeKey& k : mesh_.marked_edges)
-      if (const uint32_t e = adj.findEdge(k[0], k[1]); e != kNoIndex) marked_edge_ids.push_back(e);
-    for (uint32_t e = 0; e < adj.edges.size(); ++e) {
-      const uint32_t count = adj.edge_face_count[e];
-      if (count > 2) {
-        marked_edge_ids.push_back(e);
-      } else if (count == 2) {
-        const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
-        const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
-        if (glm::dot(n1, n1) == 0.0f || glm::dot(n2, n2) == 0.0f) continue;
-        lower(e, glm::dot(n1, n2));
+  if (use == FullMesh::kDrawn) {
+    shape_.compute(mesh_);
+    feature_size_ = computeFeatureSize(shape_.k1(), shape_.k2(), bounds_.radius);
+    computeFullCreaseDots(shape_.adjacency(), shape_.faceNormals());
+  } else {
+    MeshAdjacency adj;
+    buildAdjacency(mesh_, adj);
+    feature_size_ = sampledFeatureSize(mesh_, adj, bounds_.radius, shape_params);
+    std::vector<glm::vec3> face_normals(mesh_.faces.size(), glm::vec3(0.0f));
+    for (size_t f = 0; f < mesh_.faces.size(); ++f)
+      if (adj.face_valid[f]) {
+        const auto& c = mesh_.faces[f];
+        face_normals[f] = faceNormalOf(mesh_.positions[c[0]], mesh_.positions[c[1]], mesh_.positions[c[2]]).n;
       }
-    }
-    full_min_dot_marked_ = full_min_dot_;
-    for (uint32_t e : marked_edge_ids) {
-      for (uint32_t v : adj.edges[e]) full_min_dot_marked_[v] = -2.0f;
-    }
-    updateFullCreaseVertices();
+    computeFullCreaseDots(adj, face_normals);
   }
+  updateFullCreaseVertices();
   timings_.shape = sw.lap();
+}
+
+// Per vertex of the full-detail mesh, the smallest n1·n2 over its edges with two faces (−2
+// for marked and non-manifold edges, which are always creases): the vertex lies on a crease
+// of angle a exactly where this is below cos(a), the extractor's own test.
+void LineDrawing::computeFullCreaseDots(const MeshAdjacency& adj, std::span<const glm::vec3> face_normals) {
+  full_min_dot_.assign(mesh_.positions.size(), 2.0f);
+  auto lower = [&](uint32_t e, float d) {
+    for (uint32_t v : adj.edges[e]) full_min_dot_[v] = std::min(full_min_dot_[v], d);
+  };
+  std::vector<uint32_t> marked_edge_ids;  // marked and non-manifold edges
+  for (const EdgeKey& k : mesh_.marked_edges)
+    if (const uint32_t e = adj.findEdge(k[0], k[1]); e != kNoIndex) marked_edge_ids.push_back(e);
+  for (uint32_t e = 0; e < adj.edges.size(); ++e) {
+    const uint32_t count = adj.edge_face_count[e];
+    if (count > 2) {
+      marked_edge_ids.push_back(e);
+    } else if (count == 2) {
+      const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
+      const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
+      if (glm::dot(n1, n1) == 0.0f || glm::dot(n2, n2) == 0.0f) continue;
+      lower(e, glm::dot(n1, n2));
+    }
+  }
+  full_min_dot_marked_ = full_min_dot_;
+  for (uint32_t e : marked_edge_ids) {
+    for (uint32_t v : adj.edges[e]) full_min_dot_marked_[v] = -2.0f;
+  }
 }
 
 void LineDrawing::updateMesh(std::span<const glm::vec3> positions,

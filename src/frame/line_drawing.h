@@ -26,6 +26,15 @@ struct CpuTimings {
   double silhouette = 0.0;  ///< the mesh's own silhouette, extracted and chained
 };
 
+/// What a LineDrawing is given its full-detail mesh for.
+enum class FullMesh {
+  kDrawn,     ///< frames draw it: its whole shape (normals, curvature, derivatives) is computed
+  /// A level of detail replaces it (updateMesh) before every frame: only what stays the full
+  /// model's is computed — its feature size (curvature at the sampled vertices only,
+  /// sampledFeatureSize) and its crease vertices — not a shape cache of the whole mesh.
+  kReplaced,
+};
+
 class LineDrawing {
  public:
   /// Takes the full-detail mesh and computes its shape quantities (normals, curvature,
@@ -33,8 +42,9 @@ class LineDrawing {
   /// when level of detail later replaces the mesh). `pool` runs the data-parallel loops; null:
   /// a pool of ShapeParams::threads threads of its own. Drawings of one scene share one pool
   /// (they run one after the other), so a scene wakes one set of workers, not one per object.
+  /// With FullMesh::kReplaced, updateMesh() must come before the first update().
   explicit LineDrawing(TriMesh mesh, const LineParams& params = {}, const ShapeParams& shape_params = {},
-                       std::shared_ptr<WorkerPool> pool = nullptr);
+                       std::shared_ptr<WorkerPool> pool = nullptr, FullMesh use = FullMesh::kDrawn);
 
   /// Replaces the mesh by an adapted one (level of detail): `positions` per vertex slot,
   /// `faces` indexing them; `changed` lists the vertices whose position or incident faces
@@ -101,6 +111,8 @@ class LineDrawing {
   ShapeCache shape_;
   float feature_size_ = 1.0f;
   void updateFullCreaseVertices();
+  // full_min_dot_ and full_min_dot_marked_ from the full mesh's adjacency and face normals.
+  void computeFullCreaseDots(const MeshAdjacency& adj, std::span<const glm::vec3> face_normals);
   std::vector<uint8_t> full_crease_vertices_, crease_mask_;
   // Smallest n1·n2 over each full-detail vertex's edges, without / with marked and
   // non-manifold edges counted as creases (−2): see updateFullCreaseVertices().

@@ -26,7 +26,7 @@ ShapeParams adaptiveShapeParams() {
 
 LodDrawing::LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, const LineParams& params,
                        std::shared_ptr<WorkerPool> pool)
-    : drawing_(std::move(full), params, adaptiveShapeParams(), std::move(pool)) {
+    : drawing_(std::move(full), params, adaptiveShapeParams(), std::move(pool), FullMesh::kReplaced) {
   PmLevel level{std::move(pm), nullptr};
   level.mesh = std::make_unique<AdaptiveMesh>(*level.pm);
   level.mesh->setWorkerPool(&drawing_.workers());
@@ -35,7 +35,7 @@ LodDrawing::LodDrawing(TriMesh full, std::shared_ptr<const ProgressiveMesh> pm, 
 
 LodDrawing::LodDrawing(TriMesh full, const ClusterParams& cluster, const LineParams& params,
                        std::shared_ptr<WorkerPool> pool)
-    : drawing_(full, params, adaptiveShapeParams(), std::move(pool)) {
+    : drawing_(full, params, adaptiveShapeParams(), std::move(pool), FullMesh::kReplaced) {
   ClusterLevel level{std::make_unique<VertexClustering>(std::move(full)), cluster, false};
   // Clustering folds the surface locally (non-manifold edges, small holes where collapsed
   // faces were): draw boundaries only for models that have some, and no non-manifold edges

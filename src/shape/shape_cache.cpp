@@ -3,6 +3,7 @@
 #include "shape/shape_cache.h"
 
 #include <algorithm>
+#include <unordered_map>
 #include <cmath>
 #include <cstring>
 
@@ -197,6 +198,50 @@ float computeFeatureSize(std::span<const float> k1, std::span<const float> k2,
 // Per-face and per-vertex kernels. Each writes only its own slot and reads inputs that the
 // previous phase finished, in adjacency order, so any subset recomputes bit-identically.
 
+FaceNormal faceNormalOf(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) {
+  const glm::vec3 cr = glm::cross(p2 - p1, p0 - p2);
+  const float len = glm::length(cr);
+  if (!(len > 0.0f) || !std::isfinite(len)) return {};
+  const glm::vec3 n = cr / len;
+  if (!finite3(n)) return {};
+  return {n, len};
+}
+
+float sampledFeatureSize(const TriMesh& mesh, const MeshAdjacency& adj, float bounding_radius,
+                         const ShapeParams& shape_params, const FeatureSizeParams& params) {
+  const size_t nv = mesh.positions.size();
+  if (nv == 0 || adj.vertex_count != nv) return computeFeatureSize({}, {}, bounding_radius, params);
+  // computeFeatureSize's samples, and the faces within two rings of them.
+  const size_t nsamp = std::min<size_t>(nv, std::max<uint32_t>(params.max_samples, 1));
+  std::vector<uint32_t> samples(nsamp);
+  for (size_t i = 0; i < nsamp; ++i) samples[i] = static_cast<uint32_t>(i * nv / nsamp);
+  std::vector<uint32_t> faces;
+  for (uint32_t s : samples)
+    for (uint32_t f : adj.facesOf(s))
+      for (uint32_t u : mesh.faces[f])
+        for (uint32_t g : adj.facesOf(u)) faces.push_back(g);
+  std::sort(faces.begin(), faces.end());  // increasing order keeps every ring's order
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  TriMesh sub;
+  std::unordered_map<uint32_t, uint32_t> index;
+  auto local = [&](uint32_t v) {
+    auto [it, added] = index.try_emplace(v, static_cast<uint32_t>(sub.positions.size()));
+    if (added) sub.positions.push_back(mesh.positions[v]);
+    return it->second;
+  };
+  for (uint32_t s : samples) local(s);  // samples first: sub-vertex i is sample i
+  sub.faces.reserve(faces.size());
+  for (uint32_t f : faces) sub.faces.push_back({local(mesh.faces[f][0]), local(mesh.faces[f][1]), local(mesh.faces[f][2])});
+  ShapeParams p = shape_params;
+  p.derivatives = false;
+  p.threads = 1;
+  ShapeCache cache(p);
+  cache.compute(sub);
+  // The samples are distinct (i·nv/nsamp grows by at least 1 for nsamp ≤ nv): sub-vertices
+  // 0 .. nsamp − 1, in computeFeatureSize's order.
+  return computeFeatureSize(cache.k1().subspan(0, nsamp), cache.k2().subspan(0, nsamp), bounding_radius, params);
+}
+
 void ShapeCache::faceGeometry(const TriMesh& mesh, uint32_t f) {
   FaceRecord& rec = faces_[f];
   rec.ok = 0;
@@ -211,10 +256,10 @@ void ShapeCache::faceGeometry(const TriMesh& mesh, uint32_t f) {
   const glm::vec3& p1 = mesh.positions[t[1]];
   const glm::vec3& p2 = mesh.positions[t[2]];
   const glm::vec3 e[3] = {p2 - p1, p0 - p2, p1 - p0};
-  const glm::vec3 cr = glm::cross(e[0], e[1]);
-  const float len = glm::length(cr);
-  if (!(len > 0.0f) || !std::isfinite(len)) return;
-  const glm::vec3 n = cr / len;
+  const FaceNormal fn = faceNormalOf(p0, p1, p2);
+  const float len = fn.double_area;
+  if (!(len > 0.0f)) return;
+  const glm::vec3 n = fn.n;
   const glm::vec3 tt = glm::normalize(e[0]);
   const glm::vec3 b = glm::cross(n, tt);
   if (!finite3(n) || !finite3(tt)) return;

@@ -115,6 +115,23 @@ struct FeatureSizeParams {
 float computeFeatureSize(std::span<const float> k1, std::span<const float> k2,
                          float bounding_radius, const FeatureSizeParams& params = {});
 
+/// The same feature size for a mesh too large to be worth a whole ShapeCache (a full-detail
+/// mesh that level of detail replaces before it is drawn): the curvature is computed only at
+/// the vertices computeFeatureSize samples, on the submesh of their two-ring faces (which
+/// holds every face their curvature reads, in the same order), so the result equals
+/// computeFeatureSize on a ShapeCache of the whole mesh with `shape_params`. `adj` is mesh's
+/// adjacency.
+float sampledFeatureSize(const TriMesh& mesh, const MeshAdjacency& adj, float bounding_radius,
+                         const ShapeParams& shape_params, const FeatureSizeParams& params = {});
+
+/// The unit normal ShapeCache gives a face (corners p0, p1, p2, counter-clockwise) and twice
+/// its area; both 0 for a degenerate face or one whose normal is not finite.
+struct FaceNormal {
+  glm::vec3 n{0.0f};
+  float double_area = 0.0f;
+};
+FaceNormal faceNormalOf(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2);
+
 /// Stateful per-vertex shape quantities for a mesh whose positions change every frame
 /// (docs/design.md §6, items 4–5). Allocation-free after warm-up for position-only updates.
 ///

@@ -537,6 +537,46 @@ TEST(FeatureSize, SphereAndPlane) {
   EXPECT_EQ(computeFeatureSize({}, {}, 0.0f), 1.0f);
 }
 
+// The feature size from the sampled vertices' two rings equals the whole cache's, bit for
+// bit, for both normal weightings, on closed, open, noisy and small meshes.
+TEST(FeatureSize, SampledEqualsWholeMesh) {
+  TriMesh noisy = makeIcoSphere(1.0f, 4);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> jitter(-0.01f, 0.01f);
+  for (auto& p : noisy.positions) p += glm::vec3(jitter(rng), jitter(rng), jitter(rng));
+  const std::pair<const char*, TriMesh> meshes[] = {
+      {"knot", makeTorusKnot(3, 2, 1.0f, 0.2f, 300, 24, 0.2f)},
+      {"noisy sphere", noisy},
+      {"terrain (open)", makeTerrain(2.0f, 60)},
+      {"cylinder (open)", makeCylinder(1.0f, 2.0f, 24, 8)},
+      {"tetrahedron-sized", makeIcoSphere(1.0f, 0)},
+  };
+  for (const auto& [name, m] : meshes)
+    for (NormalWeighting w : {NormalWeighting::kMax, NormalWeighting::kArea}) {
+      ShapeParams p;
+      p.normal_weighting = w;
+      ShapeCache whole(p);
+      whole.compute(m);
+      const float radius = computeBounds(m.positions).radius;
+      MeshAdjacency adj;
+      buildAdjacency(m, adj);
+      EXPECT_EQ(sampledFeatureSize(m, adj, radius, p), computeFeatureSize(whole.k1(), whole.k2(), radius))
+          << name << (w == NormalWeighting::kMax ? ", Max weights" : ", area weights");
+    }
+  // More samples than vertices, and fewer: the same rule as computeFeatureSize.
+  const TriMesh k = makeTorusKnot(3, 2, 1.0f, 0.2f, 120, 12, 0.1f);
+  ShapeCache whole;
+  whole.compute(k);
+  MeshAdjacency adj;
+  buildAdjacency(k, adj);
+  for (uint32_t n : {1u, 37u, 100000u}) {
+    FeatureSizeParams fp;
+    fp.max_samples = n;
+    EXPECT_EQ(sampledFeatureSize(k, adj, 2.0f, ShapeParams{}, fp), computeFeatureSize(whole.k1(), whole.k2(), 2.0f, fp))
+        << n << " samples";
+  }
+}
+
 // Orientation of the generators the accuracy tests rely on: all counter-clockwise seen
 // from outside (makeTorus and makeUvSphere were inside-out / mixed before commit 2ac09b1).
 TEST(Generators, Orientation) {
