@@ -193,7 +193,9 @@ TEST(ApparentRidges, ViewDependentCurvatureOfASphere) {
     EXPECT_NEAR(q.q1[v], 0.5f / c, 0.03f * 0.5f / c);
     // ŵ: the view direction's part in the tangent plane (undefined at the pole).
     const glm::vec3 n = m.positions[v] / 2.0f;
-    if (c < 0.95f) EXPECT_GT(std::abs(glm::dot(q.t1[v], glm::normalize(glm::vec3(0, 0, 1) - c * n))), 0.95f);
+    if (c < 0.95f) {
+      EXPECT_GT(std::abs(glm::dot(q.t1[v], glm::normalize(glm::vec3(0, 0, 1) - c * n))), 0.95f);
+    }
   }
 }
 
