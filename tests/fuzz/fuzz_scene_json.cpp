@@ -1,5 +1,5 @@
 // Fuzz target: scene files (`lodline render SCENE.json`, docs/scenes.md) through loadScene and,
-// when accepted, every object's mesh loaded and transformed as the drawing commands do. A
+// when accepted, every object's mesh loaded, painted and transformed as the drawing commands do. A
 // small mesh "m.off" lies next to the input, so scenes that name it get past the reader.
 #include <cmath>
 #include <fstream>
@@ -28,6 +28,9 @@ LODLINE_FUZZ_TARGET(scene_json) {
       fuzz::expectCleanError(m.error(), obj.mesh);
       continue;
     }
+    if (!m->face_materials.empty() && m->face_materials.size() != m->faces.size())
+      fuzz::fail("painted mesh with " + std::to_string(m->face_materials.size()) + " materials for " +
+                 std::to_string(m->faces.size()) + " faces");
     for (const glm::vec3& p : m->positions)
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) fuzz::fail("a transformed vertex is not finite");
   }

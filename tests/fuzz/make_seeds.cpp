@@ -253,6 +253,9 @@ int main(int argc, char** argv) {
       R"({"objects": [{"mesh": "m.off", "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0.5,0,0,1]}],)"
       R"( "camera": {"view": [20, 10, 3]}})");
   put("scene_json", "include.json", R"({"objects": [{"scene": "one.json", "translate": [0, 1, 0]}]})");
+  put("scene_json", "paint.json",
+      R"({"objects": [{"mesh": "m.off", "paint": [{"plane": [0, 1, 0, 0.3]}, {"plane": [1, 1, 0, 0.1], "thickness": 0.2}],)"
+      R"( "lines": "contour,material"}]})");
 
   // Stroke style files (docs/strokes.md): the fuzz target puts a brush "b.png" beside each input.
   put("stroke_style", "all.json", R"({"all": {"cap": "butt", "taper_in": 5, "taper_out": 8, "taper_min": 0.2}})");
