@@ -24,7 +24,7 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config git
   libopenmesh-dev libeigen3-dev libglm-dev libcgal-dev libcgal-demo
   libglfw3-dev libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libmeshoptimizer-dev
   libcli11-dev nlohmann-json3-dev libstb-dev libpng-dev
   glslang-tools ffmpeg xvfb xauth librsvg2-bin fonts-dejavu-core
   libimgui-dev libtinygltf-dev xdotool

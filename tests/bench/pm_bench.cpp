@@ -1,8 +1,19 @@
 // Progressive mesh build and cache load times (Google Benchmark).
 //   pm_bench --benchmark_filter=Build   build time; s_per_Mtri is seconds per million faces
 //   pm_bench --benchmark_filter=Load    cache file load time
+//   pm_bench --benchmark_filter='Build|Meshopt'   the build beside meshopt_simplify to 1% of the
+//                                      faces on the same meshes, in one run (when meshoptimizer
+//                                      is installed: Debian libmeshoptimizer-dev)
 #include <benchmark/benchmark.h>
 
+#ifdef LODLINE_HAVE_MESHOPT
+#include <meshoptimizer.h>
+#endif
+
+#include <algorithm>
+#include <vector>
+
+#include "io/generate.h"
 #include "pm/pm_file.h"
 #include "pm/pm_test_meshes.h"
 #include "pm/progressive_mesh.h"
@@ -28,6 +39,13 @@ const TriMesh& icoNoise() {
     test::perturbRadially(m, 0.002f);
     return m;
   }();
+  return mesh;
+}
+
+/// The 1.1M-face torus knot of `lodline generate knot --resolution 2900` (detail_frame_bench's
+/// knot1m).
+const TriMesh& knot1m() {
+  static const TriMesh mesh = makeTorusKnot(2, 3, 1.0f, 0.16f, 2900, 193, 0.18f);
   return mesh;
 }
 
@@ -77,7 +95,34 @@ void BM_PmLoad(benchmark::State& state, const TriMesh& (*get)()) {
   setFaceCounters(state, m);
 }
 
+#ifdef LODLINE_HAVE_MESHOPT
+// The peer: meshoptimizer's edge-collapse simplifier to 1% of the faces (target error 1, so
+// the face count decides), on the same flat arrays. It builds one simplified mesh, not a
+// progressive mesh with its hierarchy, so it is the floor the build is compared against.
+void BM_MeshoptSimplify(benchmark::State& state, const TriMesh& (*get)()) {
+  const TriMesh& m = get();
+  if (m.faces.empty()) {
+    state.SkipWithError("mesh not found (run scripts/setup.sh)");
+    return;
+  }
+  const size_t index_count = m.faces.size() * 3;
+  const size_t target = std::max<size_t>(3, index_count / 100 / 3 * 3);
+  std::vector<unsigned int> out(index_count);
+  size_t kept = 0;
+  for (auto _ : state) {
+    kept = meshopt_simplify(out.data(), m.faces.front().data(), index_count, &m.positions.front().x,
+                            m.positions.size(), sizeof(glm::vec3), target, 1.0f, 0, nullptr);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["faces_out"] = static_cast<double>(kept / 3);
+  setFaceCounters(state, m);
+}
+BENCHMARK_CAPTURE(BM_MeshoptSimplify, armadillo, &armadillo)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_MeshoptSimplify, knot1m, &knot1m)->Unit(benchmark::kSecond)->Iterations(1);
+#endif
+
 BENCHMARK_CAPTURE(BM_PmBuild, armadillo, &armadillo)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_PmBuild, knot1m, &knot1m)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_PmBuild, ico_noise_1M, &icoNoise)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_PmLoad, armadillo, &armadillo)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_PmLoad, ico_noise_1M, &icoNoise)->Unit(benchmark::kMillisecond)->Iterations(5);
