@@ -99,8 +99,8 @@ bool isSceneFile(const std::filesystem::path& path);
 Result<Scene> loadScene(const std::filesystem::path& path);
 
 /// The world-space mesh of one object: read from its file (or taken from the glTF already
-/// read), painted (SceneObject::paint), its transform applied, validated (a transform that overflows is an error naming the
-/// mesh and the object).
+/// read), painted (SceneObject::paint), its transform applied, validated (a transform that
+/// overflows is an error naming the mesh and the object).
 Result<TriMesh> loadObjectMesh(const SceneObject& object);
 
 /// Reads a scene from JSON text; `file` names it in errors and resolves relative paths.

@@ -3,9 +3,9 @@
 #include "shape/shape_cache.h"
 
 #include <algorithm>
-#include <unordered_map>
 #include <cmath>
 #include <cstring>
+#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
@@ -171,16 +171,22 @@ void computeCornerAreas(const TriMesh& mesh, std::vector<std::array<float, 3>>& 
   }
 }
 
+// The vertices computeFeatureSize samples: `featureSampleCount` of them, evenly strided.
+static size_t featureSampleCount(size_t nv, const FeatureSizeParams& params) {
+  return std::min<size_t>(nv, std::max<uint32_t>(params.max_samples, 1));
+}
+static size_t featureSample(size_t i, size_t nv, size_t nsamp) { return i * nv / nsamp; }
+
 float computeFeatureSize(std::span<const float> k1, std::span<const float> k2,
                          float bounding_radius, const FeatureSizeParams& params) {
   const size_t nv = std::min(k1.size(), k2.size());
   const float cap = params.max_fraction_of_radius * bounding_radius;
   if (nv == 0 || !(cap > 0.0f)) return cap > 0.0f ? cap : 1.0f;
-  const size_t nsamp = std::min<size_t>(nv, std::max<uint32_t>(params.max_samples, 1));
+  const size_t nsamp = featureSampleCount(nv, params);
   std::vector<float> samples;
   samples.reserve(2 * nsamp);
   for (size_t i = 0; i < nsamp; ++i) {
-    const size_t v = i * nv / nsamp;
+    const size_t v = featureSample(i, nv, nsamp);
     if (std::isfinite(k1[v])) samples.push_back(std::abs(k1[v]));
     if (std::isfinite(k2[v])) samples.push_back(std::abs(k2[v]));
   }
@@ -212,9 +218,9 @@ float sampledFeatureSize(const TriMesh& mesh, const MeshAdjacency& adj, float bo
   const size_t nv = mesh.positions.size();
   if (nv == 0 || adj.vertex_count != nv) return computeFeatureSize({}, {}, bounding_radius, params);
   // computeFeatureSize's samples, and the faces within two rings of them.
-  const size_t nsamp = std::min<size_t>(nv, std::max<uint32_t>(params.max_samples, 1));
+  const size_t nsamp = featureSampleCount(nv, params);
   std::vector<uint32_t> samples(nsamp);
-  for (size_t i = 0; i < nsamp; ++i) samples[i] = static_cast<uint32_t>(i * nv / nsamp);
+  for (size_t i = 0; i < nsamp; ++i) samples[i] = static_cast<uint32_t>(featureSample(i, nv, nsamp));
   std::vector<uint32_t> faces;
   for (uint32_t s : samples)
     for (uint32_t f : adj.facesOf(s))
