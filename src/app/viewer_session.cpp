@@ -126,7 +126,7 @@ Status ViewerSession::frame(int width, int height, float dt) {
   if (presenter_->frame().width != width || presenter_->frame().height != height) dirty_ = true;
   bool mesh_all = false;
   if (first_) {
-    auto steps = scene.converge(cam, width, height, detail.params, 1.0f / 30.0f, detail.max_adapt_frames);
+    auto steps = scene.converge(cam, width, height, detail.params, SceneDrawing::kConvergeStepSeconds, detail.max_adapt_frames);
     if (!steps) return steps.error();
     first_ = false;
     mesh_all = true;

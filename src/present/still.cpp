@@ -41,7 +41,7 @@ Result<StillFrame> drawStill(LoadedScene& loaded, ScenePresenter& p) {
   if (!camera) return camera.error();
   still.camera = *camera;
   // A still image shows the converged detail.
-  auto steps = scene.converge(*camera, frame.width, frame.height, loaded.detail.params, 1.0f / 30.0f,
+  auto steps = scene.converge(*camera, frame.width, frame.height, loaded.detail.params, SceneDrawing::kConvergeStepSeconds,
                               loaded.detail.max_adapt_frames);
   if (!steps) return steps.error();
   still.adapt_steps = *steps;

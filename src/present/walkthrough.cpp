@@ -67,9 +67,10 @@ Result<std::vector<WalkthroughResult>> runWalkthrough(const SceneInput& input, c
     const DetailParams& detail = input.detail.params;
     const double dt = path.duration() / (rq.frames - 1);
     // Warm-up (not timed): the progressive mesh converges at the first camera, as a viewer
-    // would before the walk starts; every mode uploads its first mesh.
+    // would before the walk starts (with render's step, so the first frame is its still); every
+    // mode uploads its first mesh.
     const Camera first = path.at(path.keys().front().time, scene->bounds());
-    if (auto st = scene->converge(first, frame.width, frame.height, detail, static_cast<float>(dt),
+    if (auto st = scene->converge(first, frame.width, frame.height, detail, SceneDrawing::kConvergeStepSeconds,
                                   input.detail.max_adapt_frames);
         !st)
       return st.error();

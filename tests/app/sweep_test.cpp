@@ -380,11 +380,17 @@ TEST_F(Sweep, HeldOutMeshFourTargetsByThreeDistances) {
   const auto rows = readCsv(out / "results.csv");
   ASSERT_EQ(rows.size(), 12u);
   for (const auto& row : rows) EXPECT_EQ(row.at("status"), "ok") << row.at("run");
-  // Active faces fall as T grows, at every distance.
+  // Active faces fall as T grows, at every distance, down to the base mesh (the fewest any
+  // run draws: at 96x64 and 10 radii the elk is a few pixels), which only the farthest reaches.
+  auto faces = [&](int t, int d) { return std::stoi(rows[t * 3 + d].at("active_faces")); };
+  int base = faces(0, 0);
+  for (int i = 0; i < 12; ++i) base = std::min(base, faces(i / 3, i % 3));
   for (int d = 0; d < 3; ++d)
-    for (int t = 1; t < 4; ++t)
-      EXPECT_LT(std::stoi(rows[t * 3 + d].at("active_faces")), std::stoi(rows[(t - 1) * 3 + d].at("active_faces")))
-          << rows[t * 3 + d].at("run");
+    for (int t = 1; t < 4; ++t) {
+      if (faces(t - 1, d) == base) EXPECT_EQ(faces(t, d), base) << rows[t * 3 + d].at("run");
+      else EXPECT_LT(faces(t, d), faces(t - 1, d)) << rows[t * 3 + d].at("run");
+    }
+  for (int t = 0; t < 4; ++t) EXPECT_GT(faces(t, 1), base) << rows[t * 3 + 1].at("run");
   auto sheet = readPng(out / "sheet.png");
   ASSERT_TRUE(sheet.ok());
   EXPECT_GT(sheet->width, 3 * 96);
