@@ -54,13 +54,103 @@ inline double evalSum(const Quadric& q1, const Quadric& q2, const glm::vec3& p) 
   return q1.eval(p.x, p.y, p.z) + q2.eval(p.x, p.y, p.z);
 }
 
-struct HeapEntry {
-  float cost;
-  uint32_t u;
-  uint32_t version;
-};
-struct HeapGreater {
-  bool operator()(const HeapEntry& a, const HeapEntry& b) const { return a.cost > b.cost; }
+/// Indexed 4-ary min-heap of vertices keyed by their collapse cost: at most one entry per
+/// vertex, re-keyed in place when its best collapse changes, so no stale entries are pushed
+/// and popped (a lazy heap popped about three stale entries per collapse). Keys sit apart from
+/// ids, so a sift compares four neighbouring floats.
+class CostHeap {
+ public:
+  void reset(uint32_t vertices) {
+    pos_.assign(vertices, kNone);
+    key_.clear();
+    id_.clear();
+  }
+  bool empty() const { return id_.empty(); }
+  uint32_t top() const { return id_[0]; }
+  /// Inserts v or changes its key.
+  void set(uint32_t v, float key) {
+    uint32_t i = pos_[v];
+    if (i == kNone) {
+      i = static_cast<uint32_t>(id_.size());
+      id_.push_back(v);
+      key_.push_back(key);
+      pos_[v] = i;
+      up(i);
+      return;
+    }
+    const float old = key_[i];
+    key_[i] = key;
+    if (key < old) up(i);
+    else down(i);
+  }
+  void erase(uint32_t v) {
+    const uint32_t i = pos_[v];
+    if (i == kNone) return;
+    pos_[v] = kNone;
+    const uint32_t last = static_cast<uint32_t>(id_.size()) - 1;
+    if (i != last) {
+      const float old = key_[i];
+      id_[i] = id_[last];
+      key_[i] = key_[last];
+      pos_[id_[i]] = i;
+      id_.pop_back();
+      key_.pop_back();
+      if (key_[i] < old) up(i);
+      else down(i);
+      return;
+    }
+    id_.pop_back();
+    key_.pop_back();
+  }
+  /// Appends without ordering; heapify() afterwards (one O(n) construction).
+  void append(uint32_t v, float key) {
+    pos_[v] = static_cast<uint32_t>(id_.size());
+    id_.push_back(v);
+    key_.push_back(key);
+  }
+  void heapify() {
+    for (size_t i = id_.size() / 4 + 1; i-- > 0;) down(static_cast<uint32_t>(i));
+  }
+
+ private:
+  void place(uint32_t i, uint32_t v, float key) {
+    id_[i] = v;
+    key_[i] = key;
+    pos_[v] = i;
+  }
+  void up(uint32_t i) {
+    const uint32_t v = id_[i];
+    const float key = key_[i];
+    while (i > 0) {
+      const uint32_t parent = (i - 1) / 4;
+      if (!(key < key_[parent])) break;
+      place(i, id_[parent], key_[parent]);
+      i = parent;
+    }
+    place(i, v, key);
+  }
+  void down(uint32_t i) {
+    const uint32_t n = static_cast<uint32_t>(id_.size());
+    if (i >= n) return;
+    const uint32_t v = id_[i];
+    const float key = key_[i];
+    for (;;) {
+      const uint32_t first = 4 * i + 1;
+      if (first >= n) break;
+      const uint32_t end = std::min(first + 4, n);
+      uint32_t best = first;
+      for (uint32_t c = first + 1; c < end; ++c)
+        if (key_[c] < key_[best]) best = c;
+      if (!(key_[best] < key)) break;
+      place(i, id_[best], key_[best]);
+      i = best;
+    }
+    place(i, v, key);
+  }
+
+  std::vector<uint32_t> pos_;  // per vertex: its index in the heap, or kNone
+  std::vector<float> key_;
+  std::vector<uint32_t> id_;
 };
 
 inline float faceQuality(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
@@ -85,10 +175,10 @@ class Builder {
 
  private:
   bool collapsible(uint32_t v) const {
-    return (flags_[v] & (kPmBoundary | kPmFrozen)) == 0 && alive_v_[v];
+    return (v_[v].flags & (kPmBoundary | kPmFrozen)) == 0 && v_[v].alive;
   }
   uint32_t cornerOf(uint32_t f, uint32_t v) const {
-    const auto& c = fv_[f];
+    const auto& c = f_[f].v;
     return c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : 3;
   }
   /// Counter-clockwise ring of an interior vertex into `out` (false if it is open or too
@@ -96,10 +186,15 @@ class Builder {
   bool ring(uint32_t v, std::vector<RingFace>& out) const;
   void buildAdjacency();
   void computeQuadrics();
-  /// Is the half-edge collapse u→t valid? `ring_u` is u's ring.
+  /// Is the half-edge collapse u→t valid? `ring_u` is u's ring; leaves t's ring in ring_b_.
   bool valid(uint32_t u, uint32_t t, const std::vector<RingFace>& ring_u);
   /// Recomputes u's best target; with `validate` only a valid one is pushed.
   void update(uint32_t u, bool validate);
+  /// The same, with u's ring already in `ring_u` (ring_a_ or ring_c_).
+  void updateWithRing(uint32_t u, bool validate, const std::vector<RingFace>& ring_u);
+  /// Every vertex's first best target, from one pass over the faces (each interior directed
+  /// edge lies in one face), then one heap construction.
+  void initialTargets();
   /// After u collapsed into t, neighbour w of t: only w's candidate t changed (and u is gone),
   /// so a full update is needed only when w's best was u or t; otherwise w→t is compared with
   /// w's current best. The same choices as a full update, for a fraction of its cost.
@@ -111,21 +206,33 @@ class Builder {
   const PmProgress& progress_;
   uint32_t n_ = 0, nf_ = 0;
 
-  std::vector<std::array<uint32_t, 3>> fv_;  // corners (vertex indices)
-  std::vector<std::array<uint32_t, 3>> fn_;  // neighbours across (c[i], c[i+1])
+  /// Corners and the neighbours across (c[i], c[i+1]) side by side: a ring walk reads both
+  /// from one cache line.
+  struct Face {
+    std::array<uint32_t, 3> v;
+    std::array<uint32_t, 3> n;
+    glm::vec3 normal0;  // unit input face normal (zero if degenerate)
+  };
+  std::vector<Face> f_;
   std::vector<uint8_t> alive_f_;
-  std::vector<uint32_t> vface_;  // one alive incident face per vertex
-  std::vector<uint8_t> flags_;
-  std::vector<uint8_t> alive_v_;
-  std::vector<uint32_t> cur_node_;
-  std::vector<Quadric> quad_;
-  std::vector<glm::vec3> fnormal0_;  // unit input face normals (zero if degenerate)
-  std::vector<uint32_t> version_;
-  std::vector<uint32_t> target_;
-  std::vector<float> cost_;  // cost of the collapse to target_
-  std::vector<uint32_t> stamp_;
+  /// Everything the collapse loop reads or writes of a vertex, in one record of two cache
+  /// lines: the loop visits vertices in cost order, all over the mesh, and with one array per
+  /// field each vertex it touched cost a cache miss per field (memory latency was most of a
+  /// million-face build).
+  struct alignas(64) Vert {
+    Quadric q;
+    glm::vec3 p;                // position (half-edge collapses keep the survivor's)
+    uint32_t target = kNone;    // best collapse target, kNone: none (then not in the heap)
+    float cost = 0.0f;          // its cost
+    uint32_t vface = kNone;     // one alive incident face
+    uint32_t stamp = 0;         // link-condition marks (epoch_)
+    uint32_t node = 0;          // current hierarchy node
+    uint8_t flags = 0;          // kPmBoundary | kPmFrozen
+    uint8_t alive = 1;
+  };
+  std::vector<Vert> v_;
   uint32_t epoch_ = 0;
-  std::vector<HeapEntry> heap_;
+  CostHeap heap_;  // the collapsible vertices that have a target, by Vert::cost
   std::vector<RingFace> ring_a_, ring_b_, ring_c_;
   std::vector<std::pair<float, uint32_t>> cand_;
   float cos_change_ = 0, cos_dev_ = 0;
@@ -135,114 +242,119 @@ class Builder {
 
 bool Builder::ring(uint32_t v, std::vector<RingFace>& out) const {
   out.clear();
-  const uint32_t start = vface_[v];
+  const uint32_t start = v_[v].vface;
   uint32_t f = start;
   do {
     const uint32_t i = cornerOf(f, v);
     if (i == 3) return false;
     out.push_back({f, i});
-    f = fn_[f][prev3(i)];
+    f = f_[f].n[prev3(i)];
     if (f == kNone || out.size() > 4096) return false;
   } while (f != start);
   return true;
 }
 
 void Builder::buildAdjacency() {
-  fv_ = mesh_.faces;
-  fn_.assign(nf_, {kNone, kNone, kNone});
+  v_.resize(n_);
+  for (uint32_t v = 0; v < n_; ++v) {
+    v_[v].p = mesh_.positions[v];
+    v_[v].node = v;
+  }
+  f_.resize(nf_);
+  for (uint32_t f = 0; f < nf_; ++f) f_[f] = {mesh_.faces[f], {kNone, kNone, kNone}, glm::vec3(0.0f)};
   alive_f_.assign(nf_, 1);
-  flags_.assign(n_, 0);
-  vface_.assign(n_, kNone);
   // Outgoing half-edges per origin vertex (CSR); degenerate faces are left out.
   std::vector<uint32_t> start(n_ + 1, 0);
   std::vector<uint8_t> degenerate(nf_, 0);
   for (uint32_t f = 0; f < nf_; ++f) {
-    const auto& c = fv_[f];
+    const auto& c = f_[f].v;
     if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) {
       degenerate[f] = 1;
-      for (uint32_t v : c) flags_[v] |= kPmFrozen;
+      for (uint32_t v : c) v_[v].flags |= kPmFrozen;
       continue;
     }
     for (uint32_t v : c) ++start[v + 1];
   }
   for (uint32_t v = 0; v < n_; ++v) start[v + 1] += start[v];
   std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-  std::vector<uint32_t> out(start[n_]);  // half-edge id 3f+i, from c[i] to c[i+1]
+  std::vector<uint32_t> out(start[n_]);   // half-edge id 3f+i, from c[i] to c[i+1]
+  std::vector<uint32_t> head(start[n_]);  // its head c[i+1], beside it: the scans stay in the lists
   for (uint32_t f = 0; f < nf_; ++f) {
     if (degenerate[f]) continue;
-    for (uint32_t i = 0; i < 3; ++i) out[fill[fv_[f][i]]++] = 3 * f + i;
-    for (uint32_t v : fv_[f]) vface_[v] = f;
+    for (uint32_t i = 0; i < 3; ++i) {
+      const uint32_t k = fill[f_[f].v[i]]++;
+      out[k] = 3 * f + i;
+      head[k] = f_[f].v[next3(i)];
+    }
+    for (uint32_t v : f_[f].v) v_[v].vface = f;
   }
-  auto head = [&](uint32_t h) { return fv_[h / 3][next3(h % 3)]; };
   const bool materials = mesh_.face_materials.size() == nf_;
   for (uint32_t f = 0; f < nf_; ++f) {
     if (degenerate[f]) continue;
     for (uint32_t i = 0; i < 3; ++i) {
-      const uint32_t a = fv_[f][i], b = fv_[f][next3(i)];
+      const uint32_t a = f_[f].v[i], b = f_[f].v[next3(i)];
       uint32_t twins = 0, twin = kNone, same = 0;
       for (uint32_t k = start[b]; k < start[b + 1]; ++k)
-        if (head(out[k]) == a) { ++twins; twin = out[k] / 3; }
+        if (head[k] == a) { ++twins; twin = out[k] / 3; }
       for (uint32_t k = start[a]; k < start[a + 1]; ++k)
-        if (head(out[k]) == b) ++same;
+        if (head[k] == b) ++same;
       if (twins == 1 && same == 1) {
-        fn_[f][i] = twin;
+        f_[f].n[i] = twin;
         // A material boundary keeps its vertices (material lines stay exact at every level of
         // detail; Hoppe 1996 §3.3 keeps such discontinuity curves too, less strictly).
         if (materials && mesh_.face_materials[f] != mesh_.face_materials[twin]) {
-          flags_[a] |= kPmFrozen;
-          flags_[b] |= kPmFrozen;
+          v_[a].flags |= kPmFrozen;
+          v_[b].flags |= kPmFrozen;
         }
       } else if (twins == 0 && same == 1) {
-        flags_[a] |= kPmBoundary;
-        flags_[b] |= kPmBoundary;
+        v_[a].flags |= kPmBoundary;
+        v_[b].flags |= kPmBoundary;
       } else {
-        flags_[a] |= kPmFrozen;
-        flags_[b] |= kPmFrozen;
+        v_[a].flags |= kPmFrozen;
+        v_[b].flags |= kPmFrozen;
       }
     }
   }
   // Vertex manifoldness: the fan reached by rotation must hold every incident face.
   for (uint32_t v = 0; v < n_; ++v) {
     const uint32_t count = start[v + 1] - start[v];
-    if (count == 0) { flags_[v] |= kPmFrozen; continue; }
-    if (flags_[v] & kPmFrozen) continue;
+    if (count == 0) { v_[v].flags |= kPmFrozen; continue; }
+    if (v_[v].flags & kPmFrozen) continue;
     uint32_t seen = 0;
     bool open = false;
-    const uint32_t f0 = vface_[v];
+    const uint32_t f0 = v_[v].vface;
     uint32_t f = f0;
     do {  // counter-clockwise
       ++seen;
       const uint32_t i = cornerOf(f, v);
-      f = fn_[f][prev3(i)];
+      f = f_[f].n[prev3(i)];
       if (f == kNone) { open = true; break; }
     } while (f != f0 && seen <= count);
     if (open) {  // clockwise from the start to the other end of the fan
-      f = fn_[f0][cornerOf(f0, v)];
+      f = f_[f0].n[cornerOf(f0, v)];
       while (f != kNone && seen <= count) {
         ++seen;
-        f = fn_[f][cornerOf(f, v)];
+        f = f_[f].n[cornerOf(f, v)];
       }
-      flags_[v] |= kPmBoundary;
+      v_[v].flags |= kPmBoundary;
     }
-    if (seen != count) flags_[v] |= kPmFrozen;
+    if (seen != count) v_[v].flags |= kPmFrozen;
   }
   for (uint32_t f = 0; f < nf_; ++f) alive_f_[f] = 1;
   alive_faces_ = nf_;
 }
 
 void Builder::computeQuadrics() {
-  quad_.assign(n_, Quadric{});
-  fnormal0_.resize(nf_);
   for (uint32_t f = 0; f < nf_; ++f) {
-    const auto& c = fv_[f];
+    const auto& c = f_[f].v;
     const glm::dvec3 a(mesh_.positions[c[0]]), b(mesh_.positions[c[1]]), d(mesh_.positions[c[2]]);
     const glm::dvec3 n = glm::cross(b - a, d - a);
     const double len = glm::length(n);
-    if (!(len > 0.0)) { fnormal0_[f] = glm::vec3(0.0f); continue; }
+    if (!(len > 0.0)) { f_[f].normal0 = glm::vec3(0.0f); continue; }
     const glm::dvec3 un = n / len;
-    fnormal0_[f] = glm::vec3(un);
+    f_[f].normal0 = glm::vec3(un);
     const double area = 0.5 * len;
-    for (uint32_t v : c) quad_[v].addPlane(un, -glm::dot(un, a), area);
+    for (uint32_t v : c) v_[v].q.addPlane(un, -glm::dot(un, a), area);
   }
 }
 
@@ -252,7 +364,7 @@ bool Builder::valid(uint32_t u, uint32_t t, const std::vector<RingFace>& ring_u)
   // fl = (u, t, l) holds u→t; fr = (u, r, t) holds t→u.
   uint32_t fl = kNone, fr = kNone, l = kNone, r = kNone;
   for (const RingFace& rf : ring_u) {
-    const auto& c = fv_[rf.face];
+    const auto& c = f_[rf.face].v;
     if (c[next3(rf.corner)] == t) { fl = rf.face; l = c[prev3(rf.corner)]; }
     if (c[prev3(rf.corner)] == t) { fr = rf.face; r = c[next3(rf.corner)]; }
   }
@@ -263,28 +375,28 @@ bool Builder::valid(uint32_t u, uint32_t t, const std::vector<RingFace>& ring_u)
   const uint32_t new_valence = val_t + val_u - 4;
   if (val_t + val_u < 7 || new_valence > params_.max_valence) return false;
   ++epoch_;
-  if (epoch_ == 0) { std::fill(stamp_.begin(), stamp_.end(), 0u); epoch_ = 1; }
-  for (const RingFace& rf : ring_u) stamp_[fv_[rf.face][next3(rf.corner)]] = epoch_;
+  if (epoch_ == 0) { for (Vert& v : v_) v.stamp = 0; epoch_ = 1; }
+  for (const RingFace& rf : ring_u) v_[f_[rf.face].v[next3(rf.corner)]].stamp = epoch_;
   uint32_t common = 0;
   for (const RingFace& rf : ring_b_) {
-    const uint32_t w = fv_[rf.face][next3(rf.corner)];
-    if (w != u && stamp_[w] == epoch_) ++common;
+    const uint32_t w = f_[rf.face].v[next3(rf.corner)];
+    if (w != u && v_[w].stamp == epoch_) ++common;
   }
   if (common != 2) return false;
   // Geometry of the faces that move (those around u except fl, fr).
-  const glm::vec3 pt = mesh_.positions[t], pu = mesh_.positions[u];
+  const glm::vec3 pt = v_[t].p, pu = v_[u].p;
   for (const RingFace& rf : ring_u) {
     if (rf.face == fl || rf.face == fr) continue;
-    const auto& c = fv_[rf.face];
-    const glm::vec3 a = mesh_.positions[c[next3(rf.corner)]];
-    const glm::vec3 b = mesh_.positions[c[prev3(rf.corner)]];
+    const auto& c = f_[rf.face].v;
+    const glm::vec3 a = v_[c[next3(rf.corner)]].p;
+    const glm::vec3 b = v_[c[prev3(rf.corner)]].p;
     const glm::vec3 n_old = glm::cross(a - pu, b - pu);
     const glm::vec3 n_new = glm::cross(a - pt, b - pt);
     const float len_new = glm::length(n_new), len_old = glm::length(n_old);
     if (!(len_new > 0.0f)) return false;
     const glm::vec3 un = n_new / len_new;
     if (len_old > 0.0f && glm::dot(un, n_old / len_old) < cos_change_) return false;
-    const glm::vec3& n0 = fnormal0_[rf.face];
+    const glm::vec3& n0 = f_[rf.face].normal0;
     if ((n0.x != 0.0f || n0.y != 0.0f || n0.z != 0.0f) && glm::dot(un, n0) < cos_dev_) return false;
     const float q_new = faceQuality(pt, a, b);
     if (q_new < params_.min_face_quality && q_new < faceQuality(pu, a, b)) return false;
@@ -293,55 +405,89 @@ bool Builder::valid(uint32_t u, uint32_t t, const std::vector<RingFace>& ring_u)
 }
 
 void Builder::update(uint32_t u, bool validate) {
-  ++version_[u];
-  target_[u] = kNone;
-  if (!collapsible(u) || !ring(u, ring_a_)) return;
+  if (!collapsible(u) || !ring(u, ring_a_)) {
+    v_[u].target = kNone;
+    heap_.erase(u);
+    return;
+  }
+  updateWithRing(u, validate, ring_a_);
+}
+
+void Builder::updateWithRing(uint32_t u, bool validate, const std::vector<RingFace>& ring_u) {
+  v_[u].target = kNone;
+  heap_.erase(u);
+  if (!collapsible(u)) return;
   cand_.clear();
-  for (const RingFace& rf : ring_a_) {
-    const uint32_t t = fv_[rf.face][next3(rf.corner)];
+  for (const RingFace& rf : ring_u) {
+    const uint32_t t = f_[rf.face].v[next3(rf.corner)];
     if (!collapsible(t)) continue;
-    const glm::vec3& p = mesh_.positions[t];
-    cand_.push_back({static_cast<float>(std::max(0.0, evalSum(quad_[u], quad_[t], p))), t});
+    const glm::vec3& p = v_[t].p;
+    cand_.push_back({static_cast<float>(std::max(0.0, evalSum(v_[u].q, v_[t].q, p))), t});
   }
   if (cand_.empty()) return;
   std::sort(cand_.begin(), cand_.end());
   for (const auto& [cost, t] : cand_) {
-    if (validate && !valid(u, t, ring_a_)) continue;
-    target_[u] = t;
-    cost_[u] = cost;
-    heap_.push_back({cost, u, version_[u]});
-    std::push_heap(heap_.begin(), heap_.end(), HeapGreater{});
+    if (validate && !valid(u, t, ring_u)) continue;
+    v_[u].target = t;
+    v_[u].cost = cost;
+    heap_.set(u, cost);
     return;
   }
 }
 
+void Builder::initialTargets() {
+  // The cheapest (cost, target) pair per vertex, as update() chooses it.
+  for (uint32_t f = 0; f < nf_; ++f) {
+    const auto& c = f_[f].v;
+    for (uint32_t i = 0; i < 3; ++i) {
+      const uint32_t u = c[i], t = c[next3(i)];
+      if (!collapsible(u) || !collapsible(t)) continue;
+      const float cost =
+          static_cast<float>(std::max(0.0, evalSum(v_[u].q, v_[t].q, v_[t].p)));
+      if (v_[u].target == kNone || cost < v_[u].cost || (cost == v_[u].cost && t < v_[u].target)) {
+        v_[u].target = t;
+        v_[u].cost = cost;
+      }
+    }
+  }
+  heap_.reset(n_);
+  for (uint32_t v = 0; v < n_; ++v) {
+    if (!collapsible(v)) {
+      v_[v].target = kNone;  // cannot have one, but a ring must be closed to be used
+      continue;
+    }
+    if (v_[v].target != kNone) heap_.append(v, v_[v].cost);
+  }
+  heap_.heapify();
+}
+
 void Builder::collapse(uint32_t u, uint32_t t) {
-  ring(u, ring_a_);
+  // ring_a_ holds u's ring (the main loop's, checked by valid()).
   uint32_t fl = kNone, fr = kNone, cl = 0, cr = 0;
   for (const RingFace& rf : ring_a_) {
-    const auto& c = fv_[rf.face];
+    const auto& c = f_[rf.face].v;
     if (c[next3(rf.corner)] == t) { fl = rf.face; cl = rf.corner; }
     if (c[prev3(rf.corner)] == t) { fr = rf.face; cr = rf.corner; }
   }
   // fl = (u, t, l): edges (u,t)→fr, (t,l)→fn_tl, (l,u)→fn_ul.
   // fr = (u, r, t): edges (u,r)→fn_ur, (r,t)→fn_rt, (t,u)→fl.
-  const uint32_t fn_tl = fn_[fl][next3(cl)], fn_ul = fn_[fl][prev3(cl)];
-  const uint32_t fn_ur = fn_[fr][cr], fn_rt = fn_[fr][next3(cr)];
-  const uint32_t l = fv_[fl][prev3(cl)], r = fv_[fr][next3(cr)];
+  const uint32_t fn_tl = f_[fl].n[next3(cl)], fn_ul = f_[fl].n[prev3(cl)];
+  const uint32_t fn_ur = f_[fr].n[cr], fn_rt = f_[fr].n[next3(cr)];
+  const uint32_t l = f_[fl].v[prev3(cl)], r = f_[fr].v[next3(cr)];
 
   VertexSplit s;
-  s.vt = cur_node_[t];
-  s.vu = cur_node_[u];
+  s.vt = v_[t].node;
+  s.vu = v_[u].node;
   s.fl = fl;
   s.fr = fr;
   s.fn = {fn_tl, fn_ul, fn_ur, fn_rt};
   splits_.push_back(s);
 
   for (const RingFace& rf : ring_a_)
-    if (rf.face != fl && rf.face != fr) fv_[rf.face][rf.corner] = t;
+    if (rf.face != fl && rf.face != fr) f_[rf.face].v[rf.corner] = t;
   auto relink = [&](uint32_t f, uint32_t from, uint32_t to) {
     for (uint32_t k = 0; k < 3; ++k)
-      if (fn_[f][k] == from) { fn_[f][k] = to; return; }
+      if (f_[f].n[k] == from) { f_[f].n[k] = to; return; }
   };
   relink(fn_tl, fl, fn_ul);
   relink(fn_ul, fl, fn_tl);
@@ -349,33 +495,31 @@ void Builder::collapse(uint32_t u, uint32_t t) {
   relink(fn_rt, fr, fn_ur);
   alive_f_[fl] = alive_f_[fr] = 0;
   alive_faces_ -= 2;
-  vface_[t] = fn_tl;
-  vface_[l] = fn_tl;
-  vface_[r] = fn_rt;
-  alive_v_[u] = 0;
-  ++version_[u];
-  quad_[t].add(quad_[u]);
-  cur_node_[t] = n_ + static_cast<uint32_t>(splits_.size()) - 1;
+  v_[t].vface = fn_tl;
+  v_[l].vface = fn_tl;
+  v_[r].vface = fn_rt;
+  v_[u].alive = 0;
+  v_[u].target = kNone;  // popped from the heap by the main loop
+  v_[t].q.add(v_[u].q);
+  v_[t].node = n_ + static_cast<uint32_t>(splits_.size()) - 1;
 
-  update(t, false);
   ring(t, ring_c_);
-  for (const RingFace& rf : ring_c_) updateNeighbour(fv_[rf.face][next3(rf.corner)], u, t);
+  updateWithRing(t, false, ring_c_);
+  for (const RingFace& rf : ring_c_) updateNeighbour(f_[rf.face].v[next3(rf.corner)], u, t);
 }
 
 void Builder::updateNeighbour(uint32_t w, uint32_t u, uint32_t t) {
-  const uint32_t old = target_[w];
+  const uint32_t old = v_[w].target;
   if (old == kNone || old == u || old == t || !collapsible(w) || !collapsible(t)) {
     update(w, false);
     return;
   }
   const float cost =
-      static_cast<float>(std::max(0.0, evalSum(quad_[w], quad_[t], mesh_.positions[t])));
-  if (!(cost < cost_[w])) return;  // the entry in the heap stays w's best
-  ++version_[w];
-  target_[w] = t;
-  cost_[w] = cost;
-  heap_.push_back({cost, w, version_[w]});
-  std::push_heap(heap_.begin(), heap_.end(), HeapGreater{});
+      static_cast<float>(std::max(0.0, evalSum(v_[w].q, v_[t].q, v_[t].p)));
+  if (!(cost < v_[w].cost)) return;  // the entry in the heap stays w's best
+  v_[w].target = t;
+  v_[w].cost = cost;
+  heap_.set(w, cost);
 }
 
 Result<ProgressiveMesh> Builder::run() {
@@ -399,37 +543,24 @@ Result<ProgressiveMesh> Builder::run() {
 
   buildAdjacency();
   computeQuadrics();
-  alive_v_.assign(n_, 1);
-  cur_node_.resize(n_);
-  for (uint32_t v = 0; v < n_; ++v) cur_node_[v] = v;
-  version_.assign(n_, 0);
-  target_.assign(n_, kNone);
-  cost_.assign(n_, 0.0f);
-  stamp_.assign(n_, 0);
   splits_.reserve(n_);
-  heap_.reserve(4 * static_cast<size_t>(n_));
   uint32_t collapsible_count = 0;
-  for (uint32_t v = 0; v < n_; ++v) {
-    if (!collapsible(v)) continue;
-    ++collapsible_count;
-    update(v, false);
-  }
+  for (uint32_t v = 0; v < n_; ++v) collapsible_count += collapsible(v);
+  initialTargets();
   const uint32_t progress_step = std::max<uint32_t>(1, collapsible_count / 100);
   uint32_t next_report = progress_step;
   while (!heap_.empty() && alive_faces_ > params_.min_base_faces) {
-    std::pop_heap(heap_.begin(), heap_.end(), HeapGreater{});
-    const HeapEntry e = heap_.back();
-    heap_.pop_back();
-    if (e.version != version_[e.u] || target_[e.u] == kNone) continue;
-    if (!ring(e.u, ring_a_)) {
-      target_[e.u] = kNone;
+    const uint32_t u = heap_.top();
+    heap_.erase(u);
+    if (!ring(u, ring_a_)) {
+      v_[u].target = kNone;
       continue;
     }
-    if (!valid(e.u, target_[e.u], ring_a_)) {
-      update(e.u, true);
+    if (!valid(u, v_[u].target, ring_a_)) {
+      updateWithRing(u, true, ring_a_);
       continue;
     }
-    collapse(e.u, target_[e.u]);
+    collapse(u, v_[u].target);
     if (progress_ && splits_.size() >= next_report) {
       next_report += progress_step;
       progress_(std::min(1.0f, static_cast<float>(splits_.size()) /
@@ -440,15 +571,16 @@ Result<ProgressiveMesh> Builder::run() {
   ProgressiveMesh pm;
   pm.positions = mesh_.positions;
   pm.faces = mesh_.faces;
-  pm.vertex_flags = flags_;
+  pm.vertex_flags.resize(n_);
+  for (uint32_t v = 0; v < n_; ++v) pm.vertex_flags[v] = v_[v].flags;
   pm.splits = std::move(splits_);
   for (uint32_t f = 0; f < nf_; ++f) {
     if (!alive_f_[f]) continue;
     pm.base_faces.push_back(f);
     std::array<uint32_t, 3> c;
-    for (int i = 0; i < 3; ++i) c[i] = cur_node_[fv_[f][i]];
+    for (int i = 0; i < 3; ++i) c[i] = v_[f_[f].v[i]].node;
     pm.base_corners.push_back(c);
-    pm.base_neighbors.push_back(fn_[f]);
+    pm.base_neighbors.push_back(f_[f].n);
   }
   pm.content_hash = meshContentHash(mesh_);
   pm.params_hash = buildParamsHash(params_);
