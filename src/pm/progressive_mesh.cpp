@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -224,6 +225,7 @@ class Builder {
     glm::vec3 p;                // position (half-edge collapses keep the survivor's)
     uint32_t target = kNone;    // best collapse target, kNone: none (then not in the heap)
     float cost = 0.0f;          // its cost
+    float other = 0.0f;         // a lower bound of the costs of the other candidates
     uint32_t vface = kNone;     // one alive incident face
     uint32_t stamp = 0;         // link-condition marks (epoch_)
     uint32_t node = 0;          // current hierarchy node
@@ -414,39 +416,47 @@ void Builder::update(uint32_t u, bool validate) {
 }
 
 void Builder::updateWithRing(uint32_t u, bool validate, const std::vector<RingFace>& ring_u) {
-  v_[u].target = kNone;
-  heap_.erase(u);
-  if (!collapsible(u)) return;
+  Vert& vu = v_[u];
+  vu.target = kNone;
   cand_.clear();
-  for (const RingFace& rf : ring_u) {
-    const uint32_t t = f_[rf.face].v[next3(rf.corner)];
-    if (!collapsible(t)) continue;
-    const glm::vec3& p = v_[t].p;
-    cand_.push_back({static_cast<float>(std::max(0.0, evalSum(v_[u].q, v_[t].q, p))), t});
+  if (collapsible(u)) {
+    for (const RingFace& rf : ring_u) {
+      const uint32_t t = f_[rf.face].v[next3(rf.corner)];
+      if (!collapsible(t)) continue;
+      cand_.push_back({static_cast<float>(std::max(0.0, evalSum(vu.q, v_[t].q, v_[t].p))), t});
+    }
+    std::sort(cand_.begin(), cand_.end());
   }
-  if (cand_.empty()) return;
-  std::sort(cand_.begin(), cand_.end());
-  for (const auto& [cost, t] : cand_) {
+  for (size_t k = 0; k < cand_.size(); ++k) {
+    const auto [cost, t] = cand_[k];
     if (validate && !valid(u, t, ring_u)) continue;
-    v_[u].target = t;
-    v_[u].cost = cost;
+    vu.target = t;
+    vu.cost = cost;
+    // The others' cheapest: the next one, or the first if an invalid one came before.
+    vu.other = k > 0 ? cand_[0].first
+                     : cand_.size() > 1 ? cand_[1].first : std::numeric_limits<float>::infinity();
     heap_.set(u, cost);
     return;
   }
+  heap_.erase(u);
 }
 
 void Builder::initialTargets() {
-  // The cheapest (cost, target) pair per vertex, as update() chooses it.
+  // The cheapest (cost, target) pair per vertex, as update() chooses it, and the others' cheapest.
+  for (Vert& v : v_) v.other = std::numeric_limits<float>::infinity();
   for (uint32_t f = 0; f < nf_; ++f) {
     const auto& c = f_[f].v;
     for (uint32_t i = 0; i < 3; ++i) {
       const uint32_t u = c[i], t = c[next3(i)];
       if (!collapsible(u) || !collapsible(t)) continue;
-      const float cost =
-          static_cast<float>(std::max(0.0, evalSum(v_[u].q, v_[t].q, v_[t].p)));
-      if (v_[u].target == kNone || cost < v_[u].cost || (cost == v_[u].cost && t < v_[u].target)) {
-        v_[u].target = t;
-        v_[u].cost = cost;
+      Vert& vu = v_[u];
+      const float cost = static_cast<float>(std::max(0.0, evalSum(vu.q, v_[t].q, v_[t].p)));
+      if (vu.target == kNone || cost < vu.cost || (cost == vu.cost && t < vu.target)) {
+        if (vu.target != kNone) vu.other = std::min(vu.other, vu.cost);
+        vu.target = t;
+        vu.cost = cost;
+      } else {
+        vu.other = std::min(vu.other, cost);
       }
     }
   }
@@ -509,16 +519,29 @@ void Builder::collapse(uint32_t u, uint32_t t) {
 }
 
 void Builder::updateNeighbour(uint32_t w, uint32_t u, uint32_t t) {
-  const uint32_t old = v_[w].target;
-  if (old == kNone || old == u || old == t || !collapsible(w) || !collapsible(t)) {
+  // Costs only grow as quadrics are summed, and w gains candidates only here, so `other`
+  // stays a lower bound of every candidate but the target: when w→t costs no more than it,
+  // t is w's best without looking at w's ring.
+  Vert& vw = v_[w];
+  const uint32_t old = vw.target;
+  if (old == kNone || !collapsible(w) || !collapsible(t)) {
     update(w, false);
     return;
   }
-  const float cost =
-      static_cast<float>(std::max(0.0, evalSum(v_[w].q, v_[t].q, v_[t].p)));
-  if (!(cost < v_[w].cost)) return;  // the entry in the heap stays w's best
-  v_[w].target = t;
-  v_[w].cost = cost;
+  const float cost = static_cast<float>(std::max(0.0, evalSum(vw.q, v_[t].q, v_[t].p)));
+  if (old == u || old == t) {  // the target merged into t: t is best if no other is cheaper
+    if (!(cost <= vw.other)) {
+      update(w, false);
+      return;
+    }
+  } else if (cost < vw.cost) {  // t is cheaper than w's best, which becomes an other
+    vw.other = std::min(vw.other, vw.cost);
+  } else {
+    vw.other = std::min(vw.other, cost);
+    return;  // the heap's entry stays w's best
+  }
+  vw.target = t;
+  vw.cost = cost;
   heap_.set(w, cost);
 }
 
@@ -552,6 +575,10 @@ Result<ProgressiveMesh> Builder::run() {
   while (!heap_.empty() && alive_faces_ > params_.min_base_faces) {
     const uint32_t u = heap_.top();
     heap_.erase(u);
+    if (!heap_.empty()) {  // most likely the next to go: its record and a face of its ring
+      const Vert& next = v_[heap_.top()];
+      if (next.vface != kNone) __builtin_prefetch(&f_[next.vface]);
+    }
     if (!ring(u, ring_a_)) {
       v_[u].target = kNone;
       continue;
