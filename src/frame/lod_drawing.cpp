@@ -11,6 +11,12 @@ LodDrawing::LodDrawing(TriMesh full, const LineParams& params, std::shared_ptr<W
     : drawing_(std::move(full), params, {}, std::move(pool)) {}
 
 namespace {
+// Converging for a still stops once no more than max(kCycleOps, active vertices /
+// kCycleFraction) splits and collapses happen in each of kQuietSteps steps in a row.
+constexpr uint32_t kCycleOps = 8;
+constexpr uint32_t kCycleFraction = 2000;
+constexpr int kQuietSteps = 4;
+
 // Geomorphs start a split's new vertex at its parent's position, so adapted meshes routinely
 // hold near-zero-length edges; Max's weights (∝ 1/(|a|·|b|)) let such slivers dominate a
 // vertex normal, area weights give them none. Full detail keeps the more accurate default.
@@ -149,12 +155,21 @@ Result<int> LodDrawing::converge(const Camera& camera, int width, int height, co
     drawing_.update(camera, enabled);
     return 1;
   }
+  int quiet = 0;
   while (std::holds_alternative<PmLevel>(level_) && steps < max_steps) {
     if (Status s = adaptStep(camera, width, height, detail, dt); !s) return s.error();
     ++steps;
     changed_any = changed_any || mesh_changed_;
     const LodStats& st = lod()->stats();
-    if (st.splits == 0 && st.collapses == 0 && st.morphing == 0 && st.pending_collapses == 0) break;
+    const bool settled = st.morphing == 0 && st.pending_collapses == 0;
+    if (settled && st.splits == 0 && st.collapses == 0) break;
+    // At a fixed view a handful of vertices can keep trading splits and collapses: a visible
+    // vertex whose split needs invisible neighbours split first, which then coarsen again
+    // (docs/temporal-coherence.md, "Limit cycles at a fixed view"). Once only such a handful
+    // change, step after step, the picture is settled.
+    const uint32_t few = std::max<uint32_t>(kCycleOps, st.active_vertices / kCycleFraction);
+    quiet = settled && st.splits + st.collapses <= few ? quiet + 1 : 0;
+    if (quiet >= kQuietSteps) break;
   }
   mesh_changed_ = changed_any;
   drawing_.update(camera, enabled);

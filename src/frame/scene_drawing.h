@@ -56,10 +56,11 @@ class SceneDrawing {
   /// One frame of every object (LodDrawing::frame), T scaled by each object's factor.
   Status frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
                float smoothing = 1.0f);
-  /// The step by which converging for a still advances geomorphs. Where the adaptation
-  /// stops depends on the step (morphs in flight change which splits run next), so `render`,
-  /// the viewer's first frame and the walkthrough's warm-up all use this one.
-  static constexpr float kConvergeStepSeconds = 1.0f / 30.0f;
+  /// The step by which converging for a still advances time: longer than any geomorph, so
+  /// splits and collapses show at once (a still needs no morphs, and waiting for them took
+  /// hundreds of steps on a 1M-face model). Where the adaptation stops depends on the step,
+  /// so `render`, the viewer's first frame and the walkthrough's warm-up all use this one.
+  static constexpr float kConvergeStepSeconds = 1.0f;
   /// Converges every object (LodDrawing::converge); returns the largest step count.
   Result<int> converge(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
                        int max_steps);
