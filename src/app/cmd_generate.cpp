@@ -40,9 +40,9 @@ Command addGenerateCommand(CLI::App& parent) {
             }
             const int r = o->resolution;
             const bool levels = o->shape == "sphere" || o->shape == "ellipsoid";
-            if (r < 0 || (levels && r > 9) || (!levels && r > 4096))
+            if (r < 0 || (levels && r > 9) || (!levels && r > 16384))
               return reportError(Error::usage("--resolution: " + std::to_string(r) + " is out of range for " +
-                                              o->shape + (levels ? " (0-9)" : " (0-4096)")));
+                                              o->shape + (levels ? " (0-9)" : " (0-16384)")));
             TriMesh m;
             if (o->shape == "sphere") m = makeIcoSphere(1.0f, r > 0 ? r : 4);
             else if (o->shape == "uvsphere") m = makeUvSphere(1.0f, r > 0 ? r : 64, r > 0 ? r / 2 : 32);

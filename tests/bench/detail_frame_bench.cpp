@@ -12,12 +12,21 @@
 // 0.25 s (fade_ms, part of strokes_ms); compare them with the case above them.
 //   ./build/tests/bench/detail_frame_bench --benchmark_counters_tabular=true
 // (armadillo and the 1.1M knot at T = 16 px², and the knot at T = 7 px², ~100k faces)
+// The `scale/` series (issue 21): the same torus knot generated at about 0.1, 0.3, 1, 3 and
+// 10M faces, the same framing, T = 16 px²: the progressive mesh built in the benchmark (build
+// seconds per million faces, cache bytes per face), then the controlled frame per stage and
+// the process's resident memory per input face. No full-detail comparison (a 10M-face
+// full-detail frame takes seconds):
+//   ./build/tests/bench/detail_frame_bench --benchmark_filter=scale --benchmark_counters_tabular=true
 // The `line_kind/` cases time each line kind's share of the lines stage (docs/lines.md):
 //   ./build/tests/bench/detail_frame_bench --benchmark_filter=line_kind --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <string>
 #include <map>
 #include <memory>
 #include <utility>
@@ -183,6 +192,95 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   state.counters["full_lines_ms"] = bench::median(full_lines);
   state.counters["full_draw_ms"] = bench::median(full_draw);
   state.counters["full_ms"] = bench::median(full_lines) + bench::median(full_draw);
+}
+
+// Resident and peak resident memory of this process, bytes (/proc/self/status).
+std::pair<double, double> residentBytes() {
+  std::ifstream in("/proc/self/status");
+  std::string key;
+  double rss = 0.0, peak = 0.0;
+  while (in >> key) {
+    double kb = 0.0;
+    if (key == "VmRSS:" && in >> kb) rss = kb * 1024.0;
+    else if (key == "VmHWM:" && in >> kb) peak = kb * 1024.0;
+    else in.ignore(1 << 12, '\n');
+  }
+  return {rss, peak};
+}
+
+// One case of the scale series: a knot of about `faces` faces (tube segments 1/15 of the
+// length's, as the 1.1M knot), built, saved, converged and orbited like detailFrame's
+// controlled side.
+void scaleFrame(benchmark::State& state, double faces, float target_area) {
+  const uint32_t tube = static_cast<uint32_t>(std::lround(std::sqrt(faces / 30.0)));
+  TriMesh mesh = makeTorusKnot(2, 3, 1.0f, 0.16f, 15 * tube, tube, 0.18f);
+  Stopwatch sw;
+  auto built = buildProgressiveMesh(mesh);
+  const double build_s = sw.lap() / 1000.0;
+  if (!built) {
+    state.SkipWithError(built.error().message.c_str());
+    return;
+  }
+  test::TempDir dir;
+  const auto file = dir / "scale.lpm";
+  if (Status st = savePm(file, *built); !st) {
+    state.SkipWithError(st.error().message.c_str());
+    return;
+  }
+  const double cache_bytes = static_cast<double>(std::filesystem::file_size(file));
+  auto pm = std::make_shared<const ProgressiveMesh>(std::move(built.value()));
+  auto ctx = createHeadlessContext(ContextBackend::kEgl);
+  if (!ctx) {
+    state.SkipWithError(ctx.error().message.c_str());
+    return;
+  }
+  FrameParams frame;
+  frame.msaa = 1;
+  auto presenter = GlPresenter::createOnCurrentContext();
+  if (!presenter) {
+    state.SkipWithError("presenter set-up failed");
+    return;
+  }
+  const double input_faces = static_cast<double>(mesh.faceCount());
+  SceneDrawing controlled = sceneOf(std::make_unique<LodDrawing>(std::move(mesh), pm, LineParams{}), "knot");
+  DetailParams detail;
+  detail.target_area = target_area;
+  const float aspect = frame.aspect();
+  (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width,
+                            frame.height, detail, SceneDrawing::kConvergeStepSeconds, 300);
+  std::vector<double> adapt, shape, lines, upload, draw, visibility, strokes, active;
+  float az = 0.0f;
+  bool first = true;
+  for (auto _ : state) {
+    const Camera cam = orbitCamera(controlled.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
+    az += 1.0f;
+    (void)controlled.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
+    const Stages st = stagesOf(controlled);
+    adapt.push_back(st.adapt);
+    shape.push_back(st.shape);
+    lines.push_back(st.lines);
+    active.push_back(st.faces);
+    (void)(*presenter)->present(controlled, cam, frame, first);
+    upload.push_back((*presenter)->times().upload);
+    draw.push_back((*presenter)->times().render);
+    visibility.push_back((*presenter)->times().visibility);
+    strokes.push_back((*presenter)->times().strokes);
+    first = false;
+  }
+  const auto [rss, peak] = residentBytes();
+  state.counters["model_faces"] = input_faces;
+  state.counters["active_faces"] = bench::median(active);
+  state.counters["adapt_ms"] = bench::median(adapt);
+  state.counters["shape_ms"] = bench::median(shape);
+  state.counters["lines_ms"] = bench::median(lines);
+  state.counters["cpu_ms"] = bench::median(adapt) + bench::median(shape) + bench::median(lines);
+  state.counters["controlled_ms"] = bench::median(adapt) + bench::median(shape) + bench::median(lines) +
+                                    bench::median(upload) + bench::median(draw) + bench::median(visibility) +
+                                    bench::median(strokes);
+  state.counters["build_s_per_Mface"] = build_s / (input_faces / 1e6);
+  state.counters["cache_B_per_face"] = cache_bytes / input_faces;
+  state.counters["rss_B_per_face"] = rss / input_faces;
+  state.counters["peak_rss_MB"] = peak / (1024.0 * 1024.0);
 }
 
 // The scene case (issue 12): three objects of ~1.2M input faces together (two torus knots
@@ -370,6 +468,12 @@ int main(int argc, char** argv) {
           ->Iterations(30)
           ->Unit(benchmark::kMillisecond);
     }
+  for (const double faces : {1e5, 3e5, 1e6, 3e6, 1e7}) {
+    const std::string label = "scale/knot_" + std::to_string(static_cast<int>(faces / 1e5)) + "00k/T:16";
+    benchmark::RegisterBenchmark(label.c_str(), [faces](benchmark::State& s) { lodline::scaleFrame(s, faces, 16.0f); })
+        ->Iterations(30)
+        ->Unit(benchmark::kMillisecond);
+  }
   benchmark::RegisterBenchmark("detail_frame/scene3_vs_knot1m/T:16",
                                [](benchmark::State& s) { lodline::sceneFrame(s, 16.0f); })
       ->Iterations(30)

@@ -4,6 +4,8 @@
 //   pm_bench --benchmark_filter='Build|Meshopt'   the build beside meshopt_simplify to 1% of the
 //                                      faces on the same meshes, in one run (when meshoptimizer
 //                                      is installed: Debian libmeshoptimizer-dev)
+//   pm_bench --benchmark_filter=knot_     the scale series: the same knot at about 0.1, 0.3, 1,
+//                                      3 and 10M faces, meshopt and the build side by side
 #include <benchmark/benchmark.h>
 
 #ifdef LODLINE_HAVE_MESHOPT
@@ -46,6 +48,14 @@ const TriMesh& icoNoise() {
 /// knot1m).
 const TriMesh& knot1m() {
   static const TriMesh mesh = makeTorusKnot(2, 3, 1.0f, 0.16f, 2900, 193, 0.18f);
+  return mesh;
+}
+
+/// The same knot at about 30·tube² faces (tube segments 1/15 of the length's, as knot1m):
+/// the scale series, 58 → 0.1M, 100 → 0.3M, 183 → 1M, 316 → 3M, 577 → 10M faces.
+template <uint32_t Tube>
+const TriMesh& knotScale() {
+  static const TriMesh mesh = makeTorusKnot(2, 3, 1.0f, 0.16f, 15 * Tube, Tube, 0.18f);
   return mesh;
 }
 
@@ -119,7 +129,19 @@ void BM_MeshoptSimplify(benchmark::State& state, const TriMesh& (*get)()) {
 }
 BENCHMARK_CAPTURE(BM_MeshoptSimplify, armadillo, &armadillo)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(BM_MeshoptSimplify, knot1m, &knot1m)->Unit(benchmark::kSecond)->Iterations(1);
+#define LODLINE_PEER(label, get) BENCHMARK_CAPTURE(BM_MeshoptSimplify, label, get)->Unit(benchmark::kSecond)->Iterations(1);
+#else
+#define LODLINE_PEER(label, get)
 #endif
+// The scale series, each size's peer beside its build.
+#define LODLINE_SCALE(label, tube)   \
+  LODLINE_PEER(label, &knotScale<tube>) \
+  BENCHMARK_CAPTURE(BM_PmBuild, label, &knotScale<tube>)->Unit(benchmark::kSecond)->Iterations(1);
+LODLINE_SCALE(knot_100k, 58)
+LODLINE_SCALE(knot_300k, 100)
+LODLINE_SCALE(knot_1000k, 183)
+LODLINE_SCALE(knot_3000k, 316)
+LODLINE_SCALE(knot_10000k, 577)
 
 BENCHMARK_CAPTURE(BM_PmBuild, armadillo, &armadillo)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(BM_PmBuild, knot1m, &knot1m)->Unit(benchmark::kSecond)->Iterations(1);
