@@ -637,7 +637,7 @@ bool AdaptiveMesh::doCollapse(uint32_t p, bool check) {
   return true;
 }
 
-bool AdaptiveMesh::forceSplit(uint32_t v, bool check, bool morph) {
+bool AdaptiveMesh::forceSplit(uint32_t v, bool check, bool morph, float split_above) {
   if (retry_frame_[v] > frame_) return false;  // failed recently: back off
   stack_.clear();
   stack_.push_back(v);
@@ -668,6 +668,11 @@ bool AdaptiveMesh::forceSplit(uint32_t v, bool check, bool morph) {
     }
     if (!ok) break;
     if (!ready) continue;
+    // The splits that made v's neighbourhood also made v's faces smaller. If v no longer needs
+    // its own split, the chain is not worth keeping: its vertices are often back-facing, are
+    // coarsened again next frame, and v wanted the split again — a cycle of 3 frames at a
+    // fixed view (docs/temporal-coherence.md, "Limit cycles at a fixed view").
+    if (x == v && split_above > 0.0f && !chain_.empty() && !(ringMean(v) > split_above)) { ok = false; break; }
     if (!doSplit(x, check, morph)) { ok = false; break; }
     chain_.push_back(x);
     stack_.pop_back();
@@ -849,7 +854,7 @@ void AdaptiveMesh::evaluatePass() {
         split_speedup_ = clampf(mean / (t_s * target), 1.0f, params_.max_morph_speedup);
         // A morph that would end within this frame is not worth showing.
         const bool show = morph && params_.morph_time / split_speedup_ > frame_dt_;
-        forceSplit(v, true, show);
+        forceSplit(v, true, show, t_s * target);
         continue;
       }
     }

@@ -214,7 +214,9 @@ class AdaptiveMesh {
   bool doSplit(uint32_t s, bool check, bool morph);
   bool doCollapse(uint32_t p, bool check);
   /// Hoppe's force_vsplit: splits ancestors and the creators of missing fn faces first.
-  bool forceSplit(uint32_t v, bool check, bool morph);
+  /// With `split_above` > 0, once those are split v itself is split only if its ring mean is
+  /// still above it; otherwise the whole chain is undone, as a refused split is.
+  bool forceSplit(uint32_t v, bool check, bool morph, float split_above = 0.0f);
   /// No face around vu would flip if p's children were collapsed now (ecol legal).
   bool collapseGeometryOk(uint32_t p) const;
   void startCollapseMorph(uint32_t p, float speedup);
