@@ -90,5 +90,37 @@ TEST(LodDrawing, IncrementalStateEqualsAFreshComputeEveryFrame) {
   EXPECT_GT(valid_tensors, 0);
 }
 
+// At a fixed view the adapted mesh settles: converging ends with a step that changes
+// nothing, and further frames change nothing either. On this knot and view a visible
+// vertex's split used to force back-facing neighbours' splits first; those coarsened again
+// the next frame and the vertex wanted its split again, a cycle that never ended
+// (docs/temporal-coherence.md, "Limit cycles at a fixed view").
+TEST(LodDrawing, ConvergedDetailStaysPutAtAFixedView) {
+  const TriMesh mesh = makeTorusKnot(2, 3, 1.0f, 0.16f, 1200, 80, 0.18f);
+  auto pm = buildProgressiveMesh(mesh);
+  ASSERT_TRUE(pm.ok()) << pm.error().message;
+  LodDrawing lod(mesh, std::make_shared<const ProgressiveMesh>(std::move(pm.value())));
+  std::array<bool, kLineKindCount> enabled{};
+  enabled[static_cast<int>(LineKind::kContour)] = true;
+  DetailParams detail;
+  detail.target_area = 32.0f;
+  const Camera cam = orbitCamera(lod.bounds(), {200.0f, -30.0f, 2.5f}, 35.0f, 16.0f / 9.0f);
+  auto steps = lod.converge(cam, 1280, 720, detail, 1.0f, 60, enabled);
+  ASSERT_TRUE(steps.ok());
+  const LodStats& last = lod.lod()->stats();
+  EXPECT_EQ(last.splits + last.collapses, 0u) << "converging stopped with changes still going on";
+  EXPECT_LT(*steps, 10);
+  // Frames at the same view: vertices whose split was refused are retried 8 frames later
+  // (their neighbourhood may have changed), and those retries may split; after them nothing
+  // may change.
+  uint32_t late_changes = 0;
+  for (int k = 0; k < 40; ++k) {
+    ASSERT_TRUE(lod.frame(cam, 1280, 720, detail, 1.0f / 30.0f, enabled).ok());
+    const LodStats& st = lod.lod()->stats();
+    if (k >= 20) late_changes += st.splits + st.collapses;
+  }
+  EXPECT_EQ(late_changes, 0u);
+}
+
 }  // namespace
 }  // namespace lodline
