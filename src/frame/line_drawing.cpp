@@ -29,6 +29,7 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
     shape_.compute(mesh_);
     feature_size_ = computeFeatureSize(shape_.k1(), shape_.k2(), bounds_.radius);
     computeFullCreaseDots(shape_.adjacency(), shape_.faceNormals());
+    closed_outward_ = isClosedOutward(mesh_, shape_.adjacency());
   } else {
     MeshAdjacency adj;
     buildAdjacency(mesh_, adj);
@@ -40,6 +41,7 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
         face_normals[f] = faceNormalOf(mesh_.positions[c[0]], mesh_.positions[c[1]], mesh_.positions[c[2]]).n;
       }
     computeFullCreaseDots(adj, face_normals);
+    closed_outward_ = isClosedOutward(mesh_, adj);
   }
   updateFullCreaseVertices();
   timings_.shape = sw.lap();

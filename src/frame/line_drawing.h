@@ -67,6 +67,11 @@ class LineDrawing {
   void update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled, float smoothing = 1.0f,
               int image_height = 0, float dt = 0.0f);
 
+  /// The full-detail mesh is a closed surface seen from outside (isClosedOutward): its
+  /// back faces, and those of any progressive-mesh level of it, are never visible from
+  /// outside its bounds.
+  bool closedOutward() const { return closed_outward_; }
+
   /// Vertices of the full-detail mesh that lie on a crease there (dihedral angle above
   /// LineParams::crease_angle_deg, marked or non-manifold edges): one byte per input vertex.
   std::span<const uint8_t> fullDetailCreaseVertices() const { return full_crease_vertices_; }
@@ -119,6 +124,7 @@ class LineDrawing {
   std::vector<float> full_min_dot_, full_min_dot_marked_;
   float crease_angle_ = -1.0f;
   bool marked_ = false;
+  bool closed_outward_ = false;
   uint64_t crease_version_ = 0;
   TemporalSmoother smoother_;
   std::span<const glm::vec3> shading_normals_;

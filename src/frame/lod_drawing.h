@@ -61,6 +61,11 @@ class LodDrawing {
   double adaptMs() const { return adapt_ms_; }
   /// True when the mesh (positions or faces) changed in the last frame(): re-upload it.
   bool meshChanged() const { return mesh_changed_; }
+  /// Whether drawing may cull back faces: the model is closed and seen from outside
+  /// (LineDrawing::closedOutward), at full detail or a progressive-mesh level (collapses keep
+  /// a closed surface closed and its orientation); never with clustering, whose cells can
+  /// merge and flip faces.
+  bool backFacesHidden() const { return drawing_.closedOutward() && clustering() == nullptr; }
 
  private:
   // The level of detail: one of three, chosen at construction.

@@ -42,6 +42,10 @@ class Renderer {
   /// needs them.
   void setMesh(size_t object, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                std::span<const std::array<uint32_t, 3>> faces, std::span<const EdgeKey> marked_edges = {});
+  /// Lets drawSurfaces() cull `object`'s back faces while the eye is outside the sphere
+  /// (`center`, `radius`): for a closed surface seen from outside (LodDrawing::backFacesHidden)
+  /// they are hidden anyway, and culling them halves the triangles rasterised. Off by default.
+  void setBackFaceCulling(size_t object, bool closed, const glm::vec3& center, float radius);
   /// Uploads the lines of `object`: stroke geometry in pixels, visible per kind, then hidden.
   void setLines(size_t object, const ScreenLines& lines);
 
@@ -80,6 +84,9 @@ class Renderer {
     size_t face_count = 0, segments_drawn = 0, chamfer_drawn = 0;
     std::array<uint32_t, kLineKindCount> first{}, count{}, segments{};
     uint32_t hidden_first = 0, hidden_count = 0, hidden_segments = 0;
+    bool closed = false;  // setBackFaceCulling
+    glm::vec3 center{0.0f};
+    float radius = 0.0f;
   };
   Renderer() = default;
   Result<Object> makeObject() const;

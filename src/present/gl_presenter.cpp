@@ -66,6 +66,7 @@ Status GlPresenter::uploadMeshes(const SceneDrawing& scene, bool all_meshes) {
     const LineDrawing& ld = d.drawing();
     if (all_meshes || d.meshChanged())
       renderer_->setMesh(i, ld.mesh().positions, ld.normals(), ld.mesh().faces, ld.mesh().marked_edges);
+    renderer_->setBackFaceCulling(i, d.backFacesHidden(), d.bounds().center, d.bounds().radius);
   }
   return {};
 }

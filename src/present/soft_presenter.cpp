@@ -22,6 +22,7 @@ Status SoftPresenter::uploadMeshes(const SceneDrawing& scene, bool all_meshes) {
     const LodDrawing& d = *scene[i].drawing;
     const LineDrawing& ld = d.drawing();
     if (all_meshes || d.meshChanged()) renderer_.setMesh(i, ld.mesh().positions, ld.normals(), ld.mesh().faces);
+    renderer_.setBackFaceCulling(i, d.backFacesHidden(), d.bounds().center, d.bounds().radius);
   }
   return {};
 }

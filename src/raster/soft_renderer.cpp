@@ -160,7 +160,15 @@ Status SoftRenderer::supports(const ObjectStyle& style) {
   return {};
 }
 
-void SoftRenderer::gather(const glm::mat4& view, const glm::mat4& view_proj, int attribute_count) {
+void SoftRenderer::setBackFaceCulling(size_t object, bool closed, const glm::vec3& center, float radius) {
+  Object& o = objects_[object];
+  o.closed = closed;
+  o.center = center;
+  o.radius = radius;
+}
+
+void SoftRenderer::gather(const glm::mat4& view, const glm::mat4& view_proj, int attribute_count,
+                          const glm::vec3* eye) {
   const glm::mat3 normal_matrix(view);  // as mesh.vert: mat3(u_view) * a_normal
   const int N = attribute_count;
   size_t nv = 0, nf = 0;
@@ -189,13 +197,26 @@ void SoftRenderer::gather(const glm::mat4& view, const glm::mat4& view_proj, int
       }
     }
     const uint32_t base = static_cast<uint32_t>(v0);
+    const glm::vec3 d = eye ? *eye - o.center : glm::vec3(0.0f);
+    const bool cull = eye && o.closed && glm::dot(d, d) > o.radius * o.radius;
     for (size_t f = 0; f < o.faces.size(); ++f) {
-      faces_[f0 + f] = {o.faces[f][0] + base, o.faces[f][1] + base, o.faces[f][2] + base};
-      face_object_[f0 + f] = static_cast<uint32_t>(i);
+      const std::array<uint32_t, 3> c = {o.faces[f][0] + base, o.faces[f][1] + base, o.faces[f][2] + base};
+      if (cull) {  // clockwise on screen: a back face (kept when a corner is behind the eye)
+        const glm::vec4 &a = clip_[c[0]], &b = clip_[c[1]], &e = clip_[c[2]];
+        if (a.w > 0.0f && b.w > 0.0f && e.w > 0.0f) {
+          const glm::vec2 pa = glm::vec2(a) / a.w, pb = glm::vec2(b) / b.w, pe = glm::vec2(e) / e.w;
+          const glm::vec2 u = pb - pa, v = pe - pa;
+          if (u.x * v.y - u.y * v.x < 0.0f) continue;
+        }
+      }
+      faces_[f0] = c;
+      face_object_[f0] = static_cast<uint32_t>(i);
+      ++f0;
     }
     v0 += o.positions.size();
-    f0 += o.faces.size();
   }
+  faces_.resize(f0);
+  face_object_.resize(f0);
 }
 
 void SoftRenderer::drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
@@ -208,7 +229,7 @@ void SoftRenderer::drawSurfaces(const Camera& camera, const FrameParams& frame, 
   const int N = any_texture ? 5 : 3;
   const glm::mat4 view = camera.view();
   const glm::mat4 view_proj = camera.projection(frame.aspect()) * view;
-  gather(view, view_proj, N);
+  gather(view, view_proj, N, camera.orthographic ? nullptr : &camera.eye);
   times_.transform = sw.lap();
 
   // 1. Faces of every object, pushed back like glPolygonOffset(1, 2) (as the GL renderer's,
@@ -219,7 +240,7 @@ void SoftRenderer::drawSurfaces(const Camera& camera, const FrameParams& frame, 
     target_.clear();
   RasterParams rp = params_;
   rp.depth_test = true;
-  rp.cull_back_faces = false;  // open meshes show their inside; both sides are drawn
+  rp.cull_back_faces = false;  // both sides of open meshes; closed ones were culled in gather()
   rp.depth_offset_factor = 1.0f;
   rp.depth_offset_units = 2.0f;
   RasterInput in;

@@ -77,6 +77,9 @@ class SoftRenderer {
   /// A texture modulating the toon colour of `object`, sampled bilinearly at `uvs` (one per
   /// vertex, perspective-correctly interpolated). An empty texture removes it.
   void setTexture(size_t object, Image texture, std::span<const glm::vec2> uvs);
+  /// As Renderer::setBackFaceCulling: drawSurfaces() leaves out `object`'s back faces while
+  /// the eye is outside the sphere (`center`, `radius`), so both backends fill the same depth.
+  void setBackFaceCulling(size_t object, bool closed, const glm::vec3& center, float radius);
   /// Copies the lines of `object` (pixels; visible per kind, then hidden).
   void setLines(size_t object, const ScreenLines& lines);
 
@@ -109,11 +112,16 @@ class SoftRenderer {
     std::vector<glm::vec2> uvs;
     ScreenLines lines;
     size_t segments_drawn = 0;
+    bool closed = false;  // setBackFaceCulling
+    glm::vec3 center{0.0f};
+    float radius = 0.0f;
   };
   bool textured(const Object& o) const { return !o.texture.rgba.empty() && o.uvs.size() == o.positions.size(); }
   // All objects' vertices to clip space (attributes: eye normal, uv) and their faces into one
-  // array, face_object_ saying whose each face is.
-  void gather(const glm::mat4& view, const glm::mat4& view_proj, int attribute_count);
+  // array, face_object_ saying whose each face is. With `eye`, the back faces of objects
+  // set to be culled are left out while the eye is outside their sphere.
+  void gather(const glm::mat4& view, const glm::mat4& view_proj, int attribute_count,
+              const glm::vec3* eye = nullptr);
   WorkerPool& pool() { return rasterizer_.workerPool(params_.threads); }
 
   RasterParams params_;

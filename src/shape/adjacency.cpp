@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <glm/geometric.hpp>
+
 #include "core/result.h"
 
 namespace lodline {
@@ -359,6 +361,45 @@ std::string checkAdjacency(const TriMesh& mesh, const MeshAdjacency& adj) {
     }
   }
   return "";
+}
+
+bool isClosedOutward(const TriMesh& mesh, const MeshAdjacency& adj) {
+  const size_t nf = mesh.faces.size();
+  if (nf == 0 || adj.face_valid.size() != nf) return false;
+  for (uint8_t valid : adj.face_valid)
+    if (!valid) return false;
+  // Pieces: faces joined across edges (union-find with path halving).
+  std::vector<uint32_t> parent(nf);
+  for (uint32_t f = 0; f < nf; ++f) parent[f] = f;
+  auto root = [&](uint32_t f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  auto forward = [&](uint32_t f, uint32_t a, uint32_t b) {  // f runs a → b
+    const auto& c = mesh.faces[f];
+    return (c[0] == a && c[1] == b) || (c[1] == a && c[2] == b) || (c[2] == a && c[0] == b);
+  };
+  for (size_t e = 0; e < adj.edges.size(); ++e) {
+    const uint32_t count = adj.edge_face_count[e];
+    if (count == 0) continue;  // an unused entry after updates
+    if (count != 2) return false;
+    const uint32_t f = adj.edge_faces[e][0], g = adj.edge_faces[e][1];
+    const EdgeKey& k = adj.edges[e];
+    if (forward(f, k[0], k[1]) == forward(g, k[0], k[1])) return false;
+    parent[root(f)] = root(g);
+  }
+  // Six times each piece's signed volume, about one vertex (no cancellation far from 0).
+  const glm::dvec3 o(mesh.positions[mesh.faces[0][0]]);
+  std::vector<double> volume(nf, 0.0);
+  for (uint32_t f = 0; f < nf; ++f) {
+    const auto& c = mesh.faces[f];
+    const glm::dvec3 a = glm::dvec3(mesh.positions[c[0]]) - o, b = glm::dvec3(mesh.positions[c[1]]) - o,
+                     d = glm::dvec3(mesh.positions[c[2]]) - o;
+    volume[root(f)] += glm::dot(a, glm::cross(b, d));
+  }
+  for (uint32_t f = 0; f < nf; ++f)
+    if (parent[f] == f && !(volume[f] > 0.0)) return false;
+  return true;
 }
 
 }  // namespace lodline

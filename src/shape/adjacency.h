@@ -82,6 +82,12 @@ void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out);
 bool updateAdjacency(const TriMesh& mesh, std::span<const std::array<uint32_t, 3>> old_faces,
                      std::span<const uint32_t> changed, MeshAdjacency& adj);
 
+/// True when mesh.faces is a closed surface seen from outside: every face valid, every edge
+/// on exactly two faces that run along it in opposite directions (consistent orientation),
+/// and each connected piece of positive signed volume (counter-clockwise seen from outside).
+/// Its back faces are then never visible from outside it, so drawing may cull them. O(F + E).
+bool isClosedOutward(const TriMesh& mesh, const MeshAdjacency& adj);
+
 /// "" if `adj` describes mesh.faces exactly as buildAdjacency would (up to edge numbering),
 /// else the first difference. For tests; O(F + V).
 std::string checkAdjacency(const TriMesh& mesh, const MeshAdjacency& adj);

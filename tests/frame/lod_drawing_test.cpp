@@ -122,5 +122,17 @@ TEST(LodDrawing, ConvergedDetailStaysPutAtAFixedView) {
   EXPECT_EQ(late_changes, 0u);
 }
 
+// Back faces may be culled for closed models at full detail and on progressive-mesh levels,
+// never for open models or clustering (whose cells can flip faces).
+TEST(LodDrawing, BackFacesHiddenOnlyForClosedModelsWithoutClustering) {
+  const TriMesh sphere = makeIcoSphere(1.0f, 3);
+  EXPECT_TRUE(LodDrawing(sphere).backFacesHidden());
+  auto pm = buildProgressiveMesh(sphere);
+  ASSERT_TRUE(pm.ok());
+  EXPECT_TRUE(LodDrawing(sphere, std::make_shared<const ProgressiveMesh>(std::move(pm.value()))).backFacesHidden());
+  EXPECT_FALSE(LodDrawing(sphere, ClusterParams{}).backFacesHidden());
+  EXPECT_FALSE(LodDrawing(makeGrid(2.0f, 16)).backFacesHidden());
+}
+
 }  // namespace
 }  // namespace lodline

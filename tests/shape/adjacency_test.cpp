@@ -128,5 +128,42 @@ TEST(Adjacency, FindEdgeAfterUpdates) {
   EXPECT_EQ(adj.findEdge(0, 100000), kNoIndex);
 }
 
+// Back-face culling is allowed only for closed surfaces seen from outside.
+TEST(Adjacency, ClosedOutwardSurfaces) {
+  auto closed = [](const TriMesh& m) {
+    MeshAdjacency adj;
+    buildAdjacency(m, adj);
+    return isClosedOutward(m, adj);
+  };
+  const TriMesh sphere = makeIcoSphere(1.0f, 2);
+  EXPECT_TRUE(closed(sphere));
+  EXPECT_TRUE(closed(makeTorusKnot(2, 3, 1.0f, 0.16f, 120, 12, 0.18f)));
+  // Far from the origin: the volume is taken about a vertex of the mesh.
+  TriMesh far = sphere;
+  for (glm::vec3& p : far.positions) p += glm::vec3(1e4f, -2e4f, 5e3f);
+  EXPECT_TRUE(closed(far));
+  TriMesh inside_out = sphere;
+  for (auto& f : inside_out.faces) std::swap(f[1], f[2]);
+  EXPECT_FALSE(closed(inside_out));
+  // One face turned: the orientation is inconsistent across its edges.
+  TriMesh flipped = sphere;
+  std::swap(flipped.faces[7][1], flipped.faces[7][2]);
+  EXPECT_FALSE(closed(flipped));
+  // A hole.
+  TriMesh open = sphere;
+  open.faces.pop_back();
+  EXPECT_FALSE(closed(open));
+  EXPECT_FALSE(closed(makeGrid(2.0f, 8)));
+  // Two pieces: both outward is fine; one inside out (its volume negative) is not, even when
+  // the total volume is positive.
+  TriMesh two = sphere, small = makeIcoSphere(0.5f, 1);
+  const uint32_t base = static_cast<uint32_t>(two.positions.size());
+  for (glm::vec3 p : small.positions) two.positions.push_back(p + glm::vec3(3.0f, 0.0f, 0.0f));
+  for (auto f : small.faces) two.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+  EXPECT_TRUE(closed(two));
+  for (size_t k = sphere.faces.size(); k < two.faces.size(); ++k) std::swap(two.faces[k][1], two.faces[k][2]);
+  EXPECT_FALSE(closed(two));
+}
+
 }  // namespace
 }  // namespace lodline
