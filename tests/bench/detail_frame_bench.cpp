@@ -5,7 +5,9 @@
 // stage over the frames:
 //   controlled: adapt + shape update + lines (view, extract, chain) + upload + draw +
 //               visibility (depth readback, visible/hidden runs, outline completion)
-//   static:     drawing the same adapted mesh and lines again (no CPU stages)
+//   static:     drawing the same adapted mesh and lines again (no CPU stages): static_ms the
+//               draw alone, static_present_ms with the lines' visibility and strokes, which
+//               every presented frame recomputes; over_static[_present] the ratios
 //   full:       full-detail mesh: lines (view, extract, chain) + draw
 // The `/fades` cases add issue 20's sequence options (docs/temporal-coherence.md): suggestive
 // contours faded by their motion (3 -> 12 px/s, in lines_ms) and new lines faded in over
@@ -145,7 +147,8 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   // Converge at the first camera, as captures do.
   (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width,
                             frame.height, detail, 1.0f / 30.0f, 300);
-  std::vector<double> adapt, shape, lines, upload, draw, visibility, strokes, fade, static_draw, full_lines, full_draw, faces;
+  std::vector<double> adapt, shape, lines, upload, draw, visibility, strokes, fade, static_draw, static_present,
+      full_lines, full_draw, faces;
   float az = 0.0f;
   bool first = true;
   for (auto _ : state) {
@@ -163,9 +166,12 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
     strokes.push_back((*controlled_presenter)->times().strokes);
     fade.push_back((*controlled_presenter)->times().fade);
     faces.push_back(st.faces);
-    // The same adapted mesh drawn again: the static cost of what controlled detail draws.
+    // The same adapted mesh drawn again: the static cost of what controlled detail draws
+    // (the draw alone, and the whole present: upload, draw, visibility of the lines, strokes).
     (void)(*controlled_presenter)->present(controlled, cam, frame, false);
-    static_draw.push_back((*controlled_presenter)->times().render);
+    const auto& again = (*controlled_presenter)->times();
+    static_draw.push_back(again.render);
+    static_present.push_back(again.upload + again.render + again.visibility + again.strokes);
     // Full detail: lines on the full mesh, full mesh drawn.
     Stopwatch sw;
     (void)full.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
@@ -189,6 +195,9 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   state.counters["fade_ms"] = bench::median(fade);
   state.counters["controlled_ms"] = controlled_total;
   state.counters["static_ms"] = bench::median(static_draw);
+  state.counters["static_present_ms"] = bench::median(static_present);
+  state.counters["over_static"] = controlled_total / bench::median(static_draw);
+  state.counters["over_static_present"] = controlled_total / bench::median(static_present);
   state.counters["full_lines_ms"] = bench::median(full_lines);
   state.counters["full_draw_ms"] = bench::median(full_draw);
   state.counters["full_ms"] = bench::median(full_lines) + bench::median(full_draw);
