@@ -180,7 +180,7 @@ TEST_F(Capture, MetricsCsvHasHeaderAndOneRowPerFrame) {
   std::getline(in, line);
   EXPECT_EQ(line,
             "frame,line_pixels,appeared,vanished,churn,dropped,appeared_raw,vanished_raw,churn_raw,strokes,specks,"
-            "active_faces,splits,collapses,ms_total,texture_drift,churn_binary");
+            "active_faces,splits,collapses,ms_total,texture_drift,churn_binary,band_fraction");
   int rows = 0;
   while (std::getline(in, line)) {
     ++rows;
