@@ -184,7 +184,9 @@ TEST_F(Capture, MetricsCsvHasHeaderAndOneRowPerFrame) {
   int rows = 0;
   while (std::getline(in, line)) {
     ++rows;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 16) << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 17) << line;
+    const double band = std::stod(line.substr(line.rfind(',') + 1));
+    EXPECT_TRUE(band > 0.0 && band <= 1.0) << line;
   }
   EXPECT_EQ(rows, 6);
 }
