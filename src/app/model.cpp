@@ -46,6 +46,10 @@ void addDetailOptions(CLI::App& cmd, DetailOptions& o) {
   cmd.add_option("--geomorphs", o.geomorphs, "Real-time geomorphs (Jeong et al. 2005 §3.2): on or off")
       ->capture_default_str();
   cmd.add_option("--morph-time", o.morph_time, "Geomorph transition time in seconds")->capture_default_str();
+  cmd.add_option("--adapt-budget", o.adapt_budget_ms,
+                 "Milliseconds the adaptation may take per frame (view, capture); past it the rest of the mesh "
+                 "waits for the next frames, which resume where it stopped (Hoppe 1997 §5). 0 = no budget")
+      ->capture_default_str();
   cmd.add_option("--smoothing", o.smoothing,
                  "Temporal smoothing of normals, kr and Dw kr over frames (Jeong et al. 2005 §3.3): on or off "
                  "(view and capture; a still render uses the current frame's values)")
@@ -124,6 +128,9 @@ Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
   p.geomorphs = o.geomorphs == "on";
   if (!(o.morph_time > 0.0f && o.morph_time <= 60.0f)) return Error::usage("--morph-time: must be in (0, 60] s");
   p.morph_time = o.morph_time;
+  if (!(o.adapt_budget_ms >= 0.0f && o.adapt_budget_ms <= 1000.0f))
+    return Error::usage("--adapt-budget: must be in [0, 1000] ms");
+  p.max_adapt_ms = o.adapt_budget_ms;
   if (!(o.detail_map_scale > 0.0f)) return Error::usage("--detail-map-scale: must be > 0");
   if (!o.detail_map.empty()) {
     auto map = readDetailMap(o.detail_map, o.detail_map_scale);

@@ -36,6 +36,7 @@ struct DetailOptions {
   float object_factor = 1.0f;
   std::string geomorphs = "on";
   float morph_time = DetailParams{}.morph_time;
+  float adapt_budget_ms = DetailParams{}.max_adapt_ms;
   std::string cache_dir;
   int max_adapt_frames = 300;
   std::string smoothing = "on";

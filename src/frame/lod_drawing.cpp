@@ -155,9 +155,14 @@ Result<int> LodDrawing::converge(const Camera& camera, int width, int height, co
     drawing_.update(camera, enabled);
     return 1;
   }
+  // A still shows the converged detail whatever the frames' budgets: without them here, and
+  // a budget's few operations a step are not mistaken for the quiet of a limit cycle below.
+  DetailParams unbudgeted = detail;
+  unbudgeted.max_adapt_ms = 0.0f;
+  unbudgeted.max_operations = 0;
   int quiet = 0;
   while (std::holds_alternative<PmLevel>(level_) && steps < max_steps) {
-    if (Status s = adaptStep(camera, width, height, detail, dt); !s) return s.error();
+    if (Status s = adaptStep(camera, width, height, unbudgeted, dt); !s) return s.error();
     ++steps;
     changed_any = changed_any || mesh_changed_;
     const LodStats& st = lod()->stats();

@@ -40,6 +40,9 @@ constexpr int kMaxPasses = 4;
 /// Measured over 240-frame zooming orbits of the 1.1M knot, the armadillo and the bunny:
 /// every collapse taken had an estimate below 1.155 × t_c·T.
 constexpr float kEstimateMargin = 1.25f;
+/// Under a time budget a frame still evaluates at least 1/kMinEvaluatedShare of the active
+/// vertices (and 32), so the round robin visits every vertex within that many frames.
+constexpr size_t kMinEvaluatedShare = 8;
 /// How many work-list entries ahead evaluatePass() prefetches per-node data.
 constexpr size_t kPrefetchAhead = 8;
 /// A collapse found illegal is not re-checked for this many frames unless vt's or vu's slot
@@ -803,9 +806,13 @@ void AdaptiveMesh::clearAllMorphs() {
 void AdaptiveMesh::evaluatePass() {
   // The work list holds slots: the static data of an active vertex (position, bounds, parent)
   // is copied into its slot, so this loop mostly reads slot arrays in order.
+  // In slot order, from where a budget stopped the last evaluation (round robin).
   work_.clear();
-  for (uint32_t slot = 0; slot < slot_count_; ++slot)
+  const uint32_t start = resume_slot_ < slot_count_ ? resume_slot_ : 0;
+  for (uint32_t k = 0; k < slot_count_; ++k) {
+    const uint32_t slot = start + k < slot_count_ ? start + k : start + k - slot_count_;
     if (slot_node_[slot] != kNone) work_.push_back(slot);
+  }
   // Visibility and target of every listed vertex, in parallel: they depend only on the
   // slot's node (its bounds) and the view. Used while the slot still holds that node.
   const size_t listed = work_.size();
@@ -825,8 +832,15 @@ void AdaptiveMesh::evaluatePass() {
   }
   const float t_s = params_.t_s, t_c = params_.t_c;
   const bool morph = params_.geomorphs && params_.morph_time > 0.0f;
+  resume_slot_ = 0;
   for (size_t i = 0; i < work_.size(); ++i) {
-    if (params_.max_operations && ops_ >= params_.max_operations) break;
+    if ((params_.max_operations && ops_ >= params_.max_operations) ||
+        (params_.max_adapt_ms > 0.0f && i % 32 == 0 && i >= std::max<size_t>(32, listed / kMinEvaluatedShare) &&
+         adapt_clock_.elapsed() > params_.max_adapt_ms)) {
+      if (i < listed) resume_slot_ = work_[i];  // the next frame starts here
+      budget_spent_ = true;
+      break;
+    }
     // The sibling's slot is the one per-node read of most iterations (a cache miss over a
     // 1M-node array): fetch it a few vertices ahead.
     if (i + kPrefetchAhead < work_.size()) {
@@ -905,6 +919,8 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   changes_.everything = false;
   stats_.splits = stats_.collapses = 0;
   ops_ = 0;
+  adapt_clock_.lap();
+  budget_spent_ = false;
   if (!have_view_) return;
   stats_.target_area = t0_;
 
@@ -965,7 +981,7 @@ void AdaptiveMesh::adapt(float dt_seconds) {
     evaluatePass();
     const uint32_t done = ops_ - ops_before;
     if (done <= std::max<uint32_t>(16, active_vertices_ / 64)) break;
-    if (params_.max_operations && ops_ >= params_.max_operations) break;
+    if (budget_spent_) break;
   }
 
   // 3. Geomorphs.

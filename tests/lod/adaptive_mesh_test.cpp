@@ -474,6 +474,30 @@ TEST(AdaptiveMesh, OperationBudgetSpreadsWorkOverFrames) {
   EXPECT_EQ(lod.checkInvariants(), "");
 }
 
+// A time budget that is always spent: each frame still evaluates an eighth of the vertices,
+// resuming where the last one stopped, so the mesh reaches the unbudgeted detail anyway (if
+// every frame started from the first vertex, the rest would never be visited).
+TEST(AdaptiveMesh, TimeBudgetResumesWhereItStopped) {
+  const Model& m = model("fine_sphere");
+  AdaptiveMesh lod(m.pm);
+  DetailParams d;
+  d.geomorphs = false;
+  d.max_adapt_ms = 1e-9f;
+  const Camera cam = cameraAt(m.bounds, 0.0f, 0.0f, 6.0f);
+  ASSERT_TRUE(lod.setView(cam, kW, kH, d).ok());
+  int frames = 0, quiet = 0;
+  for (; frames < 400 && quiet < 20; ++frames) {
+    lod.adapt(1.0f / 30);
+    quiet = lod.stats().splits + lod.stats().collapses == 0 ? quiet + 1 : 0;
+  }
+  EXPECT_GT(frames, 20);  // the budget did cut the work
+  EXPECT_LT(frames, 400);
+  d.max_adapt_ms = 0.0f;
+  EXPECT_NEAR(static_cast<double>(lod.activeFaceCount()), static_cast<double>(convergedFaces(m, d, cam)),
+              0.05 * lod.activeFaceCount());
+  EXPECT_EQ(lod.checkInvariants(), "");
+}
+
 TEST(AdaptiveMesh, WorksOnALoadedCacheFile) {
   const Model& m = model("knot");
   test::TempDir dir;
