@@ -110,6 +110,16 @@ TEST_F(LodCli, DetailMapCoarsensWhereItIsWhite) {
   EXPECT_NE(readJson(with)["faces_drawn"], readJson(without)["faces_drawn"]);
 }
 
+// A still converges whatever the frames' adaptation budget: the same picture with one.
+TEST_F(LodCli, StillIgnoresTheAdaptBudget) {
+  std::string out;
+  ASSERT_EQ(run(render("-o " + (dir_ / "a.png").string()), &out), 0) << out;
+  ASSERT_EQ(run(render("-o " + (dir_ / "b.png").string() + " --adapt-budget 0.001"), &out), 0) << out;
+  auto a = readPng(dir_ / "a.png"), b = readPng(dir_ / "b.png");
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_TRUE(a->rgba == b->rgba);
+}
+
 TEST_F(LodCli, BuildCommandAndErrors) {
   std::string out;
   ASSERT_EQ(run("build " + model_ + " -o " + (dir_ / "k.lpm").string(), &out), 0) << out;
@@ -121,6 +131,8 @@ TEST_F(LodCli, BuildCommandAndErrors) {
   EXPECT_EQ(run("build /nonexistent.off", &out), 1);
   EXPECT_EQ(run(render("-o " + (dir_ / "e.png").string() + " --target-area 0")), 2);
   EXPECT_EQ(run(render("-o " + (dir_ / "e.png").string() + " --geomorphs maybe")), 2);
+  EXPECT_EQ(run(render("-o " + (dir_ / "e.png").string() + " --adapt-budget -1"), &out), 2);
+  EXPECT_NE(out.find("--adapt-budget"), std::string::npos) << out;
   EXPECT_EQ(run(render("-o " + (dir_ / "e.png").string() + " --detail-map " + (dir_ / "none.png").string()), &out), 1);
   EXPECT_NE(out.find("none.png"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir_ / "e.png"));
