@@ -187,7 +187,8 @@ class Builder {
   bool ring(uint32_t v, std::vector<RingFace>& out) const;
   void buildAdjacency();
   void computeQuadrics();
-  /// Is the half-edge collapse u→t valid? `ring_u` is u's ring; leaves t's ring in ring_b_.
+  /// Is the half-edge collapse u→t valid? `ring_u` is u's ring; leaves t's ring in ring_b_
+  /// (collapse() relies on it when valid() said yes).
   bool valid(uint32_t u, uint32_t t, const std::vector<RingFace>& ring_u);
   /// Recomputes u's best target; with `validate` only a valid one is pushed.
   void update(uint32_t u, bool validate);
@@ -513,7 +514,13 @@ void Builder::collapse(uint32_t u, uint32_t t) {
   v_[t].q.add(v_[u].q);
   v_[t].node = n_ + static_cast<uint32_t>(splits_.size()) - 1;
 
-  ring(t, ring_c_);
+  // t's new ring, without walking it: its old faces (ring_b_, left by valid()) and u's, fl
+  // and fr out. Not in rotation order, which the updates below do not need.
+  ring_c_.clear();
+  for (const RingFace& rf : ring_b_)
+    if (rf.face != fl && rf.face != fr) ring_c_.push_back(rf);
+  for (const RingFace& rf : ring_a_)
+    if (rf.face != fl && rf.face != fr) ring_c_.push_back(rf);
   updateWithRing(t, false, ring_c_);
   for (const RingFace& rf : ring_c_) updateNeighbour(f_[rf.face].v[next3(rf.corner)], u, t);
 }
