@@ -21,6 +21,11 @@ glm::mat4 Camera::projection(float aspect) const {
 
 glm::vec3 Camera::forward() const { return glm::normalize(target - eye); }
 
+bool eyeOutsideSphere(const Camera& camera, const glm::vec3& center, float radius) {
+  const glm::vec3 d = camera.eye - center;
+  return !camera.orthographic && glm::dot(d, d) > radius * radius;
+}
+
 Camera orbitCamera(const Bounds& bounds, const OrbitView& v, float fov_deg, float aspect) {
   Camera cam;
   cam.fov_deg = fov_deg;

@@ -40,6 +40,10 @@ struct OrbitView {
 /// fits the vertical and horizontal field of view with a small margin.
 Camera orbitCamera(const Bounds& bounds, const OrbitView& v, float fov_deg, float aspect);
 
+/// A perspective camera whose eye lies outside the sphere (`center`, `radius`): a closed
+/// surface inside it then shows only its front faces (the renderers cull the back ones).
+bool eyeOutsideSphere(const Camera& camera, const glm::vec3& center, float radius);
+
 /// Sets near/far planes to enclose the bounding sphere (near ≥ 1e-3 of far).
 void fitClipPlanes(Camera& cam, const Bounds& bounds);
 

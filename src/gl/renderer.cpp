@@ -248,8 +248,7 @@ void Renderer::drawSurfaces(const Camera& camera, const FrameParams& frame, std:
     // its front faces; not rasterising them shortens a dense model's draw by about a tenth to a
     // fifth (docs/performance.md, "Back faces culled for closed models").
     const Object& o = objects_[i];
-    const glm::vec3 d = camera.eye - o.center;
-    if (o.closed && !camera.orthographic && glm::dot(d, d) > o.radius * o.radius) glEnable(GL_CULL_FACE);
+    if (o.closed && eyeOutsideSphere(camera, o.center, o.radius)) glEnable(GL_CULL_FACE);
     else glDisable(GL_CULL_FACE);
     drawFaces(objects_[i], camera, styles[i], frame);
   }

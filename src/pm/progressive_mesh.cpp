@@ -462,13 +462,8 @@ void Builder::initialTargets() {
     }
   }
   heap_.reset(n_);
-  for (uint32_t v = 0; v < n_; ++v) {
-    if (!collapsible(v)) {
-      v_[v].target = kNone;  // cannot have one, but a ring must be closed to be used
-      continue;
-    }
+  for (uint32_t v = 0; v < n_; ++v)
     if (v_[v].target != kNone) heap_.append(v, v_[v].cost);
-  }
   heap_.heapify();
 }
 

@@ -168,7 +168,7 @@ void SoftRenderer::setBackFaceCulling(size_t object, bool closed, const glm::vec
 }
 
 void SoftRenderer::gather(const glm::mat4& view, const glm::mat4& view_proj, int attribute_count,
-                          const glm::vec3* eye) {
+                          const Camera* camera) {
   const glm::mat3 normal_matrix(view);  // as mesh.vert: mat3(u_view) * a_normal
   const int N = attribute_count;
   size_t nv = 0, nf = 0;
@@ -197,8 +197,7 @@ void SoftRenderer::gather(const glm::mat4& view, const glm::mat4& view_proj, int
       }
     }
     const uint32_t base = static_cast<uint32_t>(v0);
-    const glm::vec3 d = eye ? *eye - o.center : glm::vec3(0.0f);
-    const bool cull = eye && o.closed && glm::dot(d, d) > o.radius * o.radius;
+    const bool cull = camera && o.closed && eyeOutsideSphere(*camera, o.center, o.radius);
     for (size_t f = 0; f < o.faces.size(); ++f) {
       const std::array<uint32_t, 3> c = {o.faces[f][0] + base, o.faces[f][1] + base, o.faces[f][2] + base};
       if (cull) {  // clockwise on screen: a back face (kept when a corner is behind the eye)
@@ -229,7 +228,7 @@ void SoftRenderer::drawSurfaces(const Camera& camera, const FrameParams& frame, 
   const int N = any_texture ? 5 : 3;
   const glm::mat4 view = camera.view();
   const glm::mat4 view_proj = camera.projection(frame.aspect()) * view;
-  gather(view, view_proj, N, camera.orthographic ? nullptr : &camera.eye);
+  gather(view, view_proj, N, &camera);
   times_.transform = sw.lap();
 
   // 1. Faces of every object, pushed back like glPolygonOffset(1, 2) (as the GL renderer's,

@@ -118,10 +118,10 @@ class SoftRenderer {
   };
   bool textured(const Object& o) const { return !o.texture.rgba.empty() && o.uvs.size() == o.positions.size(); }
   // All objects' vertices to clip space (attributes: eye normal, uv) and their faces into one
-  // array, face_object_ saying whose each face is. With `eye`, the back faces of objects
-  // set to be culled are left out while the eye is outside their sphere.
+  // array, face_object_ saying whose each face is. With `camera`, the back faces of objects
+  // set to be culled are left out while its eye is outside their sphere.
   void gather(const glm::mat4& view, const glm::mat4& view_proj, int attribute_count,
-              const glm::vec3* eye = nullptr);
+              const Camera* camera = nullptr);
   WorkerPool& pool() { return rasterizer_.workerPool(params_.threads); }
 
   RasterParams params_;

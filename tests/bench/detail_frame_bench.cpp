@@ -112,6 +112,45 @@ Stages stagesOf(const SceneDrawing& scene) {
   return st;
 }
 
+// One detail-controlled frame per call (the scene's stages, then its present), kept per
+// frame; counters() writes their medians and the frame's total.
+struct ControlledFrames {
+  std::vector<double> adapt, shape, lines, upload, draw, visibility, strokes, fade, faces;
+  void record(SceneDrawing& scene, GlPresenter& presenter, const Camera& cam, const FrameParams& frame,
+              const DetailParams& detail, bool first) {
+    (void)scene.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
+    const Stages st = stagesOf(scene);
+    adapt.push_back(st.adapt);
+    shape.push_back(st.shape);
+    lines.push_back(st.lines);
+    faces.push_back(st.faces);
+    (void)presenter.present(scene, cam, frame, first);
+    const auto& t = presenter.times();
+    upload.push_back(t.upload);
+    draw.push_back(t.render);
+    visibility.push_back(t.visibility);
+    strokes.push_back(t.strokes);
+    fade.push_back(t.fade);
+  }
+  double cpuMs() const { return bench::median(adapt) + bench::median(shape) + bench::median(lines); }
+  double totalMs() const {
+    return cpuMs() + bench::median(upload) + bench::median(draw) + bench::median(visibility) +
+           bench::median(strokes);
+  }
+  void counters(benchmark::State& state) const {
+    state.counters["active_faces"] = bench::median(faces);
+    state.counters["adapt_ms"] = bench::median(adapt);
+    state.counters["shape_ms"] = bench::median(shape);
+    state.counters["lines_ms"] = bench::median(lines);
+    state.counters["upload_ms"] = bench::median(upload);
+    state.counters["draw_ms"] = bench::median(draw);
+    state.counters["visibility_ms"] = bench::median(visibility);
+    state.counters["strokes_ms"] = bench::median(strokes);
+    state.counters["fade_ms"] = bench::median(fade);
+    state.counters["controlled_ms"] = totalMs();
+  }
+};
+
 void detailFrame(benchmark::State& state, const std::string& name, float target_area, bool fades) {
   auto model = loadModel(name);
   if (!model) {
@@ -147,25 +186,14 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   // Converge at the first camera, as captures do.
   (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width,
                             frame.height, detail, 1.0f / 30.0f, 300);
-  std::vector<double> adapt, shape, lines, upload, draw, visibility, strokes, fade, static_draw, static_present,
-      full_lines, full_draw, faces;
+  ControlledFrames frames;
+  std::vector<double> static_draw, static_present, full_lines, full_draw;
   float az = 0.0f;
   bool first = true;
   for (auto _ : state) {
     const Camera cam = orbitCamera(controlled.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
     az += 1.0f;
-    (void)controlled.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
-    const Stages st = stagesOf(controlled);
-    adapt.push_back(st.adapt);
-    shape.push_back(st.shape);
-    lines.push_back(st.lines);
-    (void)(*controlled_presenter)->present(controlled, cam, frame, first);
-    upload.push_back((*controlled_presenter)->times().upload);
-    draw.push_back((*controlled_presenter)->times().render);
-    visibility.push_back((*controlled_presenter)->times().visibility);
-    strokes.push_back((*controlled_presenter)->times().strokes);
-    fade.push_back((*controlled_presenter)->times().fade);
-    faces.push_back(st.faces);
+    frames.record(controlled, **controlled_presenter, cam, frame, detail, first);
     // The same adapted mesh drawn again: the static cost of what controlled detail draws
     // (the draw alone, and the whole present: upload, draw, visibility of the lines, strokes).
     (void)(*controlled_presenter)->present(controlled, cam, frame, false);
@@ -180,20 +208,9 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
     full_draw.push_back(sw.lap());
     first = false;
   }
-  const double controlled_total = bench::median(adapt) + bench::median(shape) + bench::median(lines) +
-                                  bench::median(upload) + bench::median(draw) + bench::median(visibility) +
-                                  bench::median(strokes);
+  const double controlled_total = frames.totalMs();
+  frames.counters(state);
   state.counters["model_faces"] = static_cast<double>(model->mesh.faceCount());
-  state.counters["active_faces"] = bench::median(faces);
-  state.counters["adapt_ms"] = bench::median(adapt);
-  state.counters["shape_ms"] = bench::median(shape);
-  state.counters["lines_ms"] = bench::median(lines);
-  state.counters["upload_ms"] = bench::median(upload);
-  state.counters["draw_ms"] = bench::median(draw);
-  state.counters["visibility_ms"] = bench::median(visibility);
-  state.counters["strokes_ms"] = bench::median(strokes);
-  state.counters["fade_ms"] = bench::median(fade);
-  state.counters["controlled_ms"] = controlled_total;
   state.counters["static_ms"] = bench::median(static_draw);
   state.counters["static_present_ms"] = bench::median(static_present);
   state.counters["over_static"] = controlled_total / bench::median(static_draw);
@@ -218,8 +235,8 @@ std::pair<double, double> residentBytes() {
 }
 
 // One case of the scale series: a knot of about `faces` faces (tube segments 1/15 of the
-// length's, as the 1.1M knot), built, saved, converged and orbited like detailFrame's
-// controlled side.
+// length's, as the 1.1M knot), built, saved, converged (as a still is) and orbited like
+// detailFrame's controlled side.
 void scaleFrame(benchmark::State& state, double faces, float target_area) {
   const uint32_t tube = static_cast<uint32_t>(std::lround(std::sqrt(faces / 30.0)));
   TriMesh mesh = makeTorusKnot(2, 3, 1.0f, 0.16f, 15 * tube, tube, 0.18f);
@@ -257,35 +274,19 @@ void scaleFrame(benchmark::State& state, double faces, float target_area) {
   const float aspect = frame.aspect();
   (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width,
                             frame.height, detail, SceneDrawing::kConvergeStepSeconds, 300);
-  std::vector<double> adapt, shape, lines, upload, draw, visibility, strokes, active;
+  ControlledFrames frames;
   float az = 0.0f;
   bool first = true;
   for (auto _ : state) {
     const Camera cam = orbitCamera(controlled.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
     az += 1.0f;
-    (void)controlled.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
-    const Stages st = stagesOf(controlled);
-    adapt.push_back(st.adapt);
-    shape.push_back(st.shape);
-    lines.push_back(st.lines);
-    active.push_back(st.faces);
-    (void)(*presenter)->present(controlled, cam, frame, first);
-    upload.push_back((*presenter)->times().upload);
-    draw.push_back((*presenter)->times().render);
-    visibility.push_back((*presenter)->times().visibility);
-    strokes.push_back((*presenter)->times().strokes);
+    frames.record(controlled, **presenter, cam, frame, detail, first);
     first = false;
   }
   const auto [rss, peak] = residentBytes();
+  frames.counters(state);
   state.counters["model_faces"] = input_faces;
-  state.counters["active_faces"] = bench::median(active);
-  state.counters["adapt_ms"] = bench::median(adapt);
-  state.counters["shape_ms"] = bench::median(shape);
-  state.counters["lines_ms"] = bench::median(lines);
-  state.counters["cpu_ms"] = bench::median(adapt) + bench::median(shape) + bench::median(lines);
-  state.counters["controlled_ms"] = bench::median(adapt) + bench::median(shape) + bench::median(lines) +
-                                    bench::median(upload) + bench::median(draw) + bench::median(visibility) +
-                                    bench::median(strokes);
+  state.counters["cpu_ms"] = frames.cpuMs();
   state.counters["build_s_per_Mface"] = build_s / (input_faces / 1e6);
   state.counters["cache_B_per_face"] = cache_bytes / input_faces;
   state.counters["rss_B_per_face"] = rss / input_faces;
