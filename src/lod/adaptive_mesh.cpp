@@ -36,10 +36,17 @@ constexpr size_t kMaxStack = 1u << 20;
 constexpr uint32_t kRetryFrames = 8;
 /// Evaluation passes per frame at most (a pass repeats only while it changes a lot).
 constexpr int kMaxPasses = 4;
-/// The exact post-collapse mean is computed only when the estimate is below this × t_c·T.
-/// Measured over 240-frame zooming orbits of the 1.1M knot, the armadillo and the bunny:
-/// every collapse taken had an estimate below 1.155 × t_c·T.
-constexpr float kEstimateMargin = 1.25f;
+/// A collapse also needs the mean around the parent afterwards below this × t_s·T, so that
+/// the parent does not split again at the same view (the criterion itself reads the mean
+/// before the collapse, Jeong §3.1; 2·t_c < t_s makes this hold for regular rings).
+constexpr float kNoSplitBack = 0.9f;
+/// While the camera recedes, a collapse's geomorph takes at most this share of the time its
+/// faces take to shrink below the band (t_c·T/2), so coarsening keeps pace with a fast zoom.
+constexpr float kLagShare = 0.25f;
+/// Levels of blocking collapses unblockCollapse() follows, and the nodes it may visit per
+/// blocked collapse (bounds its cost: each level may branch four ways).
+constexpr int kUnblockDepth = 6;
+constexpr uint32_t kUnblockVisits = 64;
 /// Under a time budget a frame still evaluates at least 1/kMinEvaluatedShare of the active
 /// vertices (and 32), so the round robin visits every vertex within that many frames.
 constexpr size_t kMinEvaluatedShare = 8;
@@ -423,15 +430,49 @@ bool AdaptiveMesh::collectFan(uint32_t v, uint32_t from, uint32_t to,
   }
 }
 
-// The mean around p after the collapse, from the ring accumulators of vt and vu alone (no
-// face is read): the C = cnt_t + cnt_u entries count fl and fr twice, so the union holds
-// C − 2 faces of area about S·(C − 2)/C; the collapse keeps that area on C − 4 faces. Only a
-// prefilter for predictedMean(), so it may err a little either way.
-float AdaptiveMesh::estimatedMean(uint32_t st, uint32_t su) const {
+// The mean image area of the faces around vt and vu before the collapse, from the two rings'
+// accumulators alone (no face is read), so fl and fr, in both rings, count twice. pairMean()
+// counts each face once, reading fl and fr (active while both children are: only the
+// collapse of p removes them).
+float AdaptiveMesh::ringsMean(uint32_t st, uint32_t su) const {
   const int32_t count = ring_cnt_[st] + ring_cnt_[su];
-  if (count <= 4) return 0.0f;
-  const double sum = ring_sum_[st] + ring_sum_[su];
-  return static_cast<float>(sum * (count - 2) / (static_cast<double>(count) * (count - 4)));
+  return count > 0 ? static_cast<float>((ring_sum_[st] + ring_sum_[su]) / count) : 0.0f;
+}
+
+float AdaptiveMesh::pairMean(uint32_t st, uint32_t su, uint32_t p) const {
+  const VertexSplit& vs = pm_.split(p);
+  const int32_t count = ring_cnt_[st] + ring_cnt_[su] - 2;
+  if (count <= 0 || face_pos_[vs.fl] == kNone || face_pos_[vs.fr] == kNone) return 0.0f;
+  const double shared = static_cast<double>(active_area_[face_pos_[vs.fl]]) +
+                        static_cast<double>(active_area_[face_pos_[vs.fr]]);
+  return static_cast<float>((ring_sum_[st] + ring_sum_[su] - shared) / count);
+}
+
+// ln(area at the last adapt()'s view / area now) per second at p: > 0 while p's image shrinks.
+float AdaptiveMesh::areaShrinkRate(const glm::vec3& p) const {
+  if (!have_last_view_ || !(frame_dt_ > 0.0f)) return 0.0f;
+  float ratio = last_k_ / k_;
+  if (!camera_.orthographic) {
+    const glm::vec3 now = p - eye_, before = p - last_eye_;
+    ratio *= std::max(glm::dot(now, now), 1e-30f) / std::max(glm::dot(before, before), 1e-30f);
+  }
+  return std::log(ratio) / frame_dt_;
+}
+
+// Geomorph speed of a collapse whose faces' mean is `now`: it grows with the square of the
+// discrepancy (a collapse far below its threshold finishes within a frame), and while the
+// camera recedes the morph takes at most kLagShare of the time the faces take to leave the
+// band, so the coarsening lag of a fast zoom-out stays bounded.
+float AdaptiveMesh::collapseSpeedup(float now, float target, const glm::vec3& pos) const {
+  const float t_c = params_.t_c, top = params_.max_morph_speedup;
+  const float ratio = t_c * target / std::max(now, 1e-12f);
+  float speedup = clampf(ratio * ratio, 1.0f, top);
+  if (const float shrink = areaShrinkRate(pos); shrink > 0.0f) {
+    const float left = std::log(std::max(now, 1e-12f) / (0.5f * t_c * target)) / shrink;  // s
+    const float nominal = params_.morph_time * params_.coarsen_time_factor;
+    speedup = left > 0.0f ? clampf(std::max(speedup, nominal / (kLagShare * left)), 1.0f, top) : top;
+  }
+  return speedup;
 }
 
 float AdaptiveMesh::predictedMean(uint32_t p) const {
@@ -885,22 +926,71 @@ void AdaptiveMesh::evaluatePass() {
       continue;
     }
     const float target = known ? pre_target_[slot] : targetAt(nb.pos);  // p has v's position
-    // Cheap estimate first; the decision itself uses the exact post-collapse mean, the same
-    // quantity the split of p compares with t_s·T, so a pair never flips back and forth.
-    if (!(estimatedMean(slot, su) < kEstimateMargin * t_c * target) || !collapseMayBeLegal(slot, su, p))
+    // Jeong §3.1: collapse when the mean area around the two children falls below t_c·T,
+    // unless the parent's mean afterwards (the number its split compares with t_s·T) would
+    // split it again, so a pair never flips back and forth at a fixed view. Both means must
+    // be below: the accumulators' one first (no face read), then the exact one, so slivers
+    // fl and fr do not make a collapse early (docs/detail-control.md §7).
+    if (!(ringsMean(slot, su) < t_c * target)) continue;
+    const float now = pairMean(slot, su, p);
+    if (!(now < t_c * target)) continue;
+    if (!collapseMayBeLegal(slot, su, p)) {
+      unblock_visits_ = 0;
+      unblockCollapse(p, kUnblockDepth);
       continue;
-    const float mean = predictedMean(p);
-    if (!(mean < t_c * target)) continue;
-    // Coarsening speed grows with the square of the discrepancy: a collapse far below its
-    // threshold (fast zoom-out) finishes within a frame, which bounds the coarsening lag.
-    const float ratio = t_c * target / std::max(mean, 1e-12f);
-    const float speedup = clampf(ratio * ratio, 1.0f, params_.max_morph_speedup);
+    }
+    if (!(predictedMean(p) < kNoSplitBack * t_s * target)) continue;
+    const float speedup = collapseSpeedup(now, target, nb.pos);
     if (morph && params_.morph_time * params_.coarsen_time_factor / speedup > frame_dt_) {
       if (collapseGeometryOk(p)) startCollapseMorph(p, speedup);
     } else if (doCollapse(p, true) && work_.size() < work_.capacity()) {
       work_.push_back(slot);
     }
   }
+}
+
+// A collapse of p that is due but illegal waits, in Hoppe's scheme (1997 §4), until the
+// finer faces between fl/fr and their recorded neighbours fn[i] are gone. Those faces' own
+// collapses need not be due (their rings hold larger faces), and after a fast zoom-out such
+// waits chain into a mesh several times finer than the view asks for, which stays so when the
+// camera stops (docs/detail-control.md, "Coarsening that keeps up"). So the collapses that
+// remove the blocking faces are made here (first those of their creators' children where
+// these are split further), up to `depth` levels, each only where its parent would not split
+// again at this view. They are executed at once: a geomorph per level would delay p by as
+// many morphs. Returns whether an operation was made.
+bool AdaptiveMesh::unblockCollapse(uint32_t p, int depth) {
+  const VertexSplit& vs = pm_.split(p);
+  if (face_pos_[vs.fl] == kNone || face_pos_[vs.fr] == kNone) return false;
+  const auto &nl = fnb_[vs.fl], &nr = fnb_[vs.fr];
+  const uint32_t across[4] = {nl[1], nl[2], nr[1], nr[2]};  // where fn[0..3] belong
+  bool any = false;
+  for (int i = 0; i < 4; ++i) {
+    const uint32_t g = across[i];
+    if (g == vs.fn[i]) continue;
+    // A coarser neighbour (fn[i] not active yet) would need a split: not here.
+    if (g == kNone || face_pos_[vs.fn[i]] == kNone) return any;
+    const uint32_t q = pm_.face_parent[g];
+    if (q == kNone || q == p) return any;
+    any |= advanceCollapse(q, depth);
+  }
+  return any;
+}
+
+bool AdaptiveMesh::advanceCollapse(uint32_t q, int depth) {
+  if (++unblock_visits_ > kUnblockVisits) return false;
+  const VertexSplit& qs = pm_.split(q);
+  const uint32_t qt = node_slot_[qs.vt], qu = node_slot_[qs.vu];
+  if (qt == kNone || qu == kNone) {  // a child is split further: its collapse comes first
+    if (depth == 0 || node_slot_[q] != kNone) return false;
+    bool any = false;
+    if (qt == kNone && !pm_.isLeaf(qs.vt)) any |= advanceCollapse(qs.vt, depth - 1);
+    if (qu == kNone && !pm_.isLeaf(qs.vu)) any |= advanceCollapse(qs.vu, depth - 1);
+    return any;
+  }
+  if (slot_locked_[qt] || slot_locked_[qu]) return false;  // collapsing already
+  if (!ecolLegal(q)) return depth > 0 && unblockCollapse(q, depth - 1);
+  if (!(predictedMean(q) < kNoSplitBack * params_.t_s * targetAt(node_pos_[q]))) return false;
+  return doCollapse(q, true);
 }
 
 void AdaptiveMesh::adapt(float dt_seconds) {
@@ -987,6 +1077,9 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   // 3. Geomorphs.
   advanceMorphs(std::max(dt_seconds, 0.0f));
 
+  last_eye_ = eye_;
+  last_k_ = k_;
+  have_last_view_ = true;
   stats_.active_vertices = active_vertices_;
   stats_.active_faces = static_cast<uint32_t>(active_faces_.size());
   stats_.morphing = static_cast<uint32_t>(morphing_.size());

@@ -206,8 +206,18 @@ class AdaptiveMesh {
   float ringMean(uint32_t v) const;
   /// Mean image area around p if p's children were collapsed now (children active).
   float predictedMean(uint32_t p) const;
-  /// Cheap estimate from the ring accumulators of the children's slots (prefilter).
-  float estimatedMean(uint32_t st, uint32_t su) const;
+  /// Mean image area of the faces in the children's 1-rings (the collapse criterion), from
+  /// the ring accumulators of their slots.
+  float ringsMean(uint32_t st, uint32_t su) const;
+  float pairMean(uint32_t st, uint32_t su, uint32_t p) const;
+  /// ln(image area at the last adapt()'s view / now) per second at p (> 0: receding).
+  float areaShrinkRate(const glm::vec3& p) const;
+  /// Geomorph speed-up of a collapse whose rings' mean is `now` (see adaptive_mesh.cpp).
+  float collapseSpeedup(float now, float target, const glm::vec3& pos) const;
+  /// Collapses, at once, what keeps the due collapse of p illegal (finer faces beside fl and
+  /// fr), up to `depth` levels; advanceCollapse() makes or unblocks the collapse of q.
+  bool unblockCollapse(uint32_t p, int depth);
+  bool advanceCollapse(uint32_t q, int depth);
   /// Adds (sign 1) or removes (sign -1) face f's area to/from its corners' accumulators.
   void accumulate(uint32_t f, float sign);
   bool splitDone(uint32_t node) const {
@@ -304,6 +314,10 @@ class AdaptiveMesh {
   std::array<glm::vec4, 5> planes_{};
   glm::vec3 eye_{0.0f}, forward_{0.0f, 0.0f, -1.0f};
   float k_ = 1.0f;
+  glm::vec3 last_eye_{0.0f};  // eye and k_ of the last adapt() (areaShrinkRate)
+  float last_k_ = 1.0f;
+  bool have_last_view_ = false;
+  uint32_t unblock_visits_ = 0;  // nodes visited by the current unblockCollapse()
   float t0_ = 16.0f;
   float focus_dist_ = 1.0f;
   float focal_px_ = 1.0f;

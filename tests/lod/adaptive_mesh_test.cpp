@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <random>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "lod/adaptive_mesh.h"
 #include "pm/pm_file.h"
@@ -406,10 +408,16 @@ TEST(AdaptiveMesh, GeomorphsMorphOutAndCollapseAfterMorphing) {
       ASSERT_EQ(pos[s], m.pm.nodePosition(nodes[s]));
     }
   }
-  // Zoom out: collapses are first pending (morphing), executed later.
-  ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 0.0f, 0.0f, 6.0f), kW, kH, d).ok());
-  lod.adapt(1.0f / 30);
-  EXPECT_GT(lod.stats().pending_collapses, 0u);
+  // Zoom out over 2 s: collapses are first pending (morphing), executed later. (A jump of the
+  // camera within one frame executes them at once: their faces leave the band before any
+  // morph could end.)
+  uint32_t pending = 0;
+  for (int f = 1; f <= 60; ++f) {
+    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 0.0f, 0.0f, 3.0f * std::pow(2.0f, f / 60.0f)), kW, kH, d).ok());
+    lod.adapt(1.0f / 30);
+    pending = std::max(pending, lod.stats().pending_collapses);
+  }
+  EXPECT_GT(pending, 0u);
   EXPECT_EQ(lod.checkInvariants(), "");
 }
 
@@ -580,6 +588,75 @@ TEST(AdaptiveMesh, WorkerThreadsDoNotChangeTheResult) {
   EXPECT_GT(ops, 1000u);
   EXPECT_GT(threaded.activeFaceCount(), 2u * 4096u);  // long enough to be split over threads
   EXPECT_EQ(threaded.checkInvariants(), "");
+}
+
+/// The `zoom-out` camera path run in 2 s (16× farther, exponential, 60 frames at 30 fps) from
+/// converged detail at the default framing, then 10 frames at rest. Returns the lowest band
+/// fraction of the drawn frames (the mesh after each adapt()) while the camera moves, and the
+/// band fraction 10 frames after it stops.
+std::pair<float, float> fastZoomOutBand(const Model& m) {
+  AdaptiveMesh lod(m.pm);
+  DetailParams d;
+  const float start = 1.08f / std::sin(glm::radians(17.5f));  // radii: the default framing
+  EXPECT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, start), kW, kH, d).ok());
+  for (int i = 0, quiet = 0; i < 300 && quiet < 10; ++i) {
+    lod.adapt(1.0f);
+    quiet = lod.stats().splits + lod.stats().collapses + lod.stats().morphing == 0 ? quiet + 1 : 0;
+  }
+  float lowest = 1.0f, band = 0.0f;
+  uint32_t visible = 0;
+  for (int f = 1; f <= 70; ++f) {
+    const float s = std::pow(16.0f, static_cast<float>(std::min(f, 60)) / 60.0f);
+    EXPECT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, start * s), kW, kH, d).ok());
+    lod.adapt(1.0f / 30);
+    lod.measureBand(band, visible);
+    if (f <= 60) lowest = std::min(lowest, band);
+  }
+  EXPECT_EQ(lod.checkInvariants(), "");
+  return {lowest, band};
+}
+
+TEST(AdaptiveMesh, DueCollapsesAreUnblockedAfterAZoomOut) {
+  // A zoom-out to 16x the framing distance in 20 frames, without geomorphs, then 20 frames
+  // at rest. Collapses that are due but illegal (Hoppe's dependencies on finer neighbours)
+  // used to wait for collapses that never became due themselves, and the mesh stayed several
+  // times finer than a fresh convergence at that view. Measured when written, band fraction
+  // at rest with / without unblockCollapse(): knot 0.861 / 0.690, torus 0.766 / 0.450,
+  // armadillo 0.974 / 0.177 (82 against 396 faces; 58 from a fresh convergence).
+  const std::pair<const char*, float> cases[] = {{"knot", 0.8f}, {"torus", 0.7f}, {"armadillo.off", 0.9f}};
+  for (const auto& [name, want] : cases) {
+    SCOPED_TRACE(name);
+    const Model& m = model(name);
+    if (m.mesh.faces.empty()) continue;  // CGAL data meshes not installed
+    DetailParams d;
+    d.geomorphs = false;
+    const float start = 1.08f / std::sin(glm::radians(17.5f));  // radii: the default framing
+    AdaptiveMesh lod(m.pm);
+    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, start), kW, kH, d).ok());
+    for (int i = 0; i < 100; ++i) lod.adapt(1.0f);
+    for (int f = 1; f <= 40; ++f) {
+      const float s = std::pow(16.0f, static_cast<float>(std::min(f, 20)) / 20.0f);
+      ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, start * s), kW, kH, d).ok());
+      lod.adapt(1.0f / 30);
+    }
+    float band = 0.0f;
+    uint32_t visible = 0;
+    lod.measureBand(band, visible);
+    EXPECT_GE(band, want) << lod.activeFaceCount() << " faces";
+    EXPECT_EQ(lod.checkInvariants(), "");
+  }
+}
+
+TEST(AdaptiveMesh, FastZoomOutKeepsTheBand) {
+  // Measured when written: 0.885 while zooming, 1.000 ten frames after. Without the morph
+  // speed that follows the zoom (collapseSpeedup) the lowest frame is 0.587; with the old
+  // criterion (the mean after the collapse below t_c·T) it was 0.180. Other meshes, where
+  // the result is less even, are in docs/detail-control.md.
+  const Model& m = model("fine_sphere");
+  const auto [lowest, after] = fastZoomOutBand(m);
+  std::printf("band lowest while zooming %.3f, 10 frames after %.3f\n", lowest, after);
+  EXPECT_GE(lowest, 0.8f);
+  EXPECT_GE(after, 0.9f);
 }
 
 }  // namespace
