@@ -61,6 +61,11 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
                  "runs along it, not across the faces beside it (CAD parts' sharp rims); off: n.v = 0 "
                  "interpolated from vertex normals everywhere, as rtsc draws it (docs/lines.md)")
       ->capture_default_str();
+  cmd.add_option("--suggestive-at-creases", o.suggestive_at_creases,
+                 "off: suggestive contours and highlights leave out the faces with a corner on a crease, where "
+                 "curvature is undefined and its estimate draws scratches beside the edge (CAD parts); on: "
+                 "drawn there too, as rtsc draws them (docs/lines.md)")
+      ->capture_default_str();
   cmd.add_option("--chamfer", o.chamfer,
                  "Chamfer highlights on sharp edges: auto (with --style shaded), on (also over "
                  "toon) or off")
@@ -301,6 +306,9 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   if (o.contour_creases != "on" && o.contour_creases != "off")
     return Error::usage("--contour-creases: expected on or off, got '" + o.contour_creases + "'");
   r.line_params.contours_follow_creases = o.contour_creases == "on";
+  if (o.suggestive_at_creases != "on" && o.suggestive_at_creases != "off")
+    return Error::usage("--suggestive-at-creases: expected on or off, got '" + o.suggestive_at_creases + "'");
+  r.line_params.suggestive_off_creases = o.suggestive_at_creases == "off";
   auto hidden = parseHiddenLines(o.hidden_lines);
   if (!hidden) return hidden.error();
   r.style.hidden = *hidden;
@@ -422,6 +430,7 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   s["principal-highlight-threshold"] = exact(lines.principal_highlight_threshold);
   s["outline"] = lines.complete_outline ? "complete" : "contour";
   s["contour-creases"] = lines.contours_follow_creases ? "on" : "off";
+  s["suggestive-at-creases"] = lines.suggestive_off_creases ? "off" : "on";
   s["hidden-lines"] = formatHiddenLines(style.hidden);
 
   const DetailParams& d = detail.params;

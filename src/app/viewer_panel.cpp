@@ -229,6 +229,7 @@ void linesSection(ViewerSession& s, PanelState& st) {
   LineParams lp = s.lineParams();
   bool changed = ImGui::Checkbox("Complete the outline (mesh silhouette where the contour leaves it)", &lp.complete_outline);
   changed |= ImGui::Checkbox("Contour along silhouette creases", &lp.contours_follow_creases);
+  changed |= ImGui::Checkbox("No suggestive lines at creases", &lp.suggestive_off_creases);
   changed |= ImGui::SliderFloat("Suggestive threshold", &lp.suggestive_threshold, 0.0f, 0.2f, "%.4f");
   changed |= ImGui::SliderFloat("Suggestive fade", &lp.suggestive_fade, 0.0f, 0.2f, "%.4f");
   changed |= ImGui::SliderFloat("Motion fade from (px/s)", &lp.suggestive_motion_fade_start, 0.0f, 200.0f, "%.1f");

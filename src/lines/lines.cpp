@@ -81,6 +81,11 @@ void vertexCodesShifted(const ZeroSetInput& in, size_t begin, size_t end, uint8_
 void vertexCodes(const ZeroSetInput& in, int k, size_t begin, size_t end, uint8_t* code) {
   if (k == 0) vertexCodesShifted<0>(in, begin, end, code);
   else vertexCodesShifted<3>(in, begin, end, code);
+  if (in.shut.size() == in.value.size()) {
+    const uint8_t bit = static_cast<uint8_t>(kGated << (3 * k));
+    for (size_t v = begin; v < end; ++v)
+      if (in.shut[v]) code[v] |= bit;
+  }
 }
 
 // Appends to `dst` the segments of zero set `in` in face f, whose corners are `corner` with
@@ -470,9 +475,18 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
   size_t n = 0;
   // Edges first: the contour follows the creases that are silhouettes.
   const bool follow = params.contours && params.contours_follow_creases && view.ndotv.size() == mesh.positions.size();
-  const bool classified = (follow || params.creases || params.boundaries) &&
-                          classifyEdges(mesh, adj, face_normals, params, params.creases || follow, params.boundaries,
-                                        scratch, crease_vertices);
+  const bool off_creases = params.suggestive_off_creases && (params.suggestive || params.suggestive_highlights);
+  const bool classified = (follow || params.creases || params.boundaries || off_creases) &&
+                          classifyEdges(mesh, adj, face_normals, params, params.creases || follow || off_creases,
+                                        params.boundaries, scratch, crease_vertices);
+  // The vertices on crease edges, where the suggestive kinds are not drawn.
+  std::span<const uint8_t> crease_shut;
+  if (off_creases && classified) {
+    scratch.crease_vertex.assign(mesh.positions.size(), 0);
+    for (size_t e = 0; e < adj.edges.size(); ++e)
+      if (scratch.edge_mark[e] == 1) scratch.crease_vertex[adj.edges[e][0]] = scratch.crease_vertex[adj.edges[e][1]] = 1;
+    crease_shut = scratch.crease_vertex;
+  }
   const bool on_creases = follow && classified;
   if (params.contours) {
     in[n].value = on_creases ? contourValue(mesh, adj, face_normals, view, scratch) : view.ndotv;
@@ -490,6 +504,7 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
     in[n].gate_min = params.suggestive_min_ndotv;
     in[n].fade = params.suggestive_fade / (fs * fs);
     in[n].gain = gain;
+    in[n].shut = crease_shut;
     types[n++] = type;
   };
   if (params.suggestive && view.sc_num.size() == nv) kr_zero(view.sc_num, LineKind::kSuggestive, suggestive_gain);

@@ -52,6 +52,12 @@ struct LineParams {
   /// q = sinθ·Dw kr − threshold·cosθ, i.e. alpha → 0 where the test is barely passed.
   /// 0 disables fading (alpha 1). Default 0.03 (rtsc's "faded" style).
   float suggestive_fade = 0.03f;
+  /// Suggestive contours and highlights leave out the faces with a corner on a crease line
+  /// (the creases below, at the crease angle, marked or non-manifold). Curvature is not
+  /// defined across a sharp edge, and the estimate there, averaged over both sides, is the
+  /// crease itself: its kr zero set runs beside the crease as a row of scratches (CAD parts,
+  /// docs/lines.md). The crease is drawn as a crease line. false: as rtsc draws them.
+  bool suggestive_off_creases = true;
   /// Fading of suggestive contours that slide fast over the surface (DeCarlo, Finkelstein,
   /// Rusinkiewicz 2004, §4; docs/temporal-coherence.md): a line's alpha is multiplied by
   /// 1 − smoothstep(start, end, speed), speed being how fast the line crosses the surface in
@@ -160,6 +166,9 @@ struct ZeroSetInput {
   std::span<const float> test_den;  ///< optional (empty: den = 1)
   std::span<const float> gate;      ///< optional: skip faces with any vertex gate < gate_min
   float gate_min = 0.0f;
+  /// Optional (vertexCount bytes): skip faces with any vertex non-zero here, as if its gate
+  /// were shut.
+  std::span<const uint8_t> shut;
   float fade = 0.0f;  ///< > 0: endpoint alpha = num/(num + fade·den), clamped; 0: alpha 1
   /// Optional: per-vertex factor in [0, 1] on the alpha (interpolated like the test).
   std::span<const float> gain;
@@ -175,6 +184,7 @@ struct LineScratch {
   std::vector<float> contour_value;         // n·v with silhouette creases' vertices at 0
   std::vector<uint32_t> silhouette_creases;  // their edges
   std::vector<uint8_t> vertex_ends;          // contour ends per vertex (spurs along creases)
+  std::vector<uint8_t> crease_vertex;        // vertices on a crease edge (suggestive_off_creases)
   uint32_t next_interior_id = 0;
   /// Optional threads (not owned) for the per-edge and per-face passes; the output is the
   /// same.

@@ -147,6 +147,7 @@ void BM_ContoursSuggestive(benchmark::State& state) {
   params.contours_require_positive_kr = true;
   params.creases = params.boundaries = params.complete_outline = false;
   params.contours_follow_creases = false;  // rtsc interpolates n·v on vertex normals everywhere
+  params.suggestive_off_creases = false;   // and draws suggestive contours at creases too
   ex.extract(s->mesh, s->shape, ViewSpec::fromCamera(orbit(*s, 0)), params, s->feature_size, lines);
   int step = 0;
   for (auto _ : state) {
