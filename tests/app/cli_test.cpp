@@ -198,6 +198,10 @@ TEST_F(Cli, PerKindLineStyle) {
   EXPECT_EQ(black, 0);  // the contour is the only line kind on a sphere
   EXPECT_EQ(lodline("render " + sphere_ + " -o " + out + " --line-style blob=#fff").code, 2);
   EXPECT_EQ(lodline("render " + sphere_ + " -o " + out + " --line-style contour=#fff:0").code, 2);
+  const CliRun bad = lodline("render " + sphere_ + " -o " + out + " --suggestive-at-creases sometimes");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.output.find("--suggestive-at-creases"), std::string::npos) << bad.output;
+  EXPECT_EQ(lodline("render " + sphere_ + " -o " + out + " --suggestive-at-creases on").code, 0);
 }
 
 TEST_F(Cli, ContextChoiceOsMesa) {
