@@ -172,6 +172,10 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     smoother_.resetChannel(TemporalSmoother::kQ1);
     smoother_.resetChannel(TemporalSmoother::kDt1q1);
   }
+  if (!smooth || !(p.ridges || p.valleys)) {
+    smoother_.resetChannel(TemporalSmoother::kC111);
+    smoother_.resetChannel(TemporalSmoother::kC222);
+  }
   const float fs = feature_size_ > 0.0f && std::isfinite(feature_size_) ? feature_size_ : 1.0f;
   const float sc_threshold = p.suggestive_threshold / (fs * fs);
   computeViewQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, view_, pool_.get());
@@ -232,15 +236,44 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   timings_.view = sw.lap();
   extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_,
                motion_fade ? std::span<const float>(motion_gain_) : std::span<const float>());
-  if (p.ridges || p.valleys) {  // lines/ridge_lines.h: k1, k2 smoothed in sequences, C raw
+  if (p.ridges || p.valleys) {  // lines/ridge_lines.h: k1, k2 and C smoothed in sequences
     const RidgeSpec ridge{p.ridges, p.valleys, p.ridge_threshold, fs};
     SurfaceFields rf = curv;
     rf.dcurv = shape_.dcurv();  // curv's is cleared unless the suggestive kinds use it
-    if (shape_.params().lazy_derivatives) {  // derivative tensors only where a ridge can be
+    const bool lazy_c = shape_.params().lazy_derivatives;
+    if (lazy_c) {  // derivative tensors only where a ridge can be
       ridgeCandidateVertices(mesh_.faces, shape_.adjacency(), rf, ridge, scratch_.vertex_code, needed_mark_,
                              ridge_needed_);
       shape_.ensureDerivatives(mesh_, ridge_needed_);
       rf.dcurv = shape_.dcurv();
+    }
+    if (smooth && rf.dcurv.size() == rf.pdir1.size()) {
+      // The derivatives along the principal directions, C(e1,e1,e1) for ridges and
+      // C(e2,e2,e2) for valleys, smoothed with their directions (a sign flip of e flips C):
+      // the zero sets follow the smoothed values, like the suggestive contours' Dw kr.
+      const size_t nv = rf.dcurv.size();
+      ridge_dir1_.assign(rf.pdir1.begin(), rf.pdir1.end());
+      ridge_dir2_.assign(rf.pdir2.begin(), rf.pdir2.end());
+      ridge_c1_.resize(nv);
+      ridge_c2_.resize(nv);
+      ridge_valid_.assign(nv, lazy_c ? 0 : 1);
+      if (lazy_c)
+        for (uint32_t v : ridge_needed_)
+          if (v < nv && shape_.derivativeValid(v)) ridge_valid_[v] = 1;
+      for (size_t v = 0; v < nv; ++v) {
+        ridge_c1_[v] = rf.dcurv[v][0];
+        ridge_c2_[v] = rf.dcurv[v][3];
+      }
+      smoother_.blendDirected(TemporalSmoother::kC111, ridge_dir1_, ridge_c1_, smoothing, ridge_valid_);
+      smoother_.blendDirected(TemporalSmoother::kC222, ridge_dir2_, ridge_c2_, smoothing, ridge_valid_);
+      ridge_dcurv_.assign(rf.dcurv.begin(), rf.dcurv.end());
+      for (size_t v = 0; v < nv; ++v) {
+        ridge_dcurv_[v][0] = ridge_c1_[v];
+        ridge_dcurv_[v][3] = ridge_c2_[v];
+      }
+      rf.pdir1 = ridge_dir1_;
+      rf.pdir2 = ridge_dir2_;
+      rf.dcurv = ridge_dcurv_;
     }
     extractRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), rf, ridge, scratch_, segments_);
   }

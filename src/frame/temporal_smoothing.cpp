@@ -52,10 +52,9 @@ void TemporalSmoother::followHierarchy(const AdaptiveMesh& lod) {
       e.prev.assign(e.v.begin(), e.v.end());
       if (e.v.size() < n) e.v.resize(n, 0.0f);
       e.fresh.resize(std::max<size_t>(e.fresh.size(), n), 1);
-    }
-    if (t1_on_) {
-      prev_t1_.assign(t1_.begin(), t1_.end());
-      if (t1_.size() < n) t1_.resize(n, glm::vec3(1, 0, 0));
+      if (!e.dir_on) continue;
+      e.prev_dir.assign(e.dir.begin(), e.dir.end());
+      if (e.dir.size() < n) e.dir.resize(n, glm::vec3(1, 0, 0));
     }
     auto old_slot = [&](uint32_t node) {
       const uint32_t s = node != kPmNone ? node_slot_[node] : kNoSlot;
@@ -77,19 +76,16 @@ void TemporalSmoother::followHierarchy(const AdaptiveMesh& lod) {
         const bool has_a = a < e.prev.size(), has_b = b < e.prev.size();
         e.fresh[s] = !has_a;
         if (has_a) e.v[s] = has_b ? 0.5f * (e.prev[a] + e.prev[b]) : e.prev[a];
-      }
-      if (t1_on_ && a < prev_t1_.size()) {
-        glm::vec3 t = prev_t1_[a];
-        if (b < prev_t1_.size()) {  // the children's directions, agreed, averaged
-          const glm::vec3 tb = prev_t1_[b];
+        if (!e.dir_on || a >= e.prev_dir.size()) continue;
+        glm::vec3 t = e.prev_dir[a];
+        if (b < e.prev_dir.size()) {  // the children's directions, agreed, averaged
+          const glm::vec3 tb = e.prev_dir[b];
           const glm::vec3 m = t + (glm::dot(t, tb) < 0.0f ? -tb : tb);
           if (glm::length(m) > 1e-12f) t = glm::normalize(m);
           // The value's sign follows the direction: the second child's counts flipped.
-          Extra& d = extra_[kDt1q1];
-          if (d.on && glm::dot(prev_t1_[a], tb) < 0.0f && a < d.prev.size() && b < d.prev.size())
-            d.v[s] = 0.5f * (d.prev[a] - d.prev[b]);
+          if (glm::dot(e.prev_dir[a], tb) < 0.0f && has_a && has_b) e.v[s] = 0.5f * (e.prev[a] - e.prev[b]);
         }
-        t1_[s] = t;
+        e.dir[s] = t;
       }
       if (a == kNoSlot) {
         fresh_[s] = 1;  // several levels at once: no meaningful history
@@ -116,8 +112,7 @@ void TemporalSmoother::followHierarchy(const AdaptiveMesh& lod) {
     // Everything was rebuilt (fully refined/coarsened): no meaningful history.
     initialized_ = false;
     view_initialized_ = false;
-    for (Extra& e : extra_) e.on = false;
-    t1_on_ = false;
+    for (Extra& e : extra_) e.on = e.dir_on = false;
   }
   // The new map.
   for (uint32_t s : changed_) {
@@ -219,35 +214,43 @@ std::span<const float> TemporalSmoother::blendScalar(Channel c, std::span<const 
   return e.v;
 }
 
-void TemporalSmoother::blendDirected(Channel c, std::span<glm::vec3> dir, std::span<float> value, float w) {
+void TemporalSmoother::blendDirected(Channel c, std::span<glm::vec3> dir, std::span<float> value, float w,
+                                     std::span<const uint8_t> valid) {
   Extra& e = extra_[c];
   const size_t n = dir.size();
   if (value.size() != n) return;
-  if (!e.on || !t1_on_) {
-    t1_.assign(dir.begin(), dir.end());
+  const bool partial = valid.size() == n;
+  if (!e.on || !e.dir_on) {
+    e.dir.assign(dir.begin(), dir.end());
     e.v.assign(value.begin(), value.end());
     e.fresh.assign(n, 0);
-    e.on = t1_on_ = true;
+    if (partial)
+      for (size_t i = 0; i < n; ++i) e.fresh[i] = valid[i] == 0;
+    e.on = e.dir_on = true;
     return;
   }
-  t1_.resize(n, glm::vec3(1, 0, 0));
+  e.dir.resize(n, glm::vec3(1, 0, 0));
   e.v.resize(n, 0.0f);
   e.fresh.resize(n, 1);
   for (size_t i = 0; i < n; ++i) {
+    if (partial && !valid[i]) {
+      e.fresh[i] = 1;
+      continue;
+    }
     glm::vec3 d = dir[i];
     float v = value[i];
     if (!e.fresh[i]) {
-      if (glm::dot(d, t1_[i]) < 0.0f) {  // agree with the smoothed direction
+      if (glm::dot(d, e.dir[i]) < 0.0f) {  // agree with the smoothed direction
         d = -d;
         v = -v;
       }
-      const glm::vec3 b = (1.0f - w) * t1_[i] + w * d;
+      const glm::vec3 b = (1.0f - w) * e.dir[i] + w * d;
       const float len = glm::length(b);
       d = len > 1e-12f ? b / len : d;
       v = (1.0f - w) * e.v[i] + w * v;
     }
     e.fresh[i] = 0;
-    t1_[i] = dir[i] = d;
+    e.dir[i] = dir[i] = d;
     e.v[i] = value[i] = v;
   }
 }

@@ -34,15 +34,15 @@ float smoothingWeight(float alpha, float seconds, float fps);
 class TemporalSmoother {
  public:
   /// Per-vertex quantities of the other line kinds (docs/lines.md), smoothed like kr: the
-  /// principal curvatures (ridges, valleys, parabolic lines, principal highlights) and the
-  /// apparent ridges' q1 and Dt1 q1 (the latter with its direction t1).
-  enum Channel { kK1 = 0, kK2, kQ1, kDt1q1, kChannelCount };
+  /// principal curvatures (ridges, valleys, parabolic lines, principal highlights), the
+  /// apparent ridges' q1 and Dt1 q1 (with its direction t1), and the ridges' and valleys'
+  /// derivatives C(e1,e1,e1) and C(e2,e2,e2) (with their principal directions).
+  enum Channel { kK1 = 0, kK2, kQ1, kDt1q1, kC111, kC222, kChannelCount };
 
   /// Forgets all state: the next blend() takes the raw values as they are.
   void reset() {
     initialized_ = false;
-    for (Extra& e : extra_) e.on = false;
-    t1_on_ = false;
+    for (Extra& e : extra_) e.on = e.dir_on = false;
   }
 
   /// Carries the state across the last adapt() of `lod` (slots whose PM node changed inherit
@@ -74,23 +74,23 @@ class TemporalSmoother {
   std::span<const float> blendScalar(Channel c, std::span<const float> raw, float w);
   /// Blends a direction known only up to sign (`dir`, unit) and a value whose sign follows it
   /// (`value`, channel `c`), in place: each raw pair is first turned to agree with the
-  /// smoothed direction, then both are blended (the direction renormalised).
-  void blendDirected(Channel c, std::span<glm::vec3> dir, std::span<float> value, float w);
-  /// Forgets channel `c` (kDt1q1: with its direction): its next blend takes the raw values.
-  void resetChannel(Channel c) {
-    extra_[c].on = false;
-    if (c == kDt1q1) t1_on_ = false;
-  }
+  /// smoothed direction, then both are blended (the direction renormalised). `valid`
+  /// (optional, one byte per vertex): where 0, the raw pair is not known this frame (lazily
+  /// computed quantities); it is left as it is and the vertex's history is dropped.
+  void blendDirected(Channel c, std::span<glm::vec3> dir, std::span<float> value, float w,
+                     std::span<const uint8_t> valid = {});
+  /// Forgets channel `c` (with its direction): its next blend takes the raw values.
+  void resetChannel(Channel c) { extra_[c].on = extra_[c].dir_on = false; }
 
  private:
   struct Extra {
     bool on = false;
     std::vector<float> v, prev;
     std::vector<uint8_t> fresh;  // per slot: no history
+    bool dir_on = false;         // blendDirected(): the smoothed direction the value follows
+    std::vector<glm::vec3> dir, prev_dir;
   };
   std::array<Extra, kChannelCount> extra_;
-  bool t1_on_ = false;
-  std::vector<glm::vec3> t1_, prev_t1_;
   bool initialized_ = false;
   bool view_initialized_ = false;
   std::vector<glm::vec3> normals_;

@@ -202,5 +202,28 @@ TEST(TemporalSmoother, ScalarAndDirectedChannels) {
   EXPECT_EQ(s.blendScalar(TemporalSmoother::kK1, raw, w)[0], 7.0f);
 }
 
+// The ridges' C(e1,e1,e1) is known only where it was computed this frame (lazy derivative
+// tensors): elsewhere the raw pair is left alone and the history dropped, so a vertex that
+// comes back starts from its new value, not from one computed frames ago.
+TEST(TemporalSmoother, DirectedChannelWithUnknownVertices) {
+  TemporalSmoother s;
+  const float w = 0.25f;
+  std::vector<glm::vec3> dir{{1, 0, 0}, {1, 0, 0}};
+  std::vector<float> val{1.0f, 1.0f};
+  s.blendDirected(TemporalSmoother::kC111, dir, val, w);
+  dir = {{-1, 0, 0}, {1, 0, 0}};
+  val = {-3.0f, 9.0f};  // the first flipped with its direction: 3 along the smoothed one
+  const std::vector<uint8_t> valid{1, 0};
+  s.blendDirected(TemporalSmoother::kC111, dir, val, w, valid);
+  EXPECT_NEAR(dir[0].x, 1.0f, 1e-6f);
+  EXPECT_FLOAT_EQ(val[0], 0.75f * 1.0f + 0.25f * 3.0f);
+  EXPECT_EQ(val[1], 9.0f);  // unknown this frame: untouched
+  val = {3.0f, 5.0f};
+  dir = {{1, 0, 0}, {1, 0, 0}};
+  s.blendDirected(TemporalSmoother::kC111, dir, val, w);
+  EXPECT_FLOAT_EQ(val[1], 5.0f);  // no history: taken as it is
+  EXPECT_FLOAT_EQ(val[0], 0.75f * 1.5f + 0.25f * 3.0f);
+}
+
 }  // namespace
 }  // namespace lodline
