@@ -247,35 +247,35 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
       shape_.ensureDerivatives(mesh_, ridge_needed_);
       rf.dcurv = shape_.dcurv();
     }
-    if (smooth && rf.dcurv.size() == rf.pdir1.size()) {
+    const bool smooth_c = smooth && rf.dcurv.size() == rf.pdir1.size();
+    if (smooth_c) {
       // The derivatives along the principal directions, C(e1,e1,e1) for ridges and
       // C(e2,e2,e2) for valleys, smoothed with their directions (a sign flip of e flips C):
       // the zero sets follow the smoothed values, like the suggestive contours' Dw kr.
+      // Lazily computed tensors are known only at the candidates; elsewhere history is dropped.
       const size_t nv = rf.dcurv.size();
       ridge_dir1_.assign(rf.pdir1.begin(), rf.pdir1.end());
       ridge_dir2_.assign(rf.pdir2.begin(), rf.pdir2.end());
       ridge_c1_.resize(nv);
       ridge_c2_.resize(nv);
-      ridge_valid_.assign(nv, lazy_c ? 0 : 1);
-      if (lazy_c)
-        for (uint32_t v : ridge_needed_)
-          if (v < nv && shape_.derivativeValid(v)) ridge_valid_[v] = 1;
       for (size_t v = 0; v < nv; ++v) {
         ridge_c1_[v] = rf.dcurv[v][0];
         ridge_c2_[v] = rf.dcurv[v][3];
       }
+      ridge_valid_.clear();
+      if (lazy_c) {
+        ridge_valid_.assign(nv, 0);
+        for (uint32_t v : ridge_needed_)
+          if (v < nv && shape_.derivativeValid(v)) ridge_valid_[v] = 1;
+      }
       smoother_.blendDirected(TemporalSmoother::kC111, ridge_dir1_, ridge_c1_, smoothing, ridge_valid_);
       smoother_.blendDirected(TemporalSmoother::kC222, ridge_dir2_, ridge_c2_, smoothing, ridge_valid_);
-      ridge_dcurv_.assign(rf.dcurv.begin(), rf.dcurv.end());
-      for (size_t v = 0; v < nv; ++v) {
-        ridge_dcurv_[v][0] = ridge_c1_[v];
-        ridge_dcurv_[v][3] = ridge_c2_[v];
-      }
       rf.pdir1 = ridge_dir1_;
       rf.pdir2 = ridge_dir2_;
-      rf.dcurv = ridge_dcurv_;
     }
-    extractRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), rf, ridge, scratch_, segments_);
+    extractRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), rf, ridge, scratch_, segments_,
+                  smooth_c ? std::span<const float>(ridge_c1_) : std::span<const float>(),
+                  smooth_c ? std::span<const float>(ridge_c2_) : std::span<const float>());
   }
   if (p.apparent_ridges) {  // per view, from the normals and k1, k2 (smoothed in sequences)
     computeApparentRidgeQuantities(mesh_.faces, shape_.adjacency(), curv, ViewSpec::fromCamera(camera), apparent_,

@@ -134,11 +134,11 @@ class LineDrawing {
   std::vector<uint32_t> needed_;     // vertices whose Dw kr this frame needs (lazy derivatives)
   std::vector<uint8_t> needed_mark_;
   std::vector<uint32_t> ridge_needed_;  // vertices whose tensor ridges read (lazy derivatives)
-  // Ridges in sequences: smoothed principal directions and C(e,e,e), and the tensors with them.
+  // Ridges in sequences: smoothed principal directions and C(e,e,e); where the lazily
+  // computed tensors are known this frame.
   std::vector<glm::vec3> ridge_dir1_, ridge_dir2_;
   std::vector<float> ridge_c1_, ridge_c2_;
   std::vector<uint8_t> ridge_valid_;
-  std::vector<glm::vec4> ridge_dcurv_;
   ApparentRidgeQuantities apparent_;  // per view, when apparent ridges are drawn
   PrincipalHighlightQuantities principal_;  // per view, when principal highlights are drawn
   std::vector<float> motion_gain_;   // per vertex, the suggestive contours' motion fade

@@ -39,11 +39,11 @@ struct Field {  // one kind's view of the shape: curvature, direction, its deriv
   float sign;  // +1 ridges (k1, e1, C111); −1 valleys (−k2, e2, −C222)
   std::span<const float> k;
   std::span<const glm::vec3> e;
-  std::span<const glm::vec4> dcurv;
-  int component;  // 0: C111, 3: C222
+  const float* d;  // C111 or C222 of vertex v at d[v·stride]
+  size_t stride;
   float strength(uint32_t v) const { return sign * k[v]; }
   const glm::vec3& direction(uint32_t v) const { return e[v]; }
-  float derivative(uint32_t v) const { return sign * dcurv[v][component]; }
+  float derivative(uint32_t v) const { return sign * d[v * stride]; }
 };
 
 // A field given by three per-vertex arrays (apparent ridges: q1, t1, Dt1 q1; principal
@@ -131,17 +131,21 @@ void ridgeCandidateVertices(std::span<const std::array<uint32_t, 3>> faces, cons
 
 void extractRidges(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
                    const MeshAdjacency& adj, const SurfaceFields& fields, const RidgeSpec& spec,
-                   LineScratch& scratch, LineSet& out) {
+                   LineScratch& scratch, LineSet& out, std::span<const float> c111,
+                   std::span<const float> c222) {
   const size_t nv = positions.size();
-  if (!(spec.ridges || spec.valleys) || !(spec.threshold > 0.0f)) return;
+  if (!(spec.ridges || spec.valleys) || !(spec.threshold > 0.0f) || nv == 0) return;
   if (adj.face_count != faces.size() || adj.vertex_count != nv || fields.k1.size() != nv ||
       fields.k2.size() != nv || fields.pdir1.size() != nv || fields.pdir2.size() != nv || fields.dcurv.size() != nv)
     return;
   candidateCodes(fields, spec, scratch.vertex_code);
   const uint8_t* code = scratch.vertex_code.data();
   const float fs = spec.feature_size > 0.0f ? spec.feature_size : 1.0f;
-  const Field kinds[2] = {{LineKind::kRidge, 1.0f, fields.k1, fields.pdir1, fields.dcurv, 0},
-                          {LineKind::kValley, -1.0f, fields.k2, fields.pdir2, fields.dcurv, 3}};
+  // C111 and C222 from the tensors (stride 4 floats) unless given on their own.
+  const bool own1 = c111.size() == nv, own2 = c222.size() == nv;
+  const Field kinds[2] = {
+      {LineKind::kRidge, 1.0f, fields.k1, fields.pdir1, own1 ? c111.data() : &fields.dcurv[0][0], own1 ? 1u : 4u},
+      {LineKind::kValley, -1.0f, fields.k2, fields.pdir2, own2 ? c222.data() : &fields.dcurv[0][3], own2 ? 1u : 4u}};
   for (int k = 0; k < 2; ++k) {  // kinds in order, then faces: deterministic output
     const uint8_t bit = k == 0 ? kRidgeCandidate : kValleyCandidate;
     if (k == 0 ? !spec.ridges : !spec.valleys) continue;

@@ -109,9 +109,12 @@ void extractPrincipalHighlights(std::span<const glm::vec3> positions, std::span<
 
 /// Appends the ridge (LineKind::kRidge) and valley (kValley) segments of the valid faces to
 /// `out`, each endpoint id the index of the edge it lies on. Needs fields.k1, k2, pdir1,
-/// pdir2 and dcurv valid at the candidate vertices (ridgeCandidateVertices()).
+/// pdir2 and dcurv valid at the candidate vertices (ridgeCandidateVertices()). `c111` and
+/// `c222` (optional, vertexCount each) replace dcurv's C(e1,e1,e1) and C(e2,e2,e2) along
+/// fields.pdir1 and pdir2 (temporally smoothed in sequences).
 void extractRidges(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> faces,
                    const MeshAdjacency& adj, const SurfaceFields& fields, const RidgeSpec& spec,
-                   LineScratch& scratch, LineSet& out);
+                   LineScratch& scratch, LineSet& out, std::span<const float> c111 = {},
+                   std::span<const float> c222 = {});
 
 }  // namespace lodline

@@ -101,7 +101,7 @@ void setupScreenTriangle(const Frame& f, uint32_t face, const ClipVertex* v[3], 
   // OpenGL's front faces are counter-clockwise in window coordinates (y up), i.e. negative
   // area in these y-down pixel coordinates.
   const bool front = area2 < 0;
-  if (!front && f.params->cull_back_faces) return;
+  if (!front && (f.params->cull_back_faces || (face < f.in->cull.size() && f.in->cull[face]))) return;
   int id[3] = {0, 1, 2};
   if (area2 < 0) std::swap(id[1], id[2]);
   const int64_t minX = std::min({X[0], X[1], X[2]}), maxX = std::max({X[0], X[1], X[2]});

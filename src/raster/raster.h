@@ -90,6 +90,9 @@ struct RasterInput {
   int attribute_count = 0;  ///< 0..kMaxAttributes
   /// Vertex indices per triangle; the face ID written for a triangle is its index here.
   std::span<const std::array<uint32_t, 3>> faces;
+  /// Optional, one byte per face: a non-zero face is culled when back-facing, as
+  /// RasterParams::cull_back_faces culls every face (e.g. only the closed objects of a scene).
+  std::span<const uint8_t> cull;
 };
 
 /// Caller-owned output planes, row 0 = top of the image.

@@ -180,6 +180,7 @@ void SoftRenderer::gather(const glm::mat4& view, const glm::mat4& view_proj, int
   attributes_.assign(nv * N, 0.0f);
   faces_.resize(nf);
   face_object_.resize(nf);
+  face_cull_.assign(camera ? nf : 0, 0);
   size_t v0 = 0, f0 = 0;
   for (size_t i = 0; i < objects_.size(); ++i) {
     const Object& o = objects_[i];
@@ -197,25 +198,18 @@ void SoftRenderer::gather(const glm::mat4& view, const glm::mat4& view_proj, int
       }
     }
     const uint32_t base = static_cast<uint32_t>(v0);
-    const bool cull = camera && o.closed && eyeOutsideSphere(*camera, o.center, o.radius);
     for (size_t f = 0; f < o.faces.size(); ++f) {
-      const std::array<uint32_t, 3> c = {o.faces[f][0] + base, o.faces[f][1] + base, o.faces[f][2] + base};
-      if (cull) {  // clockwise on screen: a back face (kept when a corner is behind the eye)
-        const glm::vec4 &a = clip_[c[0]], &b = clip_[c[1]], &e = clip_[c[2]];
-        if (a.w > 0.0f && b.w > 0.0f && e.w > 0.0f) {
-          const glm::vec2 pa = glm::vec2(a) / a.w, pb = glm::vec2(b) / b.w, pe = glm::vec2(e) / e.w;
-          const glm::vec2 u = pb - pa, v = pe - pa;
-          if (u.x * v.y - u.y * v.x < 0.0f) continue;
-        }
-      }
-      faces_[f0] = c;
-      face_object_[f0] = static_cast<uint32_t>(i);
-      ++f0;
+      faces_[f0 + f] = {o.faces[f][0] + base, o.faces[f][1] + base, o.faces[f][2] + base};
+      face_object_[f0 + f] = static_cast<uint32_t>(i);
+    }
+    if (camera) {
+      const bool cull = o.closed && eyeOutsideSphere(*camera, o.center, o.radius);
+      std::fill(face_cull_.begin() + static_cast<std::ptrdiff_t>(f0),
+                face_cull_.begin() + static_cast<std::ptrdiff_t>(f0 + o.faces.size()), cull ? 1 : 0);
     }
     v0 += o.positions.size();
+    f0 += o.faces.size();
   }
-  faces_.resize(f0);
-  face_object_.resize(f0);
 }
 
 void SoftRenderer::drawSurfaces(const Camera& camera, const FrameParams& frame, std::span<const ObjectStyle> styles) {
@@ -239,7 +233,7 @@ void SoftRenderer::drawSurfaces(const Camera& camera, const FrameParams& frame, 
     target_.clear();
   RasterParams rp = params_;
   rp.depth_test = true;
-  rp.cull_back_faces = false;  // both sides of open meshes; closed ones were culled in gather()
+  rp.cull_back_faces = false;  // both sides of open meshes; closed ones' back faces: in.cull
   rp.depth_offset_factor = 1.0f;
   rp.depth_offset_units = 2.0f;
   RasterInput in;
@@ -247,6 +241,7 @@ void SoftRenderer::drawSurfaces(const Camera& camera, const FrameParams& frame, 
   in.attributes = attributes_;
   in.attribute_count = N;
   in.faces = faces_;
+  in.cull = face_cull_;
   rasterizer_.draw(in, rp, target_);
   times_.setup = rasterizer_.stats().ms_setup;
   times_.raster = rasterizer_.stats().ms_raster;

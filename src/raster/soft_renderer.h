@@ -118,8 +118,8 @@ class SoftRenderer {
   };
   bool textured(const Object& o) const { return !o.texture.rgba.empty() && o.uvs.size() == o.positions.size(); }
   // All objects' vertices to clip space (attributes: eye normal, uv) and their faces into one
-  // array, face_object_ saying whose each face is. With `camera`, the back faces of objects
-  // set to be culled are left out while its eye is outside their sphere.
+  // array, face_object_ saying whose each face is. With `camera`, face_cull_ marks the faces
+  // of objects set to be culled while its eye is outside their sphere (RasterInput::cull).
   void gather(const glm::mat4& view, const glm::mat4& view_proj, int attribute_count,
               const Camera* camera = nullptr);
   WorkerPool& pool() { return rasterizer_.workerPool(params_.threads); }
@@ -133,6 +133,7 @@ class SoftRenderer {
   std::vector<float> attributes_;   // per-frame scratch, reused
   std::vector<std::array<uint32_t, 3>> faces_;
   std::vector<uint32_t> face_object_;
+  std::vector<uint8_t> face_cull_;
   int width_ = 0, height_ = 0;
   SoftTimes times_;
 };
