@@ -304,8 +304,9 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
         scratch.flags[i] = 0;
         dropped = true;
       }
-    // Drops shorter than min_drop_px are noise (a sample or two a pixel off the outline):
-    // cutting there would leave a notch in the line, not remove a second one.
+    // Drops shorter than min_drop_px inside a run are noise (a sample or two a pixel off the
+    // outline): cutting there would leave a notch in the line, not remove a second one. At a
+    // run's end the run only gets shorter: a short end (or a whole short run) is a burr.
     for (size_t i = 0; dropped && i < samples.size();) {
       if (scratch.flags[i]) {
         ++i;
@@ -313,7 +314,7 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
       }
       size_t j = i;
       while (j < samples.size() && !scratch.flags[j]) ++j;
-      if (static_cast<float>(j - i) < params.min_drop_px)
+      if (i > 0 && j < samples.size() && static_cast<float>(j - i) < params.min_drop_px)
         for (size_t k = i; k < j; ++k) scratch.flags[k] = 1;
       i = j;
     }

@@ -49,8 +49,9 @@ struct OutlineParams {
   /// Contour samples off the outline within this many pixels of a completing piece are
   /// dropped (they would draw a second line beside it). Default 6.
   int double_radius_px = 6;
-  /// Only stretches of at least this many pixels of such contour are dropped: a shorter one
-  /// is a sample or two off the outline, and cutting it would leave a notch. Default 4.
+  /// Inside a contour run, only stretches of at least this many pixels of such contour are
+  /// dropped: a shorter one is a sample or two off the outline, and cutting it would leave a
+  /// notch. At a run's ends (and a whole run) any length is dropped. Default 4.
   float min_drop_px = 4.0f;
   /// Hysteresis between frames (with an OutlineHistory): a piece with a sample within this
   /// many pixels of the previous frame's pieces (projected by this frame's camera, so the

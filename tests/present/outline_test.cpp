@@ -3,6 +3,9 @@
 // every completing piece; in a sequence whose camera moves a new piece shorter than
 // min_length_px waits, one that continues the previous frame's goes on, and a long new one
 // is drawn at once; when the camera stops, every piece is drawn again.
+#include <algorithm>
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "present/outline.h"
@@ -36,6 +39,25 @@ DepthImage squareDepth() {
   for (int y = 50; y < 150; ++y)
     for (int x = 50; x < 150; ++x) d.depth[static_cast<size_t>(y) * kSize + x] = window;
   return d;
+}
+
+// One contour run along y (model units) from model x x0 to x1, a point a pixel.
+StrokeRuns contourRun(float x0, float x1, float y) {
+  StrokeRuns runs;
+  runs.offsets = {0};
+  const int n = std::max(1, static_cast<int>(std::lround(50.0f * (x1 - x0))));
+  for (int i = 0; i <= n; ++i) {
+    const float x = x0 + (x1 - x0) * static_cast<float>(i) / static_cast<float>(n);
+    runs.points.push_back({100.0f + 50.0f * x, 100.0f - 50.0f * y});
+    runs.positions.push_back({x, y, 0.0f});
+    runs.alpha.push_back(1.0f);
+  }
+  runs.offsets.push_back(static_cast<uint32_t>(runs.points.size()));
+  runs.kinds.push_back(LineKind::kContour);
+  runs.strokes.push_back(0);
+  runs.opacity.push_back(1.0f);
+  runs.length_px.push_back(50.0f * (x1 - x0));
+  return runs;
 }
 
 // One silhouette stroke along the square's top edge from x0 to x1 (model units).
@@ -144,6 +166,19 @@ TEST(Outline, APieceStartsWhereTheContourItContinuesEnds) {
   joinRuns(visible, {}, JoinParams{}, joined);
   EXPECT_EQ(joined.runs.strokeCount(), 1u);
   EXPECT_NEAR(joined.runs.length_px[0], 80.0f, 1.0f);
+}
+
+// A contour run off the outline beside a completing piece is dropped however short it is:
+// only a short stretch inside a run is kept (cutting it would leave a notch); a whole short
+// run left beside the piece would be a burr on the outline.
+TEST(Outline, AShortContourRunBesideAPieceIsDropped) {
+  OutlineScratch scratch;
+  StrokeRuns visible = contourRun(0.0f, 0.04f, 0.9f);  // 2 px long, 4.5 px inside the edge
+  const double len = completeOutline(kLong, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{},
+                                     visible, scratch);
+  EXPECT_NEAR(len, 80.0, 3.0);
+  ASSERT_EQ(visible.strokeCount(), 1u);  // the piece alone
+  EXPECT_NEAR(visible.length_px[0], 80.0f, 3.0f);
 }
 
 }  // namespace
