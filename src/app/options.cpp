@@ -113,6 +113,12 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
                  "Ridges and valleys (--lines ...,ridge,valley) where the dominant |k| exceeds this / feature size "
                  "(faded in up to twice it)")
       ->capture_default_str();
+  cmd.add_option("--ridge-estimator", o.ridge_estimator,
+                 "Ridges' and valleys' curvature derivatives: tensor (the per-face estimate every curvature kind "
+                 "shares: fast, keeps features a couple of edges wide, spurious ridges where curvature is flat "
+                 "across them), fit (a degree-4 jet over ~3 edges round each candidate vertex: converges on "
+                 "smooth surfaces, slower, smooths narrower features away; docs/lines.md)")
+      ->capture_default_str();
   cmd.add_option("--apparent-ridge-threshold", o.apparent_ridge_threshold,
                  "Apparent ridges (--lines ...,apparent-ridge) where the view-dependent curvature q1 exceeds this / "
                  "feature size (faded in up to twice it)")
@@ -294,6 +300,9 @@ Result<ResolvedView> resolveViewOptions(const ViewOptions& o) {
   if (!(o.ridge_threshold > 0.0f && o.ridge_threshold <= 1e3f))
     return Error::usage("--ridge-threshold: must be in (0, 1000]");
   r.line_params.ridge_threshold = o.ridge_threshold;
+  if (o.ridge_estimator == "fit") r.line_params.ridge_estimator = RidgeEstimator::kFit;
+  else if (o.ridge_estimator == "tensor") r.line_params.ridge_estimator = RidgeEstimator::kTensor;
+  else return Error::usage("--ridge-estimator: expected tensor or fit, got '" + o.ridge_estimator + "'");
   if (!(o.apparent_ridge_threshold > 0.0f && o.apparent_ridge_threshold <= 1e3f))
     return Error::usage("--apparent-ridge-threshold: must be in (0, 1000]");
   r.line_params.apparent_ridge_threshold = o.apparent_ridge_threshold;
@@ -426,6 +435,7 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   s["topo-axis"] = exact(lines.topo_axis.x) + "," + exact(lines.topo_axis.y) + "," + exact(lines.topo_axis.z);
   s["parabolic-threshold"] = exact(lines.parabolic_threshold);
   s["ridge-threshold"] = exact(lines.ridge_threshold);
+  s["ridge-estimator"] = lines.ridge_estimator == RidgeEstimator::kFit ? "fit" : "tensor";
   s["apparent-ridge-threshold"] = exact(lines.apparent_ridge_threshold);
   s["principal-highlight-threshold"] = exact(lines.principal_highlight_threshold);
   s["outline"] = lines.complete_outline ? "complete" : "contour";

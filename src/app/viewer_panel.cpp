@@ -241,6 +241,11 @@ void linesSection(ViewerSession& s, PanelState& st) {
   changed |= ImGui::SliderFloat("Parabolic threshold", &lp.parabolic_threshold, 0.0f, 1.0f, "%.3f");
   changed |= ImGui::SliderFloat("Ridge/valley threshold", &lp.ridge_threshold, 0.005f, 2.0f, "%.3f",
                                 ImGuiSliderFlags_Logarithmic);
+  {
+    int estimator = static_cast<int>(lp.ridge_estimator);
+    changed |= ImGui::Combo("Ridge/valley derivatives", &estimator, "per-face tensor\0fitted jet (slower)\0");
+    lp.ridge_estimator = static_cast<RidgeEstimator>(estimator);
+  }
   changed |= ImGui::SliderFloat("Apparent-ridge threshold", &lp.apparent_ridge_threshold, 0.005f, 2.0f, "%.3f",
                                 ImGuiSliderFlags_Logarithmic);
   changed |= ImGui::SliderFloat("Principal-highlight threshold", &lp.principal_highlight_threshold, 0.001f, 1.0f,

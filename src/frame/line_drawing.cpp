@@ -172,7 +172,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     smoother_.resetChannel(TemporalSmoother::kQ1);
     smoother_.resetChannel(TemporalSmoother::kDt1q1);
   }
-  if (!smooth || !(p.ridges || p.valleys)) {
+  if (!smooth || !(p.ridges || p.valleys) || p.ridge_estimator == RidgeEstimator::kFit) {
     smoother_.resetChannel(TemporalSmoother::kC111);
     smoother_.resetChannel(TemporalSmoother::kC222);
   }
@@ -236,7 +236,27 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   timings_.view = sw.lap();
   extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_,
                motion_fade ? std::span<const float>(motion_gain_) : std::span<const float>());
-  if (p.ridges || p.valleys) {  // lines/ridge_lines.h: k1, k2 and C smoothed in sequences
+  if ((p.ridges || p.valleys) && p.ridge_estimator == RidgeEstimator::kFit) {
+    // lines/ridge_lines.h on fitted jets (shape/jet_fit.h) at the vertices where a line can
+    // be (chosen on the tensors' curvatures); not smoothed over time.
+    const RidgeSpec ridge{p.ridges, p.valleys, p.ridge_threshold, fs};
+    SurfaceFields rf = curv;
+    ridgeCandidateVertices(mesh_.faces, shape_.adjacency(), rf, ridge, scratch_.vertex_code, needed_mark_,
+                           ridge_needed_);
+    jet_k1_.assign(rf.k1.begin(), rf.k1.end());
+    jet_k2_.assign(rf.k2.begin(), rf.k2.end());
+    jet_dir1_.assign(rf.pdir1.begin(), rf.pdir1.end());
+    jet_dir2_.assign(rf.pdir2.begin(), rf.pdir2.end());
+    jet_c_.assign(rf.k1.size(), glm::vec4(0.0f));
+    fitJets(mesh_.positions, mesh_.faces, shape_.adjacency(), rf.normals, ridge_needed_, JetFitParams{},
+            jet_scratch_, jet_k1_, jet_k2_, jet_dir1_, jet_dir2_, jet_c_, pool_.get());
+    rf.k1 = jet_k1_;
+    rf.k2 = jet_k2_;
+    rf.pdir1 = jet_dir1_;
+    rf.pdir2 = jet_dir2_;
+    rf.dcurv = jet_c_;
+    extractRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), rf, ridge, scratch_, segments_);
+  } else if (p.ridges || p.valleys) {  // lines/ridge_lines.h: k1, k2 and C smoothed in sequences
     const RidgeSpec ridge{p.ridges, p.valleys, p.ridge_threshold, fs};
     SurfaceFields rf = curv;
     rf.dcurv = shape_.dcurv();  // curv's is cleared unless the suggestive kinds use it

@@ -31,6 +31,9 @@ namespace lodline {
 
 /// Which lines to extract, and their thresholds (filled identically by CLI, scene file and
 /// viewer; docs/design.md §4).
+/// LineParams::ridge_estimator.
+enum class RidgeEstimator : uint8_t { kTensor, kFit };
+
 struct LineParams {
   bool contours = true;  ///< occluding contours, n·v = 0. Default on
   /// Keep contour points only where kr > 0 (trims the contour loops hidden behind the
@@ -107,6 +110,14 @@ struct LineParams {
   /// one more threshold (fs as for parabolic lines: 0.1 is 10× the 10th-percentile
   /// curvature). Default 0.1.
   float ridge_threshold = 0.1f;
+  /// Where ridges' and valleys' curvatures, directions and derivatives come from.
+  /// kTensor (default): the per-face tensors every curvature kind shares (Rusinkiewicz 2004:
+  /// fast, incremental, smoothed over time in sequences; it keeps features a couple of edges
+  /// wide, but where k1 changes little across a line its derivative's noise draws spurious
+  /// ridges). kFit: a degree-4 jet fitted over about 3 edges round each candidate vertex
+  /// (shape/jet_fit.h: converges on smooth surfaces, ~10 µs a vertex, not smoothed over
+  /// time; it smooths away features narrower than its disc). docs/lines.md compares them.
+  RidgeEstimator ridge_estimator = RidgeEstimator::kTensor;
   bool apparent_ridges = false;  ///< apparent ridges (lines/ridge_lines.h)
   /// Apparent ridges where q1·fs (q1: the maximum view-dependent curvature) exceeds this,
   /// faded in over one more threshold. Default 0.1.

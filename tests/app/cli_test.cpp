@@ -202,6 +202,10 @@ TEST_F(Cli, PerKindLineStyle) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.output.find("--suggestive-at-creases"), std::string::npos) << bad.output;
   EXPECT_EQ(lodline("render " + sphere_ + " -o " + out + " --suggestive-at-creases on").code, 0);
+  const CliRun bad_fit = lodline("render " + sphere_ + " -o " + out + " --lines ridge --ridge-estimator guess");
+  EXPECT_EQ(bad_fit.code, 2);
+  EXPECT_NE(bad_fit.output.find("--ridge-estimator"), std::string::npos) << bad_fit.output;
+  EXPECT_EQ(lodline("render " + sphere_ + " -o " + out + " --lines contour,ridge,valley --ridge-estimator fit").code, 0);
 }
 
 TEST_F(Cli, ContextChoiceOsMesa) {
