@@ -6,7 +6,8 @@
 // e_max·∇k_max = 0 with e_max·∇(e_max·∇k_max) < 0; a valley is the same for −k_min), and
 // their per-face extraction with the principal direction's sign made to agree across a face;
 // S. Rusinkiewicz, "Estimating curvatures and their derivatives on triangle meshes" (3DPVT
-// 2004), §4, for the derivative tensor C whose C(e1,e1,e1) is that derivative. On lodline's
+// 2004), §4, for the derivative tensor C whose C(e1,e1,e1) is that derivative (or, with
+// LineParams::ridge_estimator = kFit, C from fitted jets: shape/jet_fit.h). On lodline's
 // adapted mesh these lines inherit detail control like the other kinds.
 //
 // The derivative d = C(e,e,e) changes sign with e, and e is defined only up to sign. An

@@ -20,7 +20,8 @@
 // the process's resident memory per input face. No full-detail comparison (a 10M-face
 // full-detail frame takes seconds):
 //   ./build/tests/bench/detail_frame_bench --benchmark_filter=scale --benchmark_counters_tabular=true
-// The `line_kind/` cases time each line kind's share of the lines stage (docs/lines.md):
+// The `line_kind/` cases time each line kind's share of the lines stage (docs/lines.md; the
+// `-fit` cases: ridges and valleys from fitted jets):
 //   ./build/tests/bench/detail_frame_bench --benchmark_filter=line_kind --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
@@ -416,14 +417,18 @@ void sceneFrame(benchmark::State& state, float target_area) {
 // `kind`; lines_ms is the lines stage (view quantities, extraction, chaining, and the
 // per-view quantities and derivative tensors the kind needs), shape_ms the shape update.
 // Medians over the frames of a slow orbit (1 degree per frame), 1280x720.
-void lineKindFrame(benchmark::State& state, const std::string& name, float target_area, LineKind kind) {
+// `fit_ridges`: ridges and valleys from fitted jets (--ridge-estimator fit).
+void lineKindFrame(benchmark::State& state, const std::string& name, float target_area, LineKind kind,
+                   bool fit_ridges = false) {
   auto model = loadModel(name);
   if (!model) {
     state.SkipWithError(("cannot load " + name + " (run scripts/setup.sh)").c_str());
     return;
   }
   auto make = [&](bool with_kind) {
-    SceneDrawing scene = sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm), name);
+    LineParams params;
+    if (fit_ridges) params.ridge_estimator = RidgeEstimator::kFit;
+    SceneDrawing scene = sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm, params), name);
     SceneDrawing::Object& o = scene.objects()[0];
     for (auto& k : o.style.lines.kinds) k.enabled = false;
     o.style.lines[LineKind::kContour].enabled = true;
@@ -452,7 +457,7 @@ void lineKindFrame(benchmark::State& state, const std::string& name, float targe
     with_shape.push_back(w.shape);
     segments.push_back(with.objects()[0].drawing->drawing().segments().counts[static_cast<int>(kind)]);
   }
-  state.SetLabel(lineKindName(kind));
+  state.SetLabel(std::string(lineKindName(kind)) + (fit_ridges ? " (fitted jets)" : ""));
   state.counters["contour_lines_ms"] = bench::median(base_lines);
   state.counters["lines_ms"] = bench::median(with_lines);
   state.counters["kind_ms"] = bench::median(with_lines) - bench::median(base_lines);
@@ -496,6 +501,10 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(label.c_str(), [name, kind](benchmark::State& s) {
         lodline::lineKindFrame(s, name, 16.0f, kind);
       })->Iterations(30)->Unit(benchmark::kMillisecond);
+      if (kind == lodline::LineKind::kRidge || kind == lodline::LineKind::kValley)
+        benchmark::RegisterBenchmark((label + "-fit").c_str(), [name, kind](benchmark::State& s) {
+          lodline::lineKindFrame(s, name, 16.0f, kind, true);
+        })->Iterations(30)->Unit(benchmark::kMillisecond);
     }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
