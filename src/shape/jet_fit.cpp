@@ -107,11 +107,11 @@ size_t fitJetsSerial(std::span<const glm::vec3> positions, std::span<const std::
     // reached through faces (a disc, whatever the triangles' shapes: on a latitude-longitude
     // mesh near a pole, rings of faces would be slivers a few rows wide and hundreds of
     // vertices long), grown until it holds enough vertices.
-    const glm::vec3 p0v = positions[v];
+    const glm::vec3 p0 = positions[v];
     float longest = 0.0f;
     for (uint32_t f : adj.facesOf(v))
       for (uint32_t u : faces[f])
-        if (u < nv) longest = std::max(longest, glm::length(positions[u] - p0v));
+        if (u < nv) longest = std::max(longest, glm::length(positions[u] - p0));
     if (!(longest > 0.0f)) continue;
     std::vector<uint32_t>& ring = scratch.ring;
     float radius = params.radius_edges * longest;
@@ -123,7 +123,7 @@ size_t fitJetsSerial(std::span<const glm::vec3> positions, std::span<const std::
           for (uint32_t u : faces[f])
             if (u < nv && !scratch.mark[u]) {
               scratch.mark[u] = 1;
-              if (glm::length(positions[u] - p0v) <= radius) ring.push_back(u);
+              if (glm::length(positions[u] - p0) <= radius) ring.push_back(u);
               else scratch.touched.push_back(u);
             }
       for (uint32_t u : scratch.touched) scratch.mark[u] = 0;
@@ -132,7 +132,6 @@ size_t fitJetsSerial(std::span<const glm::vec3> positions, std::span<const std::
       for (uint32_t u : ring) scratch.mark[u] = 0;
     }
     for (uint32_t u : ring) scratch.mark[u] = 0;
-    const glm::vec3 p0 = positions[v];
     glm::dvec3 n = glm::dvec3(normals[v]);
     if (!(glm::length(n) > 0.5)) continue;
     n = glm::normalize(n);

@@ -171,7 +171,9 @@ TEST(RidgeLines, FittedJetRidgesConvergeOnAnIrregularEllipsoid) {
     EXPECT_NEAR(fit.length, 5.38, 0.15);
     EXPECT_LT(fit.mean, previous_mean);
     EXPECT_LT(fit.worst, previous_worst);
-    if (level >= 4) EXPECT_LT(fit.worst, tensor.worst);
+    if (level >= 4) {
+      EXPECT_LT(fit.worst, tensor.worst);
+    }
     previous_mean = fit.mean;
     previous_worst = fit.worst;
   }
