@@ -172,7 +172,9 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
     smoother_.resetChannel(TemporalSmoother::kQ1);
     smoother_.resetChannel(TemporalSmoother::kDt1q1);
   }
-  if (!smooth || !(p.ridges || p.valleys) || p.ridge_estimator == RidgeEstimator::kFit) {
+  // A change of estimator starts the derivatives' history afresh.
+  if (!smooth || !(p.ridges || p.valleys) || p.ridge_estimator != smoothed_ridge_estimator_) {
+    smoothed_ridge_estimator_ = p.ridge_estimator;
     smoother_.resetChannel(TemporalSmoother::kC111);
     smoother_.resetChannel(TemporalSmoother::kC222);
   }
@@ -236,43 +238,41 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   timings_.view = sw.lap();
   extractLines(mesh_, shape_.adjacency(), shape_.faceNormals(), view_, p, fs, scratch_, segments_, crease_mask_,
                motion_fade ? std::span<const float>(motion_gain_) : std::span<const float>());
-  if ((p.ridges || p.valleys) && p.ridge_estimator == RidgeEstimator::kFit) {
-    // lines/ridge_lines.h on fitted jets (shape/jet_fit.h) at the vertices where a line can
-    // be (chosen on the tensors' curvatures); not smoothed over time.
+  if (p.ridges || p.valleys) {  // lines/ridge_lines.h: k1, k2 and C smoothed in sequences
     const RidgeSpec ridge{p.ridges, p.valleys, p.ridge_threshold, fs};
     SurfaceFields rf = curv;
-    ridgeCandidateVertices(mesh_.faces, shape_.adjacency(), rf, ridge, scratch_.vertex_code, needed_mark_,
-                           ridge_needed_);
-    jet_k1_.assign(rf.k1.begin(), rf.k1.end());
-    jet_k2_.assign(rf.k2.begin(), rf.k2.end());
-    jet_dir1_.assign(rf.pdir1.begin(), rf.pdir1.end());
-    jet_dir2_.assign(rf.pdir2.begin(), rf.pdir2.end());
-    jet_c_.assign(rf.k1.size(), glm::vec4(0.0f));
-    fitJets(mesh_.positions, mesh_.faces, shape_.adjacency(), rf.normals, ridge_needed_, JetFitParams{},
-            jet_scratch_, jet_k1_, jet_k2_, jet_dir1_, jet_dir2_, jet_c_, pool_.get());
-    rf.k1 = jet_k1_;
-    rf.k2 = jet_k2_;
-    rf.pdir1 = jet_dir1_;
-    rf.pdir2 = jet_dir2_;
-    rf.dcurv = jet_c_;
-    extractRidges(mesh_.positions, mesh_.faces, shape_.adjacency(), rf, ridge, scratch_, segments_);
-  } else if (p.ridges || p.valleys) {  // lines/ridge_lines.h: k1, k2 and C smoothed in sequences
-    const RidgeSpec ridge{p.ridges, p.valleys, p.ridge_threshold, fs};
-    SurfaceFields rf = curv;
-    rf.dcurv = shape_.dcurv();  // curv's is cleared unless the suggestive kinds use it
-    const bool lazy_c = shape_.params().lazy_derivatives;
-    if (lazy_c) {  // derivative tensors only where a ridge can be
+    const bool fit = p.ridge_estimator == RidgeEstimator::kFit;
+    const bool lazy_c = fit || shape_.params().lazy_derivatives;
+    if (lazy_c)  // derivatives only where a ridge can be (chosen on the tensors' curvatures)
       ridgeCandidateVertices(mesh_.faces, shape_.adjacency(), rf, ridge, scratch_.vertex_code, needed_mark_,
                              ridge_needed_);
-      shape_.ensureDerivatives(mesh_, ridge_needed_);
-      rf.dcurv = shape_.dcurv();
+    if (fit) {
+      // Fitted jets (shape/jet_fit.h): curvatures, directions and C at the candidates.
+      jet_k1_.assign(rf.k1.begin(), rf.k1.end());
+      jet_k2_.assign(rf.k2.begin(), rf.k2.end());
+      jet_dir1_.assign(rf.pdir1.begin(), rf.pdir1.end());
+      jet_dir2_.assign(rf.pdir2.begin(), rf.pdir2.end());
+      jet_c_.assign(rf.k1.size(), glm::vec4(0.0f));
+      fitJets(mesh_.positions, mesh_.faces, shape_.adjacency(), rf.normals, ridge_needed_, JetFitParams{},
+              jet_scratch_, jet_k1_, jet_k2_, jet_dir1_, jet_dir2_, jet_c_, pool_.get());
+      rf.k1 = jet_k1_;
+      rf.k2 = jet_k2_;
+      rf.pdir1 = jet_dir1_;
+      rf.pdir2 = jet_dir2_;
+      rf.dcurv = jet_c_;
+    } else {
+      rf.dcurv = shape_.dcurv();  // curv's is cleared unless the suggestive kinds use it
+      if (lazy_c) {
+        shape_.ensureDerivatives(mesh_, ridge_needed_);
+        rf.dcurv = shape_.dcurv();
+      }
     }
     const bool smooth_c = smooth && rf.dcurv.size() == rf.pdir1.size();
     if (smooth_c) {
       // The derivatives along the principal directions, C(e1,e1,e1) for ridges and
       // C(e2,e2,e2) for valleys, smoothed with their directions (a sign flip of e flips C):
       // the zero sets follow the smoothed values, like the suggestive contours' Dw kr.
-      // Lazily computed tensors are known only at the candidates; elsewhere history is dropped.
+      // Lazily computed values are known only at the candidates; elsewhere history is dropped.
       const size_t nv = rf.dcurv.size();
       ridge_dir1_.assign(rf.pdir1.begin(), rf.pdir1.end());
       ridge_dir2_.assign(rf.pdir2.begin(), rf.pdir2.end());
@@ -286,7 +286,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
       if (lazy_c) {
         ridge_valid_.assign(nv, 0);
         for (uint32_t v : ridge_needed_)
-          if (v < nv && shape_.derivativeValid(v)) ridge_valid_[v] = 1;
+          if (v < nv && (fit || shape_.derivativeValid(v))) ridge_valid_[v] = 1;
       }
       smoother_.blendDirected(TemporalSmoother::kC111, ridge_dir1_, ridge_c1_, smoothing, ridge_valid_);
       smoother_.blendDirected(TemporalSmoother::kC222, ridge_dir2_, ridge_c2_, smoothing, ridge_valid_);

@@ -146,6 +146,7 @@ class LineDrawing {
   std::vector<float> jet_k1_, jet_k2_;
   std::vector<glm::vec3> jet_dir1_, jet_dir2_;
   std::vector<glm::vec4> jet_c_;
+  RidgeEstimator smoothed_ridge_estimator_ = RidgeEstimator::kTensor;  // of the C history
   ApparentRidgeQuantities apparent_;  // per view, when apparent ridges are drawn
   PrincipalHighlightQuantities principal_;  // per view, when principal highlights are drawn
   std::vector<float> motion_gain_;   // per vertex, the suggestive contours' motion fade

@@ -81,6 +81,8 @@ class TemporalSmoother {
                      std::span<const uint8_t> valid = {});
   /// Forgets channel `c` (with its direction): its next blend takes the raw values.
   void resetChannel(Channel c) { extra_[c].on = extra_[c].dir_on = false; }
+  /// Whether channel `c` holds history (a blend since its last reset).
+  bool channelOn(Channel c) const { return extra_[c].on; }
 
  private:
   struct Extra {

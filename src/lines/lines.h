@@ -115,8 +115,9 @@ struct LineParams {
   /// fast, incremental, smoothed over time in sequences; it keeps features a couple of edges
   /// wide, but where k1 changes little across a line its derivative's noise draws spurious
   /// ridges). kFit: a degree-4 jet fitted over about 3 edges round each candidate vertex
-  /// (shape/jet_fit.h: converges on smooth surfaces, ~10 µs a vertex, not smoothed over
-  /// time; it smooths away features narrower than its disc). docs/lines.md compares them.
+  /// (shape/jet_fit.h: converges on smooth surfaces, ~10 µs a vertex; it smooths away
+  /// features narrower than its disc). Either is smoothed over time in sequences.
+  /// docs/lines.md compares them.
   RidgeEstimator ridge_estimator = RidgeEstimator::kTensor;
   bool apparent_ridges = false;  ///< apparent ridges (lines/ridge_lines.h)
   /// Apparent ridges where q1·fs (q1: the maximum view-dependent curvature) exceeds this,

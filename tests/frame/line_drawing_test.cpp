@@ -48,5 +48,35 @@ TEST(LineDrawing, LazyDerivativesDrawTheSameLines) {
   EXPECT_GT(suggestive, 100u);  // the comparison covered suggestive contours
 }
 
+TEST(LineDrawing, FittedRidgesAreSmoothedInASequence) {
+  const TriMesh mesh = makeTorusKnot(2, 3, 1.0f, 0.2f, 200, 16, 0.18f);
+  LineParams params;
+  params.ridges = params.valleys = true;
+  params.ridge_estimator = RidgeEstimator::kFit;
+  std::array<bool, kLineKindCount> enabled{};
+  enabled[static_cast<int>(LineKind::kRidge)] = enabled[static_cast<int>(LineKind::kValley)] = true;
+  LineDrawing sequence(mesh, params), still(mesh, params);
+  const Camera cam = orbitCamera(sequence.bounds(), {30.0f, 25.0f, 0.0f}, 35.0f, 16.0f / 9.0f);
+  sequence.update(cam, enabled, 0.5f);  // the first frame of a sequence: nothing to blend yet
+  still.update(cam, enabled);
+  ASSERT_GT(still.segments().counts[static_cast<int>(LineKind::kRidge)], 50u);
+  EXPECT_EQ(sequence.segments().points, still.segments().points);
+  // The surface ripples a little: the still follows at once, the sequence blends.
+  TriMesh moved = mesh;
+  std::vector<uint32_t> changed;
+  for (uint32_t v = 0; v < moved.vertexCount(); ++v) {
+    moved.positions[v] *= 1.0f + 0.01f * std::sin(0.7f * static_cast<float>(v));
+    changed.push_back(v);
+  }
+  for (LineDrawing* d : {&sequence, &still}) d->updateMesh(moved.positions, moved.faces, changed);
+  sequence.update(cam, enabled, 0.5f);
+  still.update(cam, enabled);
+  EXPECT_NE(sequence.segments().points, still.segments().points);
+  // The fitted derivatives themselves carry history (not only the normals they are fitted in).
+  EXPECT_TRUE(sequence.smoother().channelOn(TemporalSmoother::kC111));
+  EXPECT_TRUE(sequence.smoother().channelOn(TemporalSmoother::kC222));
+  EXPECT_FALSE(still.smoother().channelOn(TemporalSmoother::kC111));
+}
+
 }  // namespace
 }  // namespace lodline
