@@ -47,37 +47,29 @@ void monomials(double x, double y, int degree, double* out) {
     for (int j = 0; j <= deg; ++j) out[k++] = xp[deg - j] * yp[j];
 }
 
-// Least-squares fit of z = f(x, y) over the neighbourhood in the frame (t1, t2, n) at p0,
-// through the normal equations (coordinates scaled to the unit disc keep them well
-// conditioned; a singular system — too few or collinear neighbours — is refused).
-Fit fitHeight(std::span<const glm::vec3> positions, std::span<const uint32_t> ring, glm::vec3 p0, glm::dvec3 t1,
-              glm::dvec3 t2, glm::dvec3 n, int degree) {
-  const int k = coefficientCount(degree);
+// Least-squares fit of z = f(x, y) with K coefficients over the neighbours' offsets `d`
+// from the vertex (scaled by 1/h to the unit disc, which keeps the normal equations well
+// conditioned) in the frame (t1, t2, n); a singular system — too few or collinear
+// neighbours — is refused.
+template <int K>
+Fit fitHeightK(std::span<const glm::dvec3> d, double h, glm::dvec3 t1, glm::dvec3 t2, glm::dvec3 n, int degree) {
+  using MatK = Eigen::Matrix<double, K, K>;
+  using VecK = Eigen::Matrix<double, K, 1>;
   Fit fit;
-  if (static_cast<int>(ring.size()) < k) return fit;
-  double h = 0.0;
-  for (uint32_t u : ring) h = std::max(h, glm::length(glm::dvec3(positions[u]) - glm::dvec3(p0)));
-  if (!(h > 0.0)) return fit;
-  Mat M = Mat::Zero(k, k);
-  Vec r = Vec::Zero(k);
-  double phi[kMaxCoefficients];
-  for (uint32_t u : ring) {
-    const glm::dvec3 d = (glm::dvec3(positions[u]) - glm::dvec3(p0)) / h;
-    monomials(glm::dot(d, t1), glm::dot(d, t2), degree, phi);
-    const double z = glm::dot(d, n);
-    for (int i = 0; i < k; ++i) {
-      r(i) += phi[i] * z;
-      for (int j = 0; j <= i; ++j) M(i, j) += phi[i] * phi[j];
-    }
+  if (static_cast<int>(d.size()) < K) return fit;
+  MatK M = MatK::Zero();
+  VecK r = VecK::Zero(), phi;
+  for (const glm::dvec3& q : d) {
+    monomials(glm::dot(q, t1), glm::dot(q, t2), degree, phi.data());
+    M.noalias() += phi * phi.transpose();
+    r += glm::dot(q, n) * phi;
   }
-  for (int i = 0; i < k; ++i)
-    for (int j = i + 1; j < k; ++j) M(i, j) = M(j, i);
-  const Eigen::LDLT<Mat> ldlt(M);
+  const Eigen::LDLT<MatK> ldlt(M);
   if (ldlt.info() != Eigen::Success) return fit;
-  const auto D = ldlt.vectorD();
+  const VecK D = ldlt.vectorD();
   const double dmax = D.cwiseAbs().maxCoeff();
   if (!(dmax > 0.0) || D.minCoeff() <= 1e-10 * dmax) return fit;
-  Vec c = ldlt.solve(r);
+  VecK c = ldlt.solve(r);
   // z/h = Σ c' (x/h)^i (y/h)^j: the unscaled coefficient of a degree-d monomial is c'·h^(1−d).
   double scale = 1.0;
   for (int deg = 1; deg <= degree; ++deg, scale /= h)
@@ -86,6 +78,10 @@ Fit fitHeight(std::span<const glm::vec3> positions, std::span<const uint32_t> ri
   fit.c = c;
   fit.ok = true;
   return fit;
+}
+
+Fit fitHeight(std::span<const glm::dvec3> d, double h, glm::dvec3 t1, glm::dvec3 t2, glm::dvec3 n, int degree) {
+  return degree == 3 ? fitHeightK<9>(d, h, t1, t2, n, 3) : fitHeightK<14>(d, h, t1, t2, n, 4);
 }
 
 }  // namespace
@@ -132,6 +128,12 @@ size_t fitJetsSerial(std::span<const glm::vec3> positions, std::span<const std::
       for (uint32_t u : ring) scratch.mark[u] = 0;
     }
     for (uint32_t u : ring) scratch.mark[u] = 0;
+    // The neighbours' offsets from the vertex, scaled to the unit disc.
+    double h = 0.0;
+    for (uint32_t u : ring) h = std::max(h, glm::length(glm::dvec3(positions[u]) - glm::dvec3(p0)));
+    if (!(h > 0.0)) continue;
+    scratch.offsets.resize(ring.size());
+    for (size_t i = 0; i < ring.size(); ++i) scratch.offsets[i] = (glm::dvec3(positions[ring[i]]) - glm::dvec3(p0)) / h;
     glm::dvec3 n = glm::dvec3(normals[v]);
     if (!(glm::length(n) > 0.5)) continue;
     n = glm::normalize(n);
@@ -143,7 +145,7 @@ size_t fitJetsSerial(std::span<const glm::vec3> positions, std::span<const std::
     for (int pass = 0; pass < 2 && ok; ++pass) {
       t1 = glm::dvec3(anyPerpendicular(glm::vec3(n)));
       t2 = glm::cross(n, t1);
-      fit = fitHeight(positions, ring, p0, t1, t2, n, degree);
+      fit = fitHeight(scratch.offsets, h, t1, t2, n, degree);
       ok = fit.ok;
       if (ok && pass == 0) {
         const double fx = fit.c(monomial(1, 0)), fy = fit.c(monomial(0, 1));

@@ -24,6 +24,7 @@
 #include <span>
 #include <vector>
 
+#include <glm/ext/vector_double3.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -48,6 +49,7 @@ struct JetFitScratch {
   std::vector<uint8_t> mark;
   std::vector<uint32_t> ring;
   std::vector<uint32_t> touched;
+  std::vector<glm::dvec3> offsets;
 };
 
 /// Per vertex of `vertices`: fits the jet over its neighbourhood (faces through
