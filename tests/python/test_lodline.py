@@ -250,3 +250,16 @@ def test_two_renderers_each_keep_their_context(cache):
     after = r2.render(KNOT, size=(64, 48), cache_dir=cache).image
     assert after.mean() > 100
     assert np.array_equal(after, before)
+
+
+def test_ridge_estimator_is_an_option(cache):
+    """Ridges and valleys from the per-face tensors or from fitted jets (docs/lines.md)."""
+    kw = dict(size=(320, 240), lines="contour,ridge,valley", cache_dir=cache)
+    fit = lodline.render(KNOT, ridge_estimator="fit", **kw)
+    tensor = lodline.render(KNOT, ridge_estimator="tensor", **kw)
+    assert fit.stats["lines"]["ridge"] > 0 and tensor.stats["lines"]["ridge"] > 0
+    assert fit.stats["lines"]["contour"] == tensor.stats["lines"]["contour"]
+    assert (fit.stats["lines"]["ridge"], fit.stats["lines"]["valley"]) != (
+        tensor.stats["lines"]["ridge"], tensor.stats["lines"]["valley"])
+    with pytest.raises(lodline.UsageError, match="--ridge-estimator"):
+        lodline.render(KNOT, ridge_estimator="guess", **kw)
