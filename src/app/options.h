@@ -33,8 +33,8 @@ struct ViewOptions {
   std::string hidden_lines = "off";  ///< off or COLOUR[:WIDTH][:dash=ON,OFF]
   std::string outline = "complete";  ///< complete (mesh silhouette fills contour gaps) or contour
   std::string contour_creases = "on";  ///< on: the contour runs along silhouette creases; off
-  std::string suggestive_at_creases = "off";
-  std::string ridge_estimator = "tensor";  ///< tensor or fit (LineParams::ridge_estimator)  ///< off: no suggestive lines in faces at creases
+  std::string suggestive_at_creases = "off";  ///< off: no suggestive lines in faces at creases
+  std::string ridge_estimator = "tensor";      ///< tensor or fit (LineParams::ridge_estimator)
   std::vector<std::string> line_styles;  ///< "KIND=COLOUR[:WIDTH]", repeatable
   std::string stroke_style = "plain";    ///< a preset (plain, ink, pencil, marker) or a .json file
   // Chamfer edge highlights (ChamferParams; Wei, Shi, Yong 2014).

@@ -248,18 +248,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
                              ridge_needed_);
     if (fit) {
       // Fitted jets (shape/jet_fit.h): curvatures, directions and C at the candidates.
-      jet_k1_.assign(rf.k1.begin(), rf.k1.end());
-      jet_k2_.assign(rf.k2.begin(), rf.k2.end());
-      jet_dir1_.assign(rf.pdir1.begin(), rf.pdir1.end());
-      jet_dir2_.assign(rf.pdir2.begin(), rf.pdir2.end());
-      jet_c_.assign(rf.k1.size(), glm::vec4(0.0f));
-      fitJets(mesh_.positions, mesh_.faces, shape_.adjacency(), rf.normals, ridge_needed_, JetFitParams{},
-              jet_scratch_, jet_k1_, jet_k2_, jet_dir1_, jet_dir2_, jet_c_, pool_.get());
-      rf.k1 = jet_k1_;
-      rf.k2 = jet_k2_;
-      rf.pdir1 = jet_dir1_;
-      rf.pdir2 = jet_dir2_;
-      rf.dcurv = jet_c_;
+      rf = jet_fields_.fit(rf, mesh_.faces, shape_.adjacency(), ridge_needed_, JetFitParams{}, pool_.get());
     } else {
       rf.dcurv = shape_.dcurv();  // curv's is cleared unless the suggestive kinds use it
       if (lazy_c) {

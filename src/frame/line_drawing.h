@@ -11,9 +11,9 @@
 #include "core/mesh.h"
 #include "lines/lines.h"
 #include "lines/ridge_lines.h"
-#include "shape/jet_fit.h"
 #include "lines/strokes.h"
 #include "frame/temporal_smoothing.h"
+#include "shape/jet_fit.h"
 #include "shape/shape_cache.h"
 
 namespace lodline {
@@ -140,12 +140,7 @@ class LineDrawing {
   std::vector<glm::vec3> ridge_dir1_, ridge_dir2_;
   std::vector<float> ridge_c1_, ridge_c2_;
   std::vector<uint8_t> ridge_valid_;
-  // Ridges from fitted jets (LineParams::ridge_estimator): the fields with the candidates'
-  // values replaced.
-  JetFitScratch jet_scratch_;
-  std::vector<float> jet_k1_, jet_k2_;
-  std::vector<glm::vec3> jet_dir1_, jet_dir2_;
-  std::vector<glm::vec4> jet_c_;
+  FittedFields jet_fields_;  // ridges from fitted jets (LineParams::ridge_estimator)
   RidgeEstimator smoothed_ridge_estimator_ = RidgeEstimator::kTensor;  // of the C history
   ApparentRidgeQuantities apparent_;  // per view, when apparent ridges are drawn
   PrincipalHighlightQuantities principal_;  // per view, when principal highlights are drawn

@@ -29,11 +29,11 @@
 
 namespace lodline {
 
-/// Which lines to extract, and their thresholds (filled identically by CLI, scene file and
-/// viewer; docs/design.md §4).
 /// LineParams::ridge_estimator.
 enum class RidgeEstimator : uint8_t { kTensor, kFit };
 
+/// Which lines to extract, and their thresholds (filled identically by CLI, scene file and
+/// viewer; docs/design.md §4).
 struct LineParams {
   bool contours = true;  ///< occluding contours, n·v = 0. Default on
   /// Keep contour points only where kr > 0 (trims the contour loops hidden behind the

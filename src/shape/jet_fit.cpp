@@ -206,4 +206,23 @@ size_t fitJets(std::span<const glm::vec3> positions, std::span<const std::array<
   return fitted.load();
 }
 
+SurfaceFields FittedFields::fit(const SurfaceFields& from, std::span<const std::array<uint32_t, 3>> faces,
+                                const MeshAdjacency& adj, std::span<const uint32_t> vertices,
+                                const JetFitParams& params, WorkerPool* pool) {
+  k1_.assign(from.k1.begin(), from.k1.end());
+  k2_.assign(from.k2.begin(), from.k2.end());
+  pdir1_.assign(from.pdir1.begin(), from.pdir1.end());
+  pdir2_.assign(from.pdir2.begin(), from.pdir2.end());
+  dcurv_.assign(from.k1.size(), glm::vec4(0.0f));
+  fitted_ = fitJets(from.positions, faces, adj, from.normals, vertices, params, scratch_, k1_, k2_, pdir1_, pdir2_,
+                    dcurv_, pool);
+  SurfaceFields out = from;
+  out.k1 = k1_;
+  out.k2 = k2_;
+  out.pdir1 = pdir1_;
+  out.pdir2 = pdir2_;
+  out.dcurv = dcurv_;
+  return out;
+}
+
 }  // namespace lodline

@@ -30,6 +30,7 @@
 
 #include "core/worker_pool.h"
 #include "shape/adjacency.h"
+#include "shape/shape_cache.h"
 
 namespace lodline {
 
@@ -65,5 +66,25 @@ size_t fitJets(std::span<const glm::vec3> positions, std::span<const std::array<
                const JetFitParams& params, JetFitScratch& scratch, std::span<float> k1, std::span<float> k2,
                std::span<glm::vec3> pdir1, std::span<glm::vec3> pdir2, std::span<glm::vec4> dcurv,
                WorkerPool* pool = nullptr);
+
+/// Surface fields with the fitted jets in place at some vertices: owns the arrays the
+/// returned SurfaceFields view (valid until the next fit()).
+class FittedFields {
+ public:
+  /// `from` with k1, k2, pdir1, pdir2 and dcurv fitted at `vertices` (fitJets; its normals
+  /// are the frame) and, elsewhere, `from`'s values and a zero dcurv.
+  SurfaceFields fit(const SurfaceFields& from, std::span<const std::array<uint32_t, 3>> faces,
+                    const MeshAdjacency& adj, std::span<const uint32_t> vertices, const JetFitParams& params = {},
+                    WorkerPool* pool = nullptr);
+  /// Vertices the last fit() fitted.
+  size_t fitted() const { return fitted_; }
+
+ private:
+  JetFitScratch scratch_;
+  std::vector<float> k1_, k2_;
+  std::vector<glm::vec3> pdir1_, pdir2_;
+  std::vector<glm::vec4> dcurv_;
+  size_t fitted_ = 0;
+};
 
 }  // namespace lodline

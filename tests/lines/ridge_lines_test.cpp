@@ -24,9 +24,18 @@ namespace {
 
 constexpr float kA = 1.0f, kB = 0.7f, kC = 0.5f;
 
-LineSet ridgeLines(const TriMesh& m, bool ridges, bool valleys, float threshold = 0.05f) {
+// `fit`: ridges from fitted jets (shape/jet_fit.h, --ridge-estimator fit) at every vertex.
+LineSet ridgeLines(const TriMesh& m, bool ridges, bool valleys, float threshold = 0.05f, bool fit = false) {
   ShapeCache shape;
   shape.compute(m);
+  FittedFields fitted;
+  SurfaceFields f = shape.fields(m);
+  if (fit) {
+    std::vector<uint32_t> all(m.positions.size());
+    for (uint32_t v = 0; v < all.size(); ++v) all[v] = v;
+    f = fitted.fit(f, m.faces, shape.adjacency(), all);
+    EXPECT_EQ(fitted.fitted(), all.size());
+  }
   RidgeSpec spec;
   spec.ridges = ridges;
   spec.valleys = valleys;
@@ -34,7 +43,7 @@ LineSet ridgeLines(const TriMesh& m, bool ridges, bool valleys, float threshold 
   spec.feature_size = 1.0f;  // absolute: |k| > threshold
   LineScratch scratch;
   LineSet out;
-  extractRidges(m.positions, m.faces, shape.adjacency(), shape.fields(m), spec, scratch, out);
+  extractRidges(m.positions, m.faces, shape.adjacency(), f, spec, scratch, out);
   return out;
 }
 
@@ -88,37 +97,6 @@ TEST(RidgeLines, EllipsoidRidgesLieInItsSymmetryPlanes) {
   EXPECT_LT(previous_mean, 0.01);
 }
 
-// Ridges from fitted jets (shape/jet_fit.h, --ridge-estimator fit): every vertex's k1, k2,
-// directions and C from a degree-4 fit.
-LineSet fittedRidgeLines(const TriMesh& m, bool ridges, bool valleys, float threshold = 0.05f) {
-  ShapeCache shape;
-  shape.compute(m);
-  SurfaceFields f = shape.fields(m);
-  const size_t nv = m.positions.size();
-  std::vector<float> k1(f.k1.begin(), f.k1.end()), k2(f.k2.begin(), f.k2.end());
-  std::vector<glm::vec3> d1(f.pdir1.begin(), f.pdir1.end()), d2(f.pdir2.begin(), f.pdir2.end());
-  std::vector<glm::vec4> c(nv, glm::vec4(0.0f));
-  std::vector<uint32_t> all(nv);
-  for (uint32_t v = 0; v < nv; ++v) all[v] = v;
-  JetFitScratch scratch;
-  EXPECT_EQ(fitJets(m.positions, m.faces, shape.adjacency(), f.normals, all, JetFitParams{}, scratch, k1, k2, d1, d2, c),
-            nv);
-  f.k1 = k1;
-  f.k2 = k2;
-  f.pdir1 = d1;
-  f.pdir2 = d2;
-  f.dcurv = c;
-  RidgeSpec spec;
-  spec.ridges = ridges;
-  spec.valleys = valleys;
-  spec.threshold = threshold;
-  spec.feature_size = 1.0f;
-  LineScratch ls;
-  LineSet out;
-  extractRidges(m.positions, m.faces, shape.adjacency(), f, spec, ls, out);
-  return out;
-}
-
 struct OffPlanes {
   double length = 0.0, mean = 0.0, worst = 0.0;
 };
@@ -163,7 +141,7 @@ TEST(RidgeLines, FittedJetRidgesConvergeOnAnIrregularEllipsoid) {
   double previous_mean = 1e9, previous_worst = 1e9;
   for (int level : {3, 4, 5, 6}) {
     const TriMesh m = jitteredEllipsoid(level);
-    const OffPlanes fit = offPlanesOf(fittedRidgeLines(m, true, false));
+    const OffPlanes fit = offPlanesOf(ridgeLines(m, true, false, 0.05f, true));
     const OffPlanes tensor = offPlanesOf(ridgeLines(m, true, false));
     std::printf("ridges, jittered ellipsoid level %d (%zu faces): fitted jets length %.2f, off the planes mean %.2e "
                 "max %.2e; tensors length %.2f, mean %.2e max %.2e\n",
@@ -186,7 +164,7 @@ TEST(RidgeLines, FittedJetRidgesOnALatitudeLongitudeEllipsoid) {
   // neighbourhoods are discs in space, not rings of faces, so the fit holds there too.
   for (int n : {24, 48, 96, 192}) {
     const TriMesh m = uvEllipsoid(n);
-    const OffPlanes fit = offPlanesOf(fittedRidgeLines(m, true, false));
+    const OffPlanes fit = offPlanesOf(ridgeLines(m, true, false, 0.05f, true));
     const OffPlanes tensor = offPlanesOf(ridgeLines(m, true, false));
     std::printf("ridges, ellipsoid %dx%d: fitted jets length %.2f, off the planes mean %.2e max %.2e; tensors length "
                 "%.2f, mean %.2e max %.2e\n",
