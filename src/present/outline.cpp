@@ -72,6 +72,87 @@ bool onDiscontinuity(const DepthImage& depth, const PixelProjector& proj, glm::v
   return false;
 }
 
+// A completing piece spliced into contour run `run` in place of its samples [lo, hi]
+// (indices of sampleRun()'s samples), oriented along the run.
+struct Splice {
+  uint32_t run, lo, hi;
+  std::vector<Sample> samples;
+};
+
+// Appends the samples of splice `sp` into contour run `run` (sampleRun()'s samples) to
+// `out`, each moved from the run's nearest point to the silhouette by a weight that rises
+// smoothly from 0 at the piece's ends to 1 `ramp_px` inside them: the run leaves the contour
+// and comes back to it without a step.
+void blendSplice(const Splice& sp, const std::vector<Sample>& run, float ramp_px, std::vector<Sample>& out) {
+  const size_t n = sp.samples.size();
+  if (run.empty() || n == 0) return;
+  const size_t lo = sp.lo >= 4 ? sp.lo - 4 : 0, hi = std::min(run.size() - 1, static_cast<size_t>(sp.hi) + 4);
+  float total = 0.0f;
+  for (size_t k = 1; k < n; ++k) total += glm::length(sp.samples[k].px - sp.samples[k - 1].px);
+  const float ramp = std::min(ramp_px, 0.5f * total);
+  float walked = 0.0f;
+  for (size_t k = 0; k < n; ++k) {
+    const Sample& q = sp.samples[k];
+    if (k > 0) walked += glm::length(q.px - sp.samples[k - 1].px);
+    // The run's nearest point (on its segments between lo and hi).
+    Sample c = run[lo];
+    float best = glm::length(q.px - c.px);
+    for (size_t i = lo; i < hi; ++i) {
+      const glm::vec2 a = run[i].px, ab = run[i + 1].px - a;
+      const float len2 = glm::dot(ab, ab);
+      const float t = len2 > 0.0f ? std::clamp(glm::dot(q.px - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+      const float d = glm::length(q.px - (a + t * ab));
+      if (d < best) {
+        best = d;
+        c = {a + t * ab, run[i].p + t * (run[i + 1].p - run[i].p), run[i].alpha + t * (run[i + 1].alpha - run[i].alpha),
+             run[i].eye_depth + t * (run[i + 1].eye_depth - run[i].eye_depth)};
+      }
+    }
+    const float e = ramp > 0.0f ? std::clamp(std::min(walked, total - walked) / ramp, 0.0f, 1.0f) : 1.0f;
+    const float w = e * e * (3.0f - 2.0f * e);
+    out.push_back({c.px + w * (q.px - c.px), c.p + w * (q.p - c.p), c.alpha + w * (q.alpha - c.alpha),
+                   c.eye_depth + w * (q.eye_depth - c.eye_depth)});
+  }
+}
+
+// What becomes of a completing piece (samples [i, j) of a silhouette run) that the
+// contour runs beside (`nearest(px)`: the visible contour's sample nearest to px within
+// params.splice_radius_px, or null):
+// - skipped when the contour runs within params.covered_px of all of it (a silhouette that
+//   zigzags about the contour by a pixel or two: drawn, each tooth was a tick), or when it is
+//   a short spur, one end beside the contour and the other beside no line;
+// - spliced into the contour run that both its ends lie beside, when short enough and the
+//   run's stretch between them is about as long (a polygon corner the contour cuts);
+// - drawn as a piece of its own otherwise.
+struct PieceRole {
+  enum Kind { kDraw, kSkip, kSplice } kind = kDraw;
+  uint32_t run = 0, a = 0, b = 0;  ///< kSplice: the run and its samples beside the two ends
+};
+template <class Nearest>
+PieceRole classifyPiece(const std::vector<Sample>& samples, size_t i, size_t j, const OutlineParams& params,
+                        const Nearest& nearest, const std::vector<uint32_t>& run_samples) {
+  if (!(params.splice_radius_px > 0.0f)) return {};
+  float deviation = 0.0f;
+  for (size_t k = i; k < j && deviation <= params.covered_px; ++k) {
+    const auto* c = nearest(samples[k].px);
+    deviation = std::max(deviation, c ? glm::length(c->px - samples[k].px) : std::numeric_limits<float>::infinity());
+  }
+  if (deviation <= params.covered_px) return {PieceRole::kSkip};
+  const auto* a = nearest(samples[i].px);
+  const auto* b = nearest(samples[j - 1].px);
+  const float length = static_cast<float>(j - i - 1);  // samples are a pixel apart
+  // A spur leaves a run in its middle; a piece that goes on from near a run's end continues
+  // the outline past it (to another line, or to a gap that is real).
+  const auto* held = a ? a : b;
+  const bool from_middle = held && held->index >= 3 && held->index + 3 < run_samples[held->run];
+  if ((a == nullptr) != (b == nullptr) && from_middle && length <= params.spur_max_px)
+    return {PieceRole::kSkip};
+  if (a && b && a->run == b->run && length <= params.splice_max_px &&
+      std::max(a->index, b->index) - std::min(a->index, b->index) <= 2 * (j - i) + 4)
+    return {PieceRole::kSplice, a->run, a->index, b->index};
+  return {};
+}
+
 // Appends the samples [i, j) of one run as a run of `out`.
 void emitRun(const std::vector<Sample>& samples, size_t i, size_t j, LineKind kind, uint32_t stroke, StrokeRuns& out) {
   if (out.offsets.empty()) out.offsets.push_back(0);
@@ -221,11 +302,44 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
   }
   // 2. Where the visible contour is.
   clearMask(scratch.contours, W, H);
+  auto& csamples = scratch.contour_samples;
+  csamples.clear();
+  scratch.run_samples.assign(visible.strokeCount(), 0);
+  const bool splicing = params.splice_radius_px > 0.0f;
   for (size_t r = 0; r < visible.strokeCount(); ++r) {
     if (visible.kinds[r] != LineKind::kContour) continue;
     sampleRun(visible, r, proj, samples);
-    for (const Sample& s : samples) mark(scratch.contours, s.px);
+    scratch.run_samples[r] = static_cast<uint32_t>(samples.size());
+    for (size_t i = 0; i < samples.size(); ++i) {
+      const glm::vec2 px = samples[i].px;
+      mark(scratch.contours, px);
+      const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
+      if (splicing && x >= 0 && y >= 0 && x < W && y < H)
+        csamples.push_back({static_cast<uint32_t>(y) * static_cast<uint32_t>(W) + static_cast<uint32_t>(x),
+                            static_cast<uint32_t>(r), static_cast<uint32_t>(i), px});
+    }
   }
+  std::sort(csamples.begin(), csamples.end(), [](const auto& a, const auto& b) {
+    return a.pixel != b.pixel ? a.pixel < b.pixel : (a.run != b.run ? a.run < b.run : a.index < b.index);
+  });
+  // The contour sample nearest to `q` within the splice radius, if any.
+  const int splice_r = static_cast<int>(std::ceil(params.splice_radius_px));
+  auto nearestContour = [&](glm::vec2 q) -> const OutlineScratch::ContourSample* {
+    const OutlineScratch::ContourSample* best = nullptr;
+    float best_d = params.splice_radius_px;
+    const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
+    for (int yy = std::max(0, y - splice_r); yy <= std::min(H - 1, y + splice_r); ++yy)
+      for (int xx = std::max(0, x - splice_r); xx <= std::min(W - 1, x + splice_r); ++xx) {
+        const uint32_t key = static_cast<uint32_t>(yy) * static_cast<uint32_t>(W) + static_cast<uint32_t>(xx);
+        auto it = std::lower_bound(csamples.begin(), csamples.end(), key,
+                                   [](const auto& c, uint32_t k) { return c.pixel < k; });
+        for (; it != csamples.end() && it->pixel == key; ++it) {
+          const float d = glm::length(it->px - q);
+          if (d <= best_d) best = &*it, best_d = d;
+        }
+      }
+    return best;
+  };
   // 3. Outline samples with no contour near: the completing pieces, grown along the
   //    silhouette so they meet the contour's ends. A piece continuing one of the previous
   //    frame's (projected by this camera) is kept whatever its length.
@@ -243,6 +357,8 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     }
   StrokeRuns fill;
   fill.offsets.push_back(0);
+  std::vector<Splice> splices;
+  double spliced_px = 0.0;
   scratch.fill_samples.clear();
   clearMask(scratch.fill, W, H);
   const int extend = std::max(0, static_cast<int>(std::lround(params.extend_px)));
@@ -269,13 +385,20 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
       for (; j < samples.size() && scratch.grown[j]; ++j)
         continues = continues || (in_sequence && near(scratch.previous, samples[j].px, params.follow_radius_px));
       if (j - i >= 2 && (!in_sequence || continues || static_cast<float>(j - i) >= params.min_length_px)) {
-        for (size_t k = i; k < j; ++k) {
-          mark(scratch.fill, samples[k].px);
-          samples[k].alpha = 1.0f;
-        }
-        emitRun(samples, i, j, LineKind::kContour, sil.strokes[r], fill);
-        if (history)
+        for (size_t k = i; k < j; ++k) samples[k].alpha = 1.0f;
+        const PieceRole role = classifyPiece(samples, i, j, params, nearestContour, scratch.run_samples);
+        if (role.kind != PieceRole::kSkip && history)
           for (size_t k = i; k < j; ++k) scratch.fill_samples.push_back(samples[k].p);
+        if (role.kind == PieceRole::kSplice) {
+          Splice sp{role.run, std::min(role.a, role.b), std::max(role.a, role.b), {}};
+          sp.samples.assign(samples.begin() + static_cast<ptrdiff_t>(i), samples.begin() + static_cast<ptrdiff_t>(j));
+          if (role.a > role.b) std::reverse(sp.samples.begin(), sp.samples.end());
+          spliced_px += static_cast<double>(j - i - 1);
+          splices.push_back(std::move(sp));
+        } else if (role.kind == PieceRole::kDraw) {
+          for (size_t k = i; k < j; ++k) mark(scratch.fill, samples[k].px);
+          emitRun(samples, i, j, LineKind::kContour, sil.strokes[r], fill);
+        }
       }
       i = j;
     }
@@ -285,7 +408,14 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     history->view_proj = view_proj;
     ++history->frames;
   }
-  if (fill.strokeCount() == 0) return 0.0;
+  if (fill.strokeCount() == 0 && splices.empty()) return 0.0;
+  // Per contour run, its splices in run order; one overlapping an earlier one is dropped
+  // (its corner is drawn by the earlier one's way, within a pixel or two).
+  std::sort(splices.begin(), splices.end(),
+            [](const Splice& x, const Splice& y) { return x.run != y.run ? x.run < y.run : x.lo < y.lo; });
+  size_t next_splice = 0;
+  std::vector<Sample> merged;
+  std::vector<uint8_t> merged_flags;
   // 4. Contour pieces beside a completing piece but off the outline would draw it twice.
   StrokeRuns& out = scratch.rebuilt;
   out.clear();
@@ -295,9 +425,13 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
       copyRun(visible, r, out);
       continue;
     }
+    while (next_splice < splices.size() && splices[next_splice].run < r) ++next_splice;
+    const size_t first_splice = next_splice;
+    while (next_splice < splices.size() && splices[next_splice].run == r) ++next_splice;
+    const bool has_splice = next_splice > first_splice;
     sampleRun(visible, r, proj, samples);
     scratch.flags.assign(samples.size(), 1);
-    bool dropped = false;
+    bool dropped = has_splice;
     for (size_t i = 0; i < samples.size(); ++i)
       if (near(scratch.fill, samples[i].px, params.double_radius_px) &&
           !near(scratch.outline, samples[i].px, params.contour_radius_px)) {
@@ -318,18 +452,36 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
         for (size_t k = i; k < j; ++k) scratch.flags[k] = 1;
       i = j;
     }
-    if (!dropped || std::all_of(scratch.flags.begin(), scratch.flags.end(), [](uint8_t f) { return f != 0; })) {
+    if (!has_splice &&
+        (!dropped || std::all_of(scratch.flags.begin(), scratch.flags.end(), [](uint8_t f) { return f != 0; }))) {
       copyRun(visible, r, out);
       continue;
     }
+    // The run's samples with each splice's stretch [lo, hi] replaced by its piece.
+    merged.clear();
+    merged_flags.clear();
+    size_t s_at = first_splice;
     for (size_t i = 0; i < samples.size();) {
-      if (!scratch.flags[i]) {
+      while (s_at < next_splice && splices[s_at].lo < i) ++s_at;  // overlaps an earlier one
+      if (s_at < next_splice && splices[s_at].lo == i) {
+        const Splice& sp = splices[s_at++];
+        blendSplice(sp, samples, params.splice_ramp_px, merged);
+        merged_flags.resize(merged.size(), 1);
+        i = std::min<size_t>(samples.size(), static_cast<size_t>(sp.hi) + 1);
+        continue;
+      }
+      merged.push_back(samples[i]);
+      merged_flags.push_back(scratch.flags[i]);
+      ++i;
+    }
+    for (size_t i = 0; i < merged.size();) {
+      if (!merged_flags[i]) {
         ++i;
         continue;
       }
       size_t j = i;
-      while (j < samples.size() && scratch.flags[j]) ++j;
-      if (j - i >= 2) emitRun(samples, i, j, LineKind::kContour, visible.strokes[r], out);
+      while (j < merged.size() && merged_flags[j]) ++j;
+      if (j - i >= 2) emitRun(merged, i, j, LineKind::kContour, visible.strokes[r], out);
       i = j;
     }
   }
@@ -338,7 +490,7 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
                       scratch.stitched);
   appendStrokes(scratch.stitched, out);
   std::swap(visible, out);
-  return scratch.stitched.totalLength();
+  return scratch.stitched.totalLength() + spliced_px;
 }
 
 }  // namespace lodline

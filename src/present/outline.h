@@ -13,6 +13,7 @@
 // smoother.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -53,6 +54,26 @@ struct OutlineParams {
   /// dropped: a shorter one is a sample or two off the outline, and cutting it would leave a
   /// notch. At a run's ends (and a whole run) any length is dropped. Default 4.
   float min_drop_px = 4.0f;
+  /// Completing pieces beside the contour (docs/visibility.md, step 3). A piece that runs
+  /// within covered_px of the visible contour all along is not drawn: the contour draws that
+  /// outline already, within a line's width (the mesh's silhouette zigzags about it; drawn,
+  /// each tooth was a tick on the line). Default 2.
+  float covered_px = 2.0f;
+  /// A piece at most this long (pixels, after growing) with one end within splice_radius_px
+  /// of a contour run, away from the run's ends, and the other beside no line is a spur, and
+  /// is not drawn. Default 8.
+  float spur_max_px = 8.0f;
+  /// A piece at most this long whose two ends both lie within splice_radius_px of one
+  /// contour run is spliced into that run instead of drawn beside it: the run leaves the
+  /// contour there and follows the silhouette (a polygon corner the contour cuts; drawn
+  /// beside it, a bump with two caps). 0 turns splicing off. Default 64.
+  float splice_max_px = 64.0f;
+  /// How near the contour a piece's end must be for the rules above. 0 turns them all off
+  /// (every piece drawn beside the contour). Default 3.
+  float splice_radius_px = 3.0f;
+  /// A spliced run moves from the contour onto the silhouette (and back) over this many
+  /// pixels at each end of the piece, so it bends there instead of stepping. Default 3.
+  float splice_ramp_px = 3.0f;
   /// Hysteresis between frames (with an OutlineHistory): a piece with a sample within this
   /// many pixels of the previous frame's pieces (projected by this frame's camera, so the
   /// comparison follows the motion) continues one and is kept whatever its length, so a
@@ -78,6 +99,13 @@ struct OutlineScratch {
   LineMask outline, contours, fill, previous;
   std::vector<uint8_t> flags, grown;
   std::vector<glm::vec3> fill_samples;  ///< every sample of this frame's completing pieces
+  /// The visible contour's samples by pixel (step 2), for the splices' nearest-sample search.
+  struct ContourSample {
+    uint32_t pixel, run, index;
+    glm::vec2 px;
+  };
+  std::vector<ContourSample> contour_samples;
+  std::vector<uint32_t> run_samples;  ///< per visible run: its sample count (contour runs)
 };
 
 /// Completes the exterior outline of one object in `visible` (its visible runs): appends

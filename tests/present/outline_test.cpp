@@ -181,5 +181,87 @@ TEST(Outline, AShortContourRunBesideAPieceIsDropped) {
   EXPECT_NEAR(visible.length_px[0], 80.0f, 3.0f);
 }
 
+// A contour run along y(x) (model units), a point a pixel, from x0 to x1.
+template <class Y>
+StrokeRuns contourAlong(float x0, float x1, Y y) {
+  StrokeRuns runs = contourRun(x0, x1, 0.0f);
+  for (size_t i = 0; i < runs.points.size(); ++i) {
+    const float yi = y(runs.positions[i].x);
+    runs.positions[i].y = yi;
+    runs.points[i].y = 100.0f - 50.0f * yi;
+  }
+  return runs;
+}
+
+// The silhouette zigzags about the contour by a pixel or two on a coarse mesh: the contour
+// draws that outline already, within a line's width, and pieces drawn beside it were ticks.
+TEST(Outline, APieceWithinTwoPixelsOfTheContourIsNotDrawn) {
+  OutlineScratch scratch;
+  // 1.5 px inside the edge (px row 52 against the silhouette's 50.5): no contour pixel
+  // within 1 px of the silhouette, so the whole edge is missing, but within 2 px.
+  StrokeRuns visible = contourRun(-0.8f, 0.8f, 0.96f);
+  const double len = completeOutline(kLong, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{},
+                                     visible, scratch);
+  EXPECT_EQ(len, 0.0);
+  ASSERT_EQ(visible.strokeCount(), 1u);  // the contour alone
+  EXPECT_NEAR(visible.length_px[0], 80.0f, 1.0f);
+  // With the rules off, the same edge is drawn a second time beside the contour.
+  OutlineParams off;
+  off.splice_radius_px = 0.0f;
+  StrokeRuns again = contourRun(-0.8f, 0.8f, 0.96f);
+  EXPECT_GT(completeOutline(kLong, squareCamera(), squareDepth(), VisibilityParams{}, off, again, scratch), 70.0);
+}
+
+// A polygon corner that the contour cuts by 3 px: the contour run takes the silhouette's way
+// there (one stroke), instead of a piece drawn beside it (a bump with two caps).
+TEST(Outline, AShortPieceBesideOneContourRunIsSplicedIntoIt) {
+  auto dip = [](float x) { return std::abs(x) < 0.1f ? 0.93f : 0.975f; };  // 3 px and 0.75 px inside
+  OutlineScratch scratch;
+  StrokeRuns visible = contourAlong(-0.8f, 0.8f, dip);
+  const double len = completeOutline(kLong, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{},
+                                     visible, scratch);
+  EXPECT_GT(len, 8.0);
+  EXPECT_LT(len, 20.0);
+  ASSERT_EQ(visible.strokeCount(), 1u);
+  float top = 1e9f;
+  for (uint32_t i = visible.offsets[0]; i < visible.offsets[1]; ++i) top = std::min(top, visible.points[i].y);
+  EXPECT_LT(top, 51.0f);  // on the silhouette (row 50.5), not 3 px inside it
+  // Without splicing: the run and a piece beside it.
+  OutlineParams off;
+  off.splice_max_px = 0.0f;
+  StrokeRuns again = contourAlong(-0.8f, 0.8f, dip);
+  completeOutline(kLong, squareCamera(), squareDepth(), VisibilityParams{}, off, again, scratch);
+  EXPECT_GE(again.strokeCount(), 2u);
+}
+
+// A few pixels of silhouette that leave the contour in the middle of a run and end beside no
+// line are a spur on the outline, not a piece of it.
+TEST(Outline, AShortSpurFromTheMiddleOfAContourRunIsNotDrawn) {
+  StrokeSet spur;  // straight up from the top edge's middle, 5 px out of the square
+  spur.offsets = {0};
+  for (int i = 0; i <= 4; ++i) {
+    spur.points.push_back({0.0f, 0.99f + 0.025f * static_cast<float>(i), 0.0f});
+    spur.alpha.push_back(1.0f);
+  }
+  spur.offsets.push_back(static_cast<uint32_t>(spur.points.size()));
+  spur.kinds.push_back(LineKind::kContour);
+  spur.closed.push_back(0);
+  OutlineScratch scratch;
+  StrokeRuns visible = contourRun(-0.8f, 0.8f, 0.985f);  // on the edge
+  EXPECT_EQ(completeOutline(spur, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{}, visible,
+                            scratch),
+            0.0);
+  EXPECT_EQ(visible.strokeCount(), 1u);
+  // Near the run's end it goes on from the contour (the outline continues past it): drawn.
+  StrokeRuns short_run = contourRun(-0.8f, 0.02f, 0.985f);
+  EXPECT_GT(completeOutline(spur, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{}, short_run,
+                            scratch),
+            2.0);
+  OutlineParams off;
+  off.spur_max_px = 0.0f;
+  StrokeRuns again = contourRun(-0.8f, 0.8f, 0.985f);
+  EXPECT_GT(completeOutline(spur, squareCamera(), squareDepth(), VisibilityParams{}, off, again, scratch), 2.0);
+}
+
 }  // namespace
 }  // namespace lodline
