@@ -396,8 +396,24 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
           spliced_px += static_cast<double>(j - i - 1);
           splices.push_back(std::move(sp));
         } else if (role.kind == PieceRole::kDraw) {
-          for (size_t k = i; k < j; ++k) mark(scratch.fill, samples[k].px);
-          emitRun(samples, i, j, LineKind::kContour, sil.strokes[r], fill);
+          // A fold of a coarse mesh lays two or three silhouette edges over one another
+          // within a pixel or two: only the stretches that no earlier piece draws yet.
+          const int dup_r = static_cast<int>(std::floor(params.covered_px));
+          scratch.dup.assign(j - i, 0);
+          for (size_t k = i; k < j; ++k) scratch.dup[k - i] = dup_r > 0 && near(scratch.fill, samples[k].px, dup_r);
+          for (size_t a = i; a < j;) {
+            if (scratch.dup[a - i]) {
+              ++a;
+              continue;
+            }
+            size_t b = a;
+            while (b < j && !scratch.dup[b - i]) ++b;
+            if (b - a >= 3 || (a == i && b == j && b - a >= 2)) {
+              for (size_t k = a; k < b; ++k) mark(scratch.fill, samples[k].px);
+              emitRun(samples, a, b, LineKind::kContour, sil.strokes[r], fill);
+            }
+            a = b;
+          }
         }
       }
       i = j;
@@ -452,6 +468,12 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
         for (size_t k = i; k < j; ++k) scratch.flags[k] = 1;
       i = j;
     }
+    // A whole run within covered_px of the pieces (a dash of contour beside the silhouette
+    // of a fold): the pieces draw it.
+    const int covered = static_cast<int>(std::floor(params.covered_px));
+    if (!has_splice && covered > 0 &&
+        std::all_of(samples.begin(), samples.end(), [&](const Sample& q) { return near(scratch.fill, q.px, covered); }))
+      continue;
     if (!has_splice &&
         (!dropped || std::all_of(scratch.flags.begin(), scratch.flags.end(), [](uint8_t f) { return f != 0; }))) {
       copyRun(visible, r, out);

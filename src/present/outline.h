@@ -54,10 +54,12 @@ struct OutlineParams {
   /// dropped: a shorter one is a sample or two off the outline, and cutting it would leave a
   /// notch. At a run's ends (and a whole run) any length is dropped. Default 4.
   float min_drop_px = 4.0f;
-  /// Completing pieces beside the contour (docs/visibility.md, step 3). A piece that runs
-  /// within covered_px of the visible contour all along is not drawn: the contour draws that
-  /// outline already, within a line's width (the mesh's silhouette zigzags about it; drawn,
-  /// each tooth was a tick on the line). Default 2.
+  /// Lines within this many pixels of one another draw one outline (docs/visibility.md,
+  /// step 2): a piece that runs this near the visible contour all along is not drawn (the
+  /// mesh's silhouette zigzags about the contour; drawn, each tooth was a tick on the line);
+  /// the stretches of a piece this near an earlier piece are not drawn again (a fold lays
+  /// silhouette edges over one another); a contour run this near the pieces all along is
+  /// left to them. 0 turns these off. Default 2.
   float covered_px = 2.0f;
   /// A piece at most this long (pixels, after growing) with one end within splice_radius_px
   /// of a contour run, away from the run's ends, and the other beside no line is a spur, and
@@ -97,7 +99,7 @@ struct OutlineHistory {
 struct OutlineScratch {
   StrokeRuns silhouette, rebuilt, stitched;
   LineMask outline, contours, fill, previous;
-  std::vector<uint8_t> flags, grown;
+  std::vector<uint8_t> flags, grown, dup;
   std::vector<glm::vec3> fill_samples;  ///< every sample of this frame's completing pieces
   /// The visible contour's samples by pixel (step 2), for the splices' nearest-sample search.
   struct ContourSample {

@@ -263,5 +263,60 @@ TEST(Outline, AShortSpurFromTheMiddleOfAContourRunIsNotDrawn) {
   EXPECT_GT(completeOutline(spur, squareCamera(), squareDepth(), VisibilityParams{}, off, again, scratch), 2.0);
 }
 
+// A silhouette stroke along y (model units) from x0 to x1.
+StrokeSet silhouetteAlong(float x0, float x1, float y) {
+  StrokeSet s = topEdge(x0, x1);
+  for (glm::vec3& p : s.points) p.y = y;
+  return s;
+}
+
+StrokeSet bothOf(const StrokeSet& a, const StrokeSet& b) {
+  StrokeSet s = a;
+  for (size_t k = 0; k < b.points.size(); ++k) {
+    s.points.push_back(b.points[k]);
+    s.alpha.push_back(b.alpha[k]);
+  }
+  s.offsets.push_back(static_cast<uint32_t>(s.points.size()));
+  s.kinds.push_back(b.kinds[0]);
+  s.closed.push_back(0);
+  return s;
+}
+
+// A fold of a coarse mesh lays silhouette edges over one another a pixel apart: the outline
+// is drawn once, not as a thick double line.
+TEST(Outline, APieceOverAnEarlierOneIsDrawnOnce) {
+  const StrokeSet folded = bothOf(kLong, silhouetteAlong(-0.8f, 0.8f, 0.975f));  // 0.75 px apart
+  OutlineScratch scratch;
+  StrokeRuns visible;
+  EXPECT_NEAR(completeOutline(folded, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{}, visible,
+                              scratch),
+              80.0, 3.0);
+  EXPECT_EQ(visible.strokeCount(), 1u);
+  OutlineParams off;
+  off.covered_px = 0.0f;
+  StrokeRuns again;
+  completeOutline(folded, squareCamera(), squareDepth(), VisibilityParams{}, off, again, scratch);
+  EXPECT_EQ(again.strokeCount(), 2u);
+}
+
+// A dash of contour on a fold's silhouette, 2 px beside the piece that draws the outline:
+// left to the piece (drawn, the two were one thick line).
+TEST(Outline, AContourDashBesideAPieceIsLeftToThePiece) {
+  // The outline's edge (px row 50.5) and a short fold edge 2 px in (row 51.5), with the dash
+  // on the fold (row 52.5): the dash is on the outline (the fold's), the edge's piece passes
+  // 2 px from it.
+  const StrokeSet silhouette = bothOf(kLong, silhouetteAlong(0.0f, 0.1f, 0.97f));
+  OutlineScratch scratch;
+  StrokeRuns visible = contourRun(0.0f, 0.1f, 0.95f);
+  completeOutline(silhouette, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{}, visible, scratch);
+  ASSERT_EQ(visible.strokeCount(), 1u);  // the piece alone
+  EXPECT_NEAR(visible.length_px[0], 80.0f, 3.0f);
+  OutlineParams off;
+  off.covered_px = 0.0f;
+  StrokeRuns again = contourRun(0.0f, 0.1f, 0.95f);
+  completeOutline(silhouette, squareCamera(), squareDepth(), VisibilityParams{}, off, again, scratch);
+  EXPECT_EQ(again.strokeCount(), 2u);
+}
+
 }  // namespace
 }  // namespace lodline
