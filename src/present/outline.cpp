@@ -115,43 +115,15 @@ void blendSplice(const Splice& sp, const std::vector<Sample>& run, float ramp_px
   }
 }
 
-// What becomes of a completing piece (samples [i, j) of a silhouette run) that the
-// contour runs beside (`nearest(px)`: the visible contour's sample nearest to px within
-// params.splice_radius_px, or null):
-// - skipped when the contour runs within params.covered_px of all of it (a silhouette that
-//   zigzags about the contour by a pixel or two: drawn, each tooth was a tick), or when it is
-//   a short spur, one end beside the contour and the other beside no line;
-// - spliced into the contour run that both its ends lie beside, when short enough and the
-//   run's stretch between them is about as long (a polygon corner the contour cuts);
-// - drawn as a piece of its own otherwise.
+// What becomes of a completing piece (docs/visibility.md, step 2).
 struct PieceRole {
   enum Kind { kDraw, kSkip, kSplice } kind = kDraw;
-  uint32_t run = 0, a = 0, b = 0;  ///< kSplice: the run and its samples beside the two ends
+  uint32_t run = 0, a = 0, b = 0;  // kSplice: the run, and its samples beside the two ends
 };
-template <class Nearest>
-PieceRole classifyPiece(const std::vector<Sample>& samples, size_t i, size_t j, const OutlineParams& params,
-                        const Nearest& nearest, const std::vector<uint32_t>& run_samples) {
-  if (!(params.splice_radius_px > 0.0f)) return {};
-  float deviation = 0.0f;
-  for (size_t k = i; k < j && deviation <= params.covered_px; ++k) {
-    const auto* c = nearest(samples[k].px);
-    deviation = std::max(deviation, c ? glm::length(c->px - samples[k].px) : std::numeric_limits<float>::infinity());
-  }
-  if (deviation <= params.covered_px) return {PieceRole::kSkip};
-  const auto* a = nearest(samples[i].px);
-  const auto* b = nearest(samples[j - 1].px);
-  const float length = static_cast<float>(j - i - 1);  // samples are a pixel apart
-  // A spur leaves a run in its middle; a piece that goes on from near a run's end continues
-  // the outline past it (to another line, or to a gap that is real).
-  const auto* held = a ? a : b;
-  const bool from_middle = held && held->index >= 3 && held->index + 3 < run_samples[held->run];
-  if ((a == nullptr) != (b == nullptr) && from_middle && length <= params.spur_max_px)
-    return {PieceRole::kSkip};
-  if (a && b && a->run == b->run && length <= params.splice_max_px &&
-      std::max(a->index, b->index) - std::min(a->index, b->index) <= 2 * (j - i) + 4)
-    return {PieceRole::kSplice, a->run, a->index, b->index};
-  return {};
-}
+
+// A contour sample this many samples (pixels) or fewer from its run's end is at the end: a
+// piece from there continues the outline past the run rather than leaving it in its middle.
+constexpr uint32_t kRunEndSamples = 3;
 
 // Appends the samples [i, j) of one run as a run of `out`.
 void emitRun(const std::vector<Sample>& samples, size_t i, size_t j, LineKind kind, uint32_t stroke, StrokeRuns& out) {
@@ -305,13 +277,17 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
   auto& csamples = scratch.contour_samples;
   csamples.clear();
   scratch.run_samples.assign(visible.strokeCount(), 0);
+  scratch.run_first.assign(visible.strokeCount(), 0);
+  scratch.run_px.clear();
   const bool splicing = params.splice_radius_px > 0.0f;
   for (size_t r = 0; r < visible.strokeCount(); ++r) {
     if (visible.kinds[r] != LineKind::kContour) continue;
     sampleRun(visible, r, proj, samples);
     scratch.run_samples[r] = static_cast<uint32_t>(samples.size());
+    scratch.run_first[r] = static_cast<uint32_t>(scratch.run_px.size());
     for (size_t i = 0; i < samples.size(); ++i) {
       const glm::vec2 px = samples[i].px;
+      if (splicing) scratch.run_px.push_back(px);
       mark(scratch.contours, px);
       const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
       if (splicing && x >= 0 && y >= 0 && x < W && y < H)
@@ -322,6 +298,12 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
   std::sort(csamples.begin(), csamples.end(), [](const auto& a, const auto& b) {
     return a.pixel != b.pixel ? a.pixel < b.pixel : (a.run != b.run ? a.run < b.run : a.index < b.index);
   });
+  auto keyOf = [&](glm::vec2 px, uint32_t& key) {
+    const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
+    if (x < 0 || y < 0 || x >= W || y >= H) return false;
+    key = static_cast<uint32_t>(y) * static_cast<uint32_t>(W) + static_cast<uint32_t>(x);
+    return true;
+  };
   // The contour sample nearest to `q` within the splice radius, if any.
   const int splice_r = static_cast<int>(std::ceil(params.splice_radius_px));
   auto nearestContour = [&](glm::vec2 q) -> const OutlineScratch::ContourSample* {
@@ -361,13 +343,83 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
   double spliced_px = 0.0;
   scratch.fill_samples.clear();
   clearMask(scratch.fill, W, H);
+  clearMask(scratch.skipped, W, H);
+  clearMask(scratch.spliced, W, H);
   const int extend = std::max(0, static_cast<int>(std::lround(params.extend_px)));
+  auto missingAt = [&](const Sample& q) {
+    return near(scratch.outline, q.px, 0) && !near(scratch.contours, q.px, params.contour_radius_px);
+  };
+  // Every missing sample by pixel, for the spurs' test that a free end is beside no other
+  // missing stretch of the silhouette.
+  auto& missing = scratch.missing;
+  missing.clear();
+  for (size_t r = 0; splicing && r < sil.strokeCount(); ++r) {
+    sampleRun(sil, r, proj, samples);
+    uint32_t key;
+    for (size_t i = 0; i < samples.size(); ++i)
+      if (missingAt(samples[i]) && keyOf(samples[i].px, key))
+        missing.push_back({key, static_cast<uint32_t>(r), static_cast<uint32_t>(i)});
+  }
+  std::sort(missing.begin(), missing.end(), [](const auto& a, const auto& b) {
+    return a.pixel != b.pixel ? a.pixel < b.pixel : (a.run != b.run ? a.run < b.run : a.index < b.index);
+  });
+  // A missing sample within the splice radius of `q` outside samples [i, j) of silhouette run r.
+  auto otherMissingNear = [&](glm::vec2 q, uint32_t r, size_t i, size_t j) {
+    const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
+    for (int yy = std::max(0, y - splice_r); yy <= std::min(H - 1, y + splice_r); ++yy)
+      for (int xx = std::max(0, x - splice_r); xx <= std::min(W - 1, x + splice_r); ++xx) {
+        const uint32_t key = static_cast<uint32_t>(yy) * static_cast<uint32_t>(W) + static_cast<uint32_t>(xx);
+        auto it = std::lower_bound(missing.begin(), missing.end(), key,
+                                   [](const auto& c, uint32_t k) { return c.pixel < k; });
+        for (; it != missing.end() && it->pixel == key; ++it)
+          if (it->run != r || it->index < i || it->index >= j) return true;
+      }
+    return false;
+  };
+  // What becomes of the piece [i, j) of silhouette run r (docs/visibility.md, step 2):
+  // - skipped when the contour runs within covered_px of all of it (a silhouette that
+  //   zigzags about the contour by a pixel or two: drawn, each tooth was a tick), or when it
+  //   is a short spur, one end beside the middle of a contour run and the other beside no
+  //   line;
+  // - spliced into the contour run that both its ends lie beside, when short enough, the
+  //   run's stretch between them lies beside it and no earlier splice took that stretch (a
+  //   polygon corner the contour cuts);
+  // - drawn as a piece of its own otherwise.
+  auto classify = [&](uint32_t r, size_t i, size_t j) -> PieceRole {
+    if (!splicing) return {};
+    float deviation = 0.0f;
+    for (size_t k = i; k < j && deviation <= params.covered_px; ++k) {
+      const auto* c = nearestContour(samples[k].px);
+      deviation = std::max(deviation, c ? glm::length(c->px - samples[k].px) : std::numeric_limits<float>::infinity());
+    }
+    if (deviation <= params.covered_px) return {PieceRole::kSkip};
+    const auto* a = nearestContour(samples[i].px);
+    const auto* b = nearestContour(samples[j - 1].px);
+    float length = 0.0f;
+    for (size_t k = i + 1; k < j; ++k) length += glm::length(samples[k].px - samples[k - 1].px);
+    if ((a == nullptr) != (b == nullptr) && length <= params.spur_max_px) {
+      const auto* held = a ? a : b;
+      const bool from_middle =
+          held->index >= kRunEndSamples && held->index + kRunEndSamples < scratch.run_samples[held->run];
+      const size_t free_end = a ? j - 1 : i;
+      if (from_middle && !otherMissingNear(samples[free_end].px, r, i, j)) return {PieceRole::kSkip};
+    }
+    if (!a || !b || a->run != b->run || !(length <= params.splice_max_px)) return {};
+    const uint32_t lo = std::min(a->index, b->index), hi = std::max(a->index, b->index);
+    if (hi - lo > 2 * (j - i) + 4) return {};  // the run goes elsewhere between the two ends
+    // The run's stretch must lie beside the piece: its middle within twice the radius.
+    const glm::vec2 mid = scratch.run_px[scratch.run_first[a->run] + (lo + hi) / 2];
+    float to_piece = std::numeric_limits<float>::infinity();
+    for (size_t k = i; k < j; ++k) to_piece = std::min(to_piece, glm::length(samples[k].px - mid));
+    if (!(to_piece <= 2.0f * params.splice_radius_px)) return {};
+    for (const Splice& sp : splices)
+      if (sp.run == a->run && lo <= sp.hi && hi >= sp.lo) return {};  // taken: drawn instead
+    return {PieceRole::kSplice, a->run, a->index, b->index};
+  };
   for (size_t r = 0; r < sil.strokeCount(); ++r) {
     sampleRun(sil, r, proj, samples);
     scratch.flags.assign(samples.size(), 0);
-    for (size_t i = 0; i < samples.size(); ++i)
-      scratch.flags[i] = near(scratch.outline, samples[i].px, 0) &&
-                         !near(scratch.contours, samples[i].px, params.contour_radius_px);
+    for (size_t i = 0; i < samples.size(); ++i) scratch.flags[i] = missingAt(samples[i]);
     scratch.grown.assign(samples.size(), 0);
     for (size_t i = 0; i < samples.size(); ++i) {
       if (!scratch.flags[i]) continue;
@@ -386,21 +438,29 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
         continues = continues || (in_sequence && near(scratch.previous, samples[j].px, params.follow_radius_px));
       if (j - i >= 2 && (!in_sequence || continues || static_cast<float>(j - i) >= params.min_length_px)) {
         for (size_t k = i; k < j; ++k) samples[k].alpha = 1.0f;
-        const PieceRole role = classifyPiece(samples, i, j, params, nearestContour, scratch.run_samples);
-        if (role.kind != PieceRole::kSkip && history)
-          for (size_t k = i; k < j; ++k) scratch.fill_samples.push_back(samples[k].p);
-        if (role.kind == PieceRole::kSplice) {
+        const PieceRole role = classify(static_cast<uint32_t>(r), i, j);
+        auto remember = [&](size_t a, size_t b) {
+          if (history)
+            for (size_t k = a; k < b; ++k) scratch.fill_samples.push_back(samples[k].p);
+        };
+        if (role.kind == PieceRole::kSkip) {
+          for (size_t k = i; k < j; ++k) mark(scratch.skipped, samples[k].px);
+        } else if (role.kind == PieceRole::kSplice) {
           Splice sp{role.run, std::min(role.a, role.b), std::max(role.a, role.b), {}};
           sp.samples.assign(samples.begin() + static_cast<ptrdiff_t>(i), samples.begin() + static_cast<ptrdiff_t>(j));
           if (role.a > role.b) std::reverse(sp.samples.begin(), sp.samples.end());
-          spliced_px += static_cast<double>(j - i - 1);
+          for (size_t k = i; k < j; ++k) mark(scratch.spliced, samples[k].px);
+          remember(i, j);
           splices.push_back(std::move(sp));
-        } else if (role.kind == PieceRole::kDraw) {
+        } else {
           // A fold of a coarse mesh lays two or three silhouette edges over one another
-          // within a pixel or two: only the stretches that no earlier piece draws yet.
+          // within a pixel or two: only the stretches that no earlier piece draws yet (of 3
+          // samples or more: shorter ones would be dots beside the earlier piece).
           const int dup_r = static_cast<int>(std::floor(params.covered_px));
           scratch.dup.assign(j - i, 0);
-          for (size_t k = i; k < j; ++k) scratch.dup[k - i] = dup_r > 0 && near(scratch.fill, samples[k].px, dup_r);
+          for (size_t k = i; k < j; ++k)
+            scratch.dup[k - i] =
+                dup_r > 0 && (near(scratch.fill, samples[k].px, dup_r) || near(scratch.spliced, samples[k].px, dup_r));
           for (size_t a = i; a < j;) {
             if (scratch.dup[a - i]) {
               ++a;
@@ -410,6 +470,7 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
             while (b < j && !scratch.dup[b - i]) ++b;
             if (b - a >= 3 || (a == i && b == j && b - a >= 2)) {
               for (size_t k = a; k < b; ++k) mark(scratch.fill, samples[k].px);
+              remember(a, b);
               emitRun(samples, a, b, LineKind::kContour, sil.strokes[r], fill);
             }
             a = b;
@@ -425,14 +486,16 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     ++history->frames;
   }
   if (fill.strokeCount() == 0 && splices.empty()) return 0.0;
-  // Per contour run, its splices in run order; one overlapping an earlier one is dropped
-  // (its corner is drawn by the earlier one's way, within a pixel or two).
-  std::sort(splices.begin(), splices.end(),
-            [](const Splice& x, const Splice& y) { return x.run != y.run ? x.run < y.run : x.lo < y.lo; });
+  // 4. Contour pieces beside a completing piece but off the outline would draw it twice.
+  //    Each run also takes its splices (in run order; they do not overlap, step 3), and
+  //    keeps the samples beside the pieces left out for it (dropped, neither would draw).
+  std::sort(splices.begin(), splices.end(), [](const Splice& x, const Splice& y) {
+    return x.run != y.run ? x.run < y.run : (x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi);
+  });
   size_t next_splice = 0;
   std::vector<Sample> merged;
   std::vector<uint8_t> merged_flags;
-  // 4. Contour pieces beside a completing piece but off the outline would draw it twice.
+  const int covered = static_cast<int>(std::floor(params.covered_px));
   StrokeRuns& out = scratch.rebuilt;
   out.clear();
   out.offsets.push_back(0);
@@ -448,9 +511,12 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     sampleRun(visible, r, proj, samples);
     scratch.flags.assign(samples.size(), 1);
     bool dropped = has_splice;
+    // Samples beside a piece left out for this contour stay whatever else is near.
+    const int keep_r = std::max(covered, 1);
+    auto keeps = [&](const Sample& q) { return splicing && near(scratch.skipped, q.px, keep_r); };
     for (size_t i = 0; i < samples.size(); ++i)
       if (near(scratch.fill, samples[i].px, params.double_radius_px) &&
-          !near(scratch.outline, samples[i].px, params.contour_radius_px)) {
+          !near(scratch.outline, samples[i].px, params.contour_radius_px) && !keeps(samples[i])) {
         scratch.flags[i] = 0;
         dropped = true;
       }
@@ -470,9 +536,9 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     }
     // A whole run within covered_px of the pieces (a dash of contour beside the silhouette
     // of a fold): the pieces draw it.
-    const int covered = static_cast<int>(std::floor(params.covered_px));
-    if (!has_splice && covered > 0 &&
-        std::all_of(samples.begin(), samples.end(), [&](const Sample& q) { return near(scratch.fill, q.px, covered); }))
+    if (!has_splice && covered > 0 && !samples.empty() && std::all_of(samples.begin(), samples.end(), [&](const Sample& q) {
+          return near(scratch.fill, q.px, covered) && !keeps(q);
+        }))
       continue;
     if (!has_splice &&
         (!dropped || std::all_of(scratch.flags.begin(), scratch.flags.end(), [](uint8_t f) { return f != 0; }))) {
@@ -484,10 +550,12 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     merged_flags.clear();
     size_t s_at = first_splice;
     for (size_t i = 0; i < samples.size();) {
-      while (s_at < next_splice && splices[s_at].lo < i) ++s_at;  // overlaps an earlier one
+      while (s_at < next_splice && splices[s_at].lo < i) ++s_at;  // none do (step 3): defensive
       if (s_at < next_splice && splices[s_at].lo == i) {
         const Splice& sp = splices[s_at++];
+        const size_t from = merged.size();
         blendSplice(sp, samples, params.splice_ramp_px, merged);
+        for (size_t k = from + 1; k < merged.size(); ++k) spliced_px += glm::length(merged[k].px - merged[k - 1].px);
         merged_flags.resize(merged.size(), 1);
         i = std::min<size_t>(samples.size(), static_cast<size_t>(sp.hi) + 1);
         continue;

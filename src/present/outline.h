@@ -55,23 +55,26 @@ struct OutlineParams {
   /// notch. At a run's ends (and a whole run) any length is dropped. Default 4.
   float min_drop_px = 4.0f;
   /// Lines within this many pixels of one another draw one outline (docs/visibility.md,
-  /// step 2): a piece that runs this near the visible contour all along is not drawn (the
-  /// mesh's silhouette zigzags about the contour; drawn, each tooth was a tick on the line);
-  /// the stretches of a piece this near an earlier piece are not drawn again (a fold lays
-  /// silhouette edges over one another); a contour run this near the pieces all along is
-  /// left to them. 0 turns these off. Default 2.
+  /// steps 2 and 3): a piece that runs this near the visible contour all along is not drawn
+  /// (the mesh's silhouette zigzags about the contour; drawn, each tooth was a tick on the
+  /// line); the stretches of a piece this near an earlier piece are not drawn again (a fold
+  /// lays silhouette edges over one another); a contour run this near the pieces all along is
+  /// left to them. 0 turns these three off. Default 2.
   float covered_px = 2.0f;
   /// A piece at most this long (pixels, after growing) with one end within splice_radius_px
-  /// of a contour run, away from the run's ends, and the other beside no line is a spur, and
-  /// is not drawn. Default 8.
+  /// of a contour run, away from the run's ends, and the other beside no line (no contour,
+  /// no other missing stretch of the silhouette) is a spur, and is not drawn. 0 turns this
+  /// off. Default 8.
   float spur_max_px = 8.0f;
   /// A piece at most this long whose two ends both lie within splice_radius_px of one
   /// contour run is spliced into that run instead of drawn beside it: the run leaves the
   /// contour there and follows the silhouette (a polygon corner the contour cuts; drawn
-  /// beside it, a bump with two caps). 0 turns splicing off. Default 64.
+  /// beside it, a bump with two caps). The run's stretch between the two ends must lie
+  /// beside the piece (its middle within twice splice_radius_px of it), and a piece
+  /// overlapping an earlier splice is drawn instead. 0 turns splicing off. Default 64.
   float splice_max_px = 64.0f;
-  /// How near the contour a piece's end must be for the rules above. 0 turns them all off
-  /// (every piece drawn beside the contour). Default 3.
+  /// How near the contour a piece's end must be for the spur and splice rules. 0 turns
+  /// those two and the first covered_px rule off. Default 3.
   float splice_radius_px = 3.0f;
   /// A spliced run moves from the contour onto the silhouette (and back) over this many
   /// pixels at each end of the piece, so it bends there instead of stepping. Default 3.
@@ -99,6 +102,8 @@ struct OutlineHistory {
 struct OutlineScratch {
   StrokeRuns silhouette, rebuilt, stitched;
   LineMask outline, contours, fill, previous;
+  LineMask skipped;  ///< pieces left out because the contour beside them draws them
+  LineMask spliced;  ///< pieces spliced into a contour run
   std::vector<uint8_t> flags, grown, dup;
   std::vector<glm::vec3> fill_samples;  ///< every sample of this frame's completing pieces
   /// The visible contour's samples by pixel (step 2), for the splices' nearest-sample search.
@@ -108,6 +113,13 @@ struct OutlineScratch {
   };
   std::vector<ContourSample> contour_samples;
   std::vector<uint32_t> run_samples;  ///< per visible run: its sample count (contour runs)
+  std::vector<uint32_t> run_first;    ///< per visible run: its first sample in run_px
+  std::vector<glm::vec2> run_px;      ///< the contour runs' samples, run after run
+  /// The silhouette's missing samples (no contour within contour_radius_px) by pixel.
+  struct MissingSample {
+    uint32_t pixel, run, index;
+  };
+  std::vector<MissingSample> missing;
 };
 
 /// Completes the exterior outline of one object in `visible` (its visible runs): appends
@@ -115,7 +127,8 @@ struct OutlineScratch {
 /// does not (runs of kind contour) and drops the contour pieces they would double. `camera`
 /// and `depth` are the frame's. With `history` (frames of a sequence), pieces of the previous
 /// frame continue with hysteresis and `history` becomes this frame's; without it (a still),
-/// every piece is decided afresh. Returns the length of the appended pieces, pixels.
+/// every piece is decided afresh. Returns the length of the pieces drawn (appended, or
+/// spliced into a contour run), pixels.
 double completeOutline(const StrokeSet& silhouette, const Camera& camera, const DepthImage& depth,
                        const VisibilityParams& visibility, const OutlineParams& params, StrokeRuns& visible,
                        OutlineScratch& scratch, OutlineHistory* history = nullptr);

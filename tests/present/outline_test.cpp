@@ -234,6 +234,53 @@ TEST(Outline, AShortPieceBesideOneContourRunIsSplicedIntoIt) {
   EXPECT_GE(again.strokeCount(), 2u);
 }
 
+// The same with the run drawn the other way: the piece is spliced in the run's direction.
+TEST(Outline, ASplicedPieceFollowsTheRunsDirection) {
+  auto dip = [](float x) { return std::abs(x) < 0.1f ? 0.93f : 0.975f; };
+  StrokeRuns visible = contourAlong(-0.8f, 0.8f, dip);
+  std::reverse(visible.points.begin(), visible.points.end());
+  std::reverse(visible.positions.begin(), visible.positions.end());
+  OutlineScratch scratch;
+  completeOutline(kLong, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{}, visible, scratch);
+  ASSERT_EQ(visible.strokeCount(), 1u);
+  float top = 1e9f;
+  for (uint32_t i = visible.offsets[0]; i < visible.offsets[1]; ++i) {
+    top = std::min(top, visible.points[i].y);
+    if (i > visible.offsets[0]) EXPECT_LT(visible.points[i].x, visible.points[i - 1].x + 0.5f);
+  }
+  EXPECT_LT(top, 51.0f);
+}
+
+// A piece closing the gap of a nearly closed contour run has its two ends beside the run's
+// two ends, but the run goes elsewhere in between: it is not a corner to splice (splicing
+// would replace the whole run by the piece).
+TEST(Outline, APieceClosingARunsGapIsNotSplicedOverTheRun) {
+  // From x 0.2 right along the edge (0.75 px inside), down 9.5 px, back left 4.75 px
+  // under the edge to x -0.2, and up to the edge again: a 20-px gap at the top.
+  StrokeRuns visible;
+  visible.offsets = {0};
+  auto add = [&](float x, float y) {
+    visible.points.push_back({100.0f + 50.0f * x, 100.0f - 50.0f * y});
+    visible.positions.push_back({x, y, 0.0f});
+    visible.alpha.push_back(1.0f);
+  };
+  for (int i = 0; i <= 5; ++i) add(0.2f + 0.02f * static_cast<float>(i), 0.975f);
+  for (int i = 1; i <= 9; ++i) add(0.3f, 0.975f - 0.02f * static_cast<float>(i));
+  for (int i = 1; i <= 25; ++i) add(0.3f - 0.02f * static_cast<float>(i), 0.795f);
+  for (int i = 1; i <= 9; ++i) add(-0.2f, 0.795f + 0.02f * static_cast<float>(i));
+  visible.offsets.push_back(static_cast<uint32_t>(visible.points.size()));
+  visible.kinds.push_back(LineKind::kContour);
+  visible.strokes.push_back(0);
+  visible.opacity.push_back(1.0f);
+  visible.length_px.push_back(48.0f);
+  OutlineScratch scratch;
+  completeOutline(topEdge(-0.25f, 0.25f), squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{},
+                  visible, scratch);
+  float total = 0.0f;
+  for (float l : visible.length_px) total += l;
+  EXPECT_GT(total, 45.0f);  // the run's bottom (25 px) stays beside the piece (about 20)
+}
+
 // A few pixels of silhouette that leave the contour in the middle of a run and end beside no
 // line are a spur on the outline, not a piece of it.
 TEST(Outline, AShortSpurFromTheMiddleOfAContourRunIsNotDrawn) {
