@@ -511,9 +511,12 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     sampleRun(visible, r, proj, samples);
     scratch.flags.assign(samples.size(), 1);
     bool dropped = has_splice;
-    // Samples beside a piece left out for this contour stay whatever else is near.
+    // Samples beside a piece left out for this contour stay, unless a drawn piece runs within
+    // covered_px of them (it draws that outline): dropped, neither would draw it.
     const int keep_r = std::max(covered, 1);
-    auto keeps = [&](const Sample& q) { return splicing && near(scratch.skipped, q.px, keep_r); };
+    auto keeps = [&](const Sample& q) {
+      return splicing && near(scratch.skipped, q.px, keep_r) && !(covered > 0 && near(scratch.fill, q.px, covered));
+    };
     for (size_t i = 0; i < samples.size(); ++i)
       if (near(scratch.fill, samples[i].px, params.double_radius_px) &&
           !near(scratch.outline, samples[i].px, params.contour_radius_px) && !keeps(samples[i])) {
