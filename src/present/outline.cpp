@@ -86,7 +86,11 @@ struct Splice {
 void blendSplice(const Splice& sp, const std::vector<Sample>& run, float ramp_px, std::vector<Sample>& out) {
   const size_t n = sp.samples.size();
   if (run.empty() || n == 0) return;
-  const size_t lo = sp.lo >= 4 ? sp.lo - 4 : 0, hi = std::min(run.size() - 1, static_cast<size_t>(sp.hi) + 4);
+  // The run's nearest point is looked for a few samples past the stretch the piece replaces:
+  // the piece's grown ends lie beside the samples just outside it.
+  constexpr size_t kMargin = 4;
+  const size_t lo = sp.lo >= kMargin ? sp.lo - kMargin : 0;
+  const size_t hi = std::min(run.size() - 1, static_cast<size_t>(sp.hi) + kMargin);
   float total = 0.0f;
   for (size_t k = 1; k < n; ++k) total += glm::length(sp.samples[k].px - sp.samples[k - 1].px);
   const float ramp = std::min(ramp_px, 0.5f * total);
