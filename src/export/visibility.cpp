@@ -177,6 +177,8 @@ void splitStrokes(const StrokeSet& strokes, const Camera& camera, const DepthIma
       // Only a contour lies where its own surface turns away; the other kinds lie on faces
       // that face the eye, and the slack would let them show through near surfaces.
       slack = strokes.kinds[s] == LineKind::kContour ? params.segment_tolerance * glm::length(b - a) : 0.0f;
+      if (params.segment_tolerance_cap > 0.0f)
+        slack = std::min(slack, params.segment_tolerance * params.segment_tolerance_cap);
       for (int k = 0; k < steps; ++k) {
         const float t = static_cast<float>(k) / static_cast<float>(steps);
         add_sample(a + t * (b - a), strokes.alpha[i] + t * (strokes.alpha[i + 1] - strokes.alpha[i]), k == 0);

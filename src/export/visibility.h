@@ -36,6 +36,11 @@ struct VisibilityParams {
   /// (0.78 with 0, 0.85 with 1), and the held-out captures under detail control churn as
   /// with the depth-tested drawing (1 let hidden lines show through on small, coarse views).
   float segment_tolerance = 0.5f;
+  /// Model units; 0: none. A contour segment's slack is at most segment_tolerance times this.
+  /// The presenter sets it to the median edge length of the object's drawn mesh: on a mesh of
+  /// uneven edges (a CAD part's long slivers) half a long edge's length let hidden contour
+  /// show through (the turbine's notch in models/machine.json; docs/visibility.md).
+  float segment_tolerance_cap = 0.0f;
 };
 
 /// Runs of strokes in pixels: the visible (or the hidden) parts of a StrokeSet. A run's

@@ -1,5 +1,11 @@
 #include "present/presenter.h"
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
 #include "core/timer.h"
 #include "present/gl_presenter.h"
 #include "present/outline.h"
@@ -52,8 +58,32 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
   return {};
 }
 
+namespace {
+
+// The median edge length of `mesh` (model units), from the edges of up to 4096 faces spread
+// over it (VisibilityParams::segment_tolerance_cap); 0 for an empty mesh.
+float medianEdgeLength(const TriMesh& mesh) {
+  const size_t nf = mesh.faces.size(), nv = mesh.positions.size();
+  if (nf == 0) return 0.0f;
+  const size_t samples = std::min<size_t>(nf, 4096);
+  std::vector<float> lengths;
+  lengths.reserve(3 * samples);
+  for (size_t k = 0; k < samples; ++k) {
+    const auto& f = mesh.faces[k * nf / samples];
+    for (int j = 0; j < 3; ++j) {
+      const uint32_t a = f[j], b = f[(j + 1) % 3];
+      if (a < nv && b < nv) lengths.push_back(glm::length(mesh.positions[a] - mesh.positions[b]));
+    }
+  }
+  if (lengths.empty()) return 0.0f;
+  auto mid = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
+  std::nth_element(lengths.begin(), mid, lengths.end());
+  return std::isfinite(*mid) ? *mid : 0.0f;
+}
+
+}  // namespace
+
 void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
-  const VisibilityParams visibility;
   visible_.resize(scene.size());
   hidden_.resize(scene.size());
   outline_fill_.assign(scene.size(), 0.0);
@@ -65,6 +95,8 @@ void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
   for (size_t i = 0; i < scene.size(); ++i) {
     const SceneDrawing::Object& obj = scene[i];
     const LineDrawing& d = obj.drawing->drawing();
+    VisibilityParams visibility;
+    visibility.segment_tolerance_cap = medianEdgeLength(d.mesh());
     splitStrokes(d.strokes(), camera_, depth_, visibility, &visible_[i], &hidden_[i]);
     // Intersection lines (static, world space) through the same test.
     if (obj.style.lines[LineKind::kIntersection].enabled && obj.intersections.strokeCount() > 0) {

@@ -115,6 +115,27 @@ TEST(Visibility, ASurfaceWithinOneSegmentIsTheLinesOwnNeighbourhood) {
   EXPECT_EQ(none.strokeCount(), 0u);
 }
 
+// A long segment among short ones (a CAD part's sliver) gets the slack of the mesh's typical
+// edge, not half its own length: behind a wall 0.2 units in front of it, a 2-unit segment is
+// visible with no cap and hidden with a cap of 0.2 (slack 0.1).
+TEST(Visibility, TheSlackOfALongSegmentIsCappedByTheMeshsTypicalEdge) {
+  const Camera cam = testCamera();
+  const DepthImage d = flat(100, 100, windowDepth(cam, 5.0f));
+  StrokeSet s;
+  s.points = {{-1.0f, 0, -5.2f}, {1.0f, 0, -5.2f}};
+  s.alpha = {1, 1};
+  s.offsets = {0, 2};
+  s.kinds = {LineKind::kContour};
+  s.closed = {0};
+  StrokeRuns uncapped, capped;
+  visibleStrokes(s, cam, d, {}, uncapped);
+  EXPECT_EQ(uncapped.strokeCount(), 1u);
+  VisibilityParams p;
+  p.segment_tolerance_cap = 0.2f;
+  visibleStrokes(s, cam, d, p, capped);
+  EXPECT_EQ(capped.strokeCount(), 0u);
+}
+
 TEST(Visibility, CountsMidpointsPerType) {
   const Camera cam = testCamera();
   const DepthImage d = flat(64, 64, windowDepth(cam, 5.0f));
