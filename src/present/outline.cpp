@@ -72,6 +72,39 @@ bool onDiscontinuity(const DepthImage& depth, const PixelProjector& proj, glm::v
   return false;
 }
 
+// The row-major key of the pixel holding `px`; false outside a W×H image.
+bool pixelKey(glm::vec2 px, int W, int H, uint32_t& key) {
+  const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
+  if (x < 0 || y < 0 || x >= W || y >= H) return false;
+  key = static_cast<uint32_t>(y) * static_cast<uint32_t>(W) + static_cast<uint32_t>(x);
+  return true;
+}
+
+// Orders entries with a pixel key, a run and an index by pixel (ties by run, then index, so
+// every search below sees them in the same order).
+template <class T>
+void sortByPixel(std::vector<T>& v) {
+  std::sort(v.begin(), v.end(), [](const T& a, const T& b) {
+    return a.pixel != b.pixel ? a.pixel < b.pixel : (a.run != b.run ? a.run < b.run : a.index < b.index);
+  });
+}
+
+// Calls f on the entries of `sorted` (sortByPixel) whose pixel lies within r pixels
+// (Chebyshev) of q's, pixel by pixel; stops at the first call that returns true and says
+// whether one did.
+template <class T, class F>
+bool anyNear(const std::vector<T>& sorted, glm::vec2 q, int r, int W, int H, F&& f) {
+  const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
+  for (int yy = std::max(0, y - r); yy <= std::min(H - 1, y + r); ++yy)
+    for (int xx = std::max(0, x - r); xx <= std::min(W - 1, x + r); ++xx) {
+      const uint32_t key = static_cast<uint32_t>(yy) * static_cast<uint32_t>(W) + static_cast<uint32_t>(xx);
+      auto it = std::lower_bound(sorted.begin(), sorted.end(), key, [](const T& c, uint32_t k) { return c.pixel < k; });
+      for (; it != sorted.end() && it->pixel == key; ++it)
+        if (f(*it)) return true;
+    }
+  return false;
+}
+
 // A completing piece spliced into contour run `run` in place of its samples [lo, hi]
 // (indices of sampleRun()'s samples), oriented along the run.
 struct Splice {
@@ -293,37 +326,22 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
       const glm::vec2 px = samples[i].px;
       if (splicing) scratch.run_px.push_back(px);
       mark(scratch.contours, px);
-      const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
-      if (splicing && x >= 0 && y >= 0 && x < W && y < H)
-        csamples.push_back({static_cast<uint32_t>(y) * static_cast<uint32_t>(W) + static_cast<uint32_t>(x),
-                            static_cast<uint32_t>(r), static_cast<uint32_t>(i), px});
+      uint32_t key;
+      if (splicing && pixelKey(px, W, H, key))
+        csamples.push_back({key, static_cast<uint32_t>(r), static_cast<uint32_t>(i), px});
     }
   }
-  std::sort(csamples.begin(), csamples.end(), [](const auto& a, const auto& b) {
-    return a.pixel != b.pixel ? a.pixel < b.pixel : (a.run != b.run ? a.run < b.run : a.index < b.index);
-  });
-  auto keyOf = [&](glm::vec2 px, uint32_t& key) {
-    const int x = static_cast<int>(std::floor(px.x)), y = static_cast<int>(std::floor(px.y));
-    if (x < 0 || y < 0 || x >= W || y >= H) return false;
-    key = static_cast<uint32_t>(y) * static_cast<uint32_t>(W) + static_cast<uint32_t>(x);
-    return true;
-  };
+  sortByPixel(csamples);
   // The contour sample nearest to `q` within the splice radius, if any.
   const int splice_r = static_cast<int>(std::ceil(params.splice_radius_px));
   auto nearestContour = [&](glm::vec2 q) -> const OutlineScratch::ContourSample* {
     const OutlineScratch::ContourSample* best = nullptr;
     float best_d = params.splice_radius_px;
-    const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
-    for (int yy = std::max(0, y - splice_r); yy <= std::min(H - 1, y + splice_r); ++yy)
-      for (int xx = std::max(0, x - splice_r); xx <= std::min(W - 1, x + splice_r); ++xx) {
-        const uint32_t key = static_cast<uint32_t>(yy) * static_cast<uint32_t>(W) + static_cast<uint32_t>(xx);
-        auto it = std::lower_bound(csamples.begin(), csamples.end(), key,
-                                   [](const auto& c, uint32_t k) { return c.pixel < k; });
-        for (; it != csamples.end() && it->pixel == key; ++it) {
-          const float d = glm::length(it->px - q);
-          if (d <= best_d) best = &*it, best_d = d;
-        }
-      }
+    anyNear(csamples, q, splice_r, W, H, [&](const OutlineScratch::ContourSample& c) {
+      const float d = glm::length(c.px - q);
+      if (d <= best_d) best = &c, best_d = d;
+      return false;
+    });
     return best;
   };
   // 3. Outline samples with no contour near: the completing pieces, grown along the
@@ -350,35 +368,31 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
   clearMask(scratch.skipped, W, H);
   clearMask(scratch.spliced, W, H);
   const int extend = std::max(0, static_cast<int>(std::lround(params.extend_px)));
-  auto missingAt = [&](const Sample& q) {
-    return near(scratch.outline, q.px, 0) && !near(scratch.contours, q.px, params.contour_radius_px);
-  };
-  // Every missing sample by pixel, for the spurs' test that a free end is beside no other
-  // missing stretch of the silhouette.
+  // Per silhouette sample, whether it is missing (on the outline, no contour near), flat over
+  // the runs; and, for the spurs' test that a free end is beside no other missing stretch of
+  // the silhouette, every missing sample by pixel.
   auto& missing = scratch.missing;
   missing.clear();
-  for (size_t r = 0; splicing && r < sil.strokeCount(); ++r) {
+  scratch.sil_flags.clear();
+  scratch.sil_first.assign(sil.strokeCount(), 0);
+  for (size_t r = 0; r < sil.strokeCount(); ++r) {
     sampleRun(sil, r, proj, samples);
-    uint32_t key;
-    for (size_t i = 0; i < samples.size(); ++i)
-      if (missingAt(samples[i]) && keyOf(samples[i].px, key))
+    scratch.sil_first[r] = static_cast<uint32_t>(scratch.sil_flags.size());
+    for (size_t i = 0; i < samples.size(); ++i) {
+      const bool m =
+          near(scratch.outline, samples[i].px, 0) && !near(scratch.contours, samples[i].px, params.contour_radius_px);
+      scratch.sil_flags.push_back(m);
+      uint32_t key;
+      if (m && splicing && pixelKey(samples[i].px, W, H, key))
         missing.push_back({key, static_cast<uint32_t>(r), static_cast<uint32_t>(i)});
+    }
   }
-  std::sort(missing.begin(), missing.end(), [](const auto& a, const auto& b) {
-    return a.pixel != b.pixel ? a.pixel < b.pixel : (a.run != b.run ? a.run < b.run : a.index < b.index);
-  });
+  sortByPixel(missing);
   // A missing sample within the splice radius of `q` outside samples [i, j) of silhouette run r.
   auto otherMissingNear = [&](glm::vec2 q, uint32_t r, size_t i, size_t j) {
-    const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
-    for (int yy = std::max(0, y - splice_r); yy <= std::min(H - 1, y + splice_r); ++yy)
-      for (int xx = std::max(0, x - splice_r); xx <= std::min(W - 1, x + splice_r); ++xx) {
-        const uint32_t key = static_cast<uint32_t>(yy) * static_cast<uint32_t>(W) + static_cast<uint32_t>(xx);
-        auto it = std::lower_bound(missing.begin(), missing.end(), key,
-                                   [](const auto& c, uint32_t k) { return c.pixel < k; });
-        for (; it != missing.end() && it->pixel == key; ++it)
-          if (it->run != r || it->index < i || it->index >= j) return true;
-      }
-    return false;
+    return anyNear(missing, q, splice_r, W, H, [&](const OutlineScratch::MissingSample& m) {
+      return m.run != r || m.index < i || m.index >= j;
+    });
   };
   // What becomes of the piece [i, j) of silhouette run r (docs/visibility.md, step 2):
   // - skipped when the contour runs within covered_px of all of it (a silhouette that
@@ -422,8 +436,8 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
   };
   for (size_t r = 0; r < sil.strokeCount(); ++r) {
     sampleRun(sil, r, proj, samples);
-    scratch.flags.assign(samples.size(), 0);
-    for (size_t i = 0; i < samples.size(); ++i) scratch.flags[i] = missingAt(samples[i]);
+    const auto first = scratch.sil_flags.begin() + scratch.sil_first[r];
+    scratch.flags.assign(first, first + static_cast<std::ptrdiff_t>(samples.size()));
     scratch.grown.assign(samples.size(), 0);
     for (size_t i = 0; i < samples.size(); ++i) {
       if (!scratch.flags[i]) continue;

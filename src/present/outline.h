@@ -120,6 +120,8 @@ struct OutlineScratch {
     uint32_t pixel, run, index;
   };
   std::vector<MissingSample> missing;
+  std::vector<uint8_t> sil_flags;   ///< per silhouette sample (step 3): missing, run after run
+  std::vector<uint32_t> sil_first;  ///< per silhouette run: its first sample in sil_flags
 };
 
 /// Completes the exterior outline of one object in `visible` (its visible runs): appends

@@ -61,13 +61,13 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
 namespace {
 
 // The median edge length of `mesh` (model units), from the edges of up to 4096 faces spread
-// over it (VisibilityParams::segment_tolerance_cap); 0 for an empty mesh.
-float medianEdgeLength(const TriMesh& mesh) {
+// over it (VisibilityParams::segment_tolerance_cap); 0 for an empty mesh. `lengths` is
+// scratch, reused from frame to frame.
+float medianEdgeLength(const TriMesh& mesh, std::vector<float>& lengths) {
   const size_t nf = mesh.faces.size(), nv = mesh.positions.size();
+  lengths.clear();
   if (nf == 0) return 0.0f;
   const size_t samples = std::min<size_t>(nf, 4096);
-  std::vector<float> lengths;
-  lengths.reserve(3 * samples);
   for (size_t k = 0; k < samples; ++k) {
     const auto& f = mesh.faces[k * nf / samples];
     for (int j = 0; j < 3; ++j) {
@@ -96,7 +96,7 @@ void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
     const SceneDrawing::Object& obj = scene[i];
     const LineDrawing& d = obj.drawing->drawing();
     VisibilityParams visibility;
-    visibility.segment_tolerance_cap = medianEdgeLength(d.mesh());
+    visibility.segment_tolerance_cap = medianEdgeLength(d.mesh(), edge_lengths_);
     splitStrokes(d.strokes(), camera_, depth_, visibility, &visible_[i], &hidden_[i]);
     // Intersection lines (static, world space) through the same test.
     if (obj.style.lines[LineKind::kIntersection].enabled && obj.intersections.strokeCount() > 0) {

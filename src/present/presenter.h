@@ -153,6 +153,7 @@ class ScenePresenter {
   StrokeRuns visible_all_, hidden_all_, scratch_, scratch2_;
   bool visible_all_valid_ = false, hidden_all_valid_ = false;
   OutlineScratch outline_scratch_;
+  std::vector<float> edge_lengths_;  ///< splitObjectLines(): sampled edge lengths
   std::vector<OutlineHistory> outline_history_;
   bool sequence_in_motion_ = false;
   ScreenLines screen_lines_;
