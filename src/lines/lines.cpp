@@ -8,6 +8,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/simd_clones.h"
+
 namespace lodline {
 
 void LineSet::clear() {
@@ -41,7 +43,8 @@ constexpr uint8_t kNegative = 1, kPasses = 2, kGated = 4;
 // has, so the compiler vectorises it: the signs are as good as random from one vertex to the
 // next, and a mispredicted branch per vertex would cost more than the whole test.
 template <bool kTest, bool kDen, bool kGate, int kShift>
-void vertexCodesOf(const ZeroSetInput& in, size_t begin, size_t end, uint8_t* __restrict code) {
+[[gnu::always_inline]] inline void vertexCodesOf(const ZeroSetInput& in, size_t begin, size_t end,
+                                                 uint8_t* __restrict code) {
   const float* __restrict val = in.value.data();
   const float* __restrict num = in.test_num.data();
   const float* __restrict den = in.test_den.data();
@@ -65,7 +68,8 @@ void vertexCodesOf(const ZeroSetInput& in, size_t begin, size_t end, uint8_t* __
 }
 
 template <int kShift>
-void vertexCodesShifted(const ZeroSetInput& in, size_t begin, size_t end, uint8_t* code) {
+[[gnu::always_inline]] inline void vertexCodesShifted(const ZeroSetInput& in, size_t begin, size_t end,
+                                                      uint8_t* code) {
   const size_t nv = in.value.size();
   const bool has_test = in.test_num.size() == nv;
   const bool has_den = has_test && in.test_den.size() == nv;
@@ -78,7 +82,9 @@ void vertexCodesShifted(const ZeroSetInput& in, size_t begin, size_t end, uint8_
   vertexCodesOf<false, false, false, kShift>(in, begin, end, code);
 }
 
-void vertexCodes(const ZeroSetInput& in, int k, size_t begin, size_t end, uint8_t* code) {
+// Compiled for AVX2 (32 vertices a step) where the processor has it, and for plain x86-64;
+// comparisons only, so both give the same codes.
+LODLINE_AVX2_CLONES void vertexCodes(const ZeroSetInput& in, int k, size_t begin, size_t end, uint8_t* code) {
   if (k == 0) vertexCodesShifted<0>(in, begin, end, code);
   else vertexCodesShifted<3>(in, begin, end, code);
   if (in.shut.size() == in.value.size()) {

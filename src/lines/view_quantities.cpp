@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/simd_clones.h"
+
 namespace lodline {
 
 ViewSpec ViewSpec::fromCamera(const Camera& cam) {
@@ -77,7 +79,7 @@ struct ViewArrays {
 // to plain per-component arrays, so that the compiler runs it four vertices at a time: the
 // square roots and divisions are most of the view stage's time.
 template <bool kOrtho, bool kDerivs>
-void viewRange(const ViewArrays& a, size_t begin, size_t end) {
+[[gnu::always_inline]] inline void viewRange(const ViewArrays& a, size_t begin, size_t end) {
   // Whole blocks in local arrays (a short last block padded with harmless values): a fixed
   // trip count over memory nothing else aliases is what the vectoriser needs.
   constexpr size_t kBlock = 64;
@@ -159,6 +161,18 @@ void viewRange(const ViewArrays& a, size_t begin, size_t end) {
   }
 }
 
+// viewRange() for the view's kind, compiled twice: for AVX2 (eight vertices a step) where the
+// processor has it, and for plain x86-64. No FMA in either, so both give the same bits.
+LODLINE_AVX2_CLONES void viewRangeOf(const ViewArrays& a, bool ortho, bool derivs, size_t begin, size_t end) {
+  if (ortho) {
+    if (derivs) viewRange<true, true>(a, begin, end);
+    else viewRange<true, false>(a, begin, end);
+  } else {
+    if (derivs) viewRange<false, true>(a, begin, end);
+    else viewRange<false, false>(a, begin, end);
+  }
+}
+
 }  // namespace
 
 void computeViewQuantities(const SurfaceFields& s, const ViewSpec& view, float sc_threshold,
@@ -177,15 +191,7 @@ void computeViewQuantities(const SurfaceFields& s, const ViewSpec& view, float s
                      with_derivs ? &s.dcurv[0].x : nullptr, out.ndotv.data(), out.kr.data(), out.dwkr.data(),
                      out.sc_num.data(), out.sc_den.data(), view.eye.x, view.eye.y, view.eye.z, ortho_dir.x,
                      ortho_dir.y, ortho_dir.z, sc_threshold};
-  auto range = [&](size_t begin, size_t end) {
-    if (view.orthographic) {
-      if (with_derivs) viewRange<true, true>(a, begin, end);
-      else viewRange<true, false>(a, begin, end);
-    } else {
-      if (with_derivs) viewRange<false, true>(a, begin, end);
-      else viewRange<false, false>(a, begin, end);
-    }
-  };
+  auto range = [&](size_t begin, size_t end) { viewRangeOf(a, view.orthographic, with_derivs, begin, end); };
   if (pool) {
     pool->forRange(nv, 4096, range);
   } else {
