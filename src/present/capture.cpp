@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -68,20 +69,26 @@ CaptureRun::CaptureRun(LoadedScene& loaded, ScenePresenter& presenter, const Cap
   smoothing_w_ = sm.enabled ? smoothingWeight(sm.alpha, sm.seconds, static_cast<float>(fps_)) : 1.0f;
 }
 
-// One step of the simulation at frame k (time k/fps): the state every later frame builds on
-// (level of detail, geomorphs, temporal smoothing). Detail parameters were checked by the
-// caller, so frame() cannot fail.
+// The camera of frame k (time k/fps).
+Camera CaptureRun::cameraAt(int64_t k) const {
+  return path_.at(t0_ + static_cast<double>(k) / fps_, loaded_.drawing.bounds());
+}
+
+// One step of the simulation at frame k: the state every later frame builds on (level of
+// detail, geomorphs, temporal smoothing). Detail parameters were checked by the caller, so
+// frame() cannot fail.
 Camera CaptureRun::simulate(int64_t k) {
   SceneDrawing& scene = loaded_.drawing;
   const FrameParams& frame = loaded_.view.frame;
-  const Camera cam = path_.at(t0_ + static_cast<double>(k) / fps_, scene.bounds());
+  const Camera cam = cameraAt(k);
   (void)scene.frame(cam, frame.width, frame.height, loaded_.detail.params, static_cast<float>(1.0 / fps_), smoothing_w_);
   return cam;
 }
 
 Result<std::unique_ptr<CaptureRun>> CaptureRun::start(LoadedScene& loaded, ScenePresenter& p, const CaptureRequest& rq,
-                                                      bool measure) {
+                                                      bool measure, bool pipeline) {
   std::unique_ptr<CaptureRun> run(new CaptureRun(loaded, p, rq, measure));
+  run->pipeline_ = pipeline && !measure;
   SceneDrawing& scene = loaded.drawing;
   const FrameParams& frame = loaded.view.frame;
   const float dt = static_cast<float>(1.0 / rq.fps);
@@ -116,9 +123,16 @@ Result<CapturedFrame> CaptureRun::next() {
   Stopwatch frame_clock;
   CapturedFrame f;
   f.index = next_++;
-  f.camera = simulate(f.index);
+  f.camera = simulated_ahead_ ? cameraAt(f.index) : simulate(f.index);
   SceneDrawing& scene = loaded_.drawing;
-  if (Status s = presenter_.present(scene, f.camera, loaded_.view.frame, f.index == 0); !s) return s.error();
+  // Pipelined: the next frame's stages run while this one is drawn.
+  const bool ahead = pipeline_ && next_ < range_.end;
+  std::function<void()> overlap;
+  if (ahead) overlap = [this, k = next_] { (void)simulate(k); };
+  simulated_ahead_ = false;
+  if (Status s = presenter_.present(scene, f.camera, loaded_.view.frame, f.index == 0, overlap); !s)
+    return s.error();
+  simulated_ahead_ = ahead;
   f.image = presenter_.readImage();
   if (measure_) {
     const FrameReport report = reportFrame(scene, presenter_, &mask_);
@@ -158,7 +172,9 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
   // their ids (CaptureRun::start draws them only when ids are not wanted).
   CaptureRequest first = rq;
   if (want_svg) first.range = {0, rq.range.end};
-  auto run = CaptureRun::start(loaded, p, first, want_metrics);
+  // Nothing reads the scene between frames unless metrics or SVGs are written: then the
+  // frames are pipelined (the same frames, sooner).
+  auto run = CaptureRun::start(loaded, p, first, want_metrics, /*pipeline=*/!want_svg);
   if (!run) return run.error();
   CaptureRun& r = **run;
 

@@ -84,8 +84,12 @@ class CaptureRun {
  public:
   /// Converges frame 0's detail and simulates (and draws, for the outline's hysteresis) the
   /// frames before request.range.first. `measure`: compute each frame's metrics.
+  /// `pipeline` (ignored when measuring): simulate frame k + 1 while frame k is drawn
+  /// (ScenePresenter::present's overlap); the frames are the same, but after next() the
+  /// scene already holds the following frame, so only a caller that reads nothing of the
+  /// scene between frames may ask for it.
   static Result<std::unique_ptr<CaptureRun>> start(LoadedScene& loaded, ScenePresenter& presenter,
-                                                   const CaptureRequest& request, bool measure);
+                                                   const CaptureRequest& request, bool measure, bool pipeline = false);
   /// True when every frame of the range was given.
   bool done() const { return next_ >= range_.end; }
   /// Draws the next frame of the range. Errors: a failed draw or surface readback.
@@ -95,6 +99,7 @@ class CaptureRun {
 
  private:
   CaptureRun(LoadedScene& loaded, ScenePresenter& presenter, const CaptureRequest& request, bool measure);
+  Camera cameraAt(int64_t k) const;
   Camera simulate(int64_t k);
   LoadedScene& loaded_;
   ScenePresenter& presenter_;
@@ -102,6 +107,8 @@ class CaptureRun {
   double fps_ = 30.0;
   FrameRange range_;
   bool measure_ = false;
+  bool pipeline_ = false;
+  bool simulated_ahead_ = false;  ///< frame next_ was simulated during the last present()
   int64_t next_ = 0;
   float smoothing_w_ = 1.0f;
   double t0_ = 0.0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -22,6 +23,11 @@ Result<PresenterBackend> parsePresenterBackend(const std::string& name) {
 
 Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, const FrameParams& frame,
                                bool all_meshes) {
+  return present(scene, camera, frame, all_meshes, {});
+}
+
+Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, const FrameParams& frame,
+                               bool all_meshes, const std::function<void()>& overlap) {
   if (Status s = check(scene); !s) return s;
   Stopwatch sw;
   camera_ = camera;
@@ -29,21 +35,33 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
   styles_.clear();
   for (const auto& o : scene.objects()) styles_.push_back(o.style);
   if (Status s = uploadMeshes(scene, all_meshes); !s) return s;
+  copyObjectLines(scene);
   times_.upload = sw.lap();
+  // From here on the scene is not read: `overlap` may change it. It starts before the faces
+  // are drawn, so that on a GPU it runs while the GPU draws.
+  std::thread worker;
+  struct Join {
+    std::thread& t;
+    ~Join() {
+      if (t.joinable()) t.join();
+    }
+  } join{worker};
+  if (overlap) worker = std::thread(overlap);
   if (Status s = drawSurfaces(camera, frame, styles_); !s) return s;
   times_.render = sw.lap();
   readDepth(depth_);
-  splitObjectLines(scene);
+  splitObjectLines();
   times_.visibility = sw.lap();
   times_.strokes = 0.0;
   times_.fade = 0.0;
-  parameterizers_.resize(scene.size());
-  faders_.resize(scene.size());
-  for (size_t i = 0; i < scene.size(); ++i) {
+  const size_t n = objects_.size();
+  parameterizers_.resize(n);
+  faders_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
     faders_[i].update(visible_[i], camera, frame.width, frame.height, fade_);
     times_.fade += sw.elapsed();
     parameterizers_[i].update(visible_[i], camera, frame.width, frame.height, stroke_coherence_);
-    const Bounds& b = scene[i].drawing->bounds();
+    const Bounds& b = objects_[i].bounds;
     const StrokeView view{camera.eye, camera.forward(), b.center, b.radius};
     buildScreenLines(visible_[i], hidden_[i], styles_[i], view, parameterizers_[i].parameters(), screen_lines_,
                      stroke_scratch_);
@@ -83,31 +101,47 @@ float medianEdgeLength(const TriMesh& mesh, std::vector<float>& lengths) {
 
 }  // namespace
 
-void ScenePresenter::splitObjectLines(const SceneDrawing& scene) {
-  visible_.resize(scene.size());
-  hidden_.resize(scene.size());
-  outline_fill_.assign(scene.size(), 0.0);
-  if (outline_history_.size() != scene.size()) {
-    OutlineHistory fresh;
-    fresh.starts_in_motion = sequence_in_motion_;
-    outline_history_.assign(scene.size(), fresh);
-  }
+void ScenePresenter::copyObjectLines(const SceneDrawing& scene) {
+  objects_.resize(scene.size());
   for (size_t i = 0; i < scene.size(); ++i) {
     const SceneDrawing::Object& obj = scene[i];
     const LineDrawing& d = obj.drawing->drawing();
+    ObjectLines& o = objects_[i];
+    o.strokes = d.strokes();  // assignment keeps the vectors' capacity: no allocation once warm
+    o.silhouettes = d.silhouetteStrokes();
+    o.intersections = &obj.intersections;
+    o.intersections_on = obj.style.lines[LineKind::kIntersection].enabled && obj.intersections.strokeCount() > 0;
+    o.contours_on = obj.style.lines[LineKind::kContour].enabled;
+    o.median_edge = medianEdgeLength(d.mesh(), edge_lengths_);
+    o.bounds = obj.drawing->bounds();
+  }
+}
+
+void ScenePresenter::splitObjectLines() {
+  const size_t n = objects_.size();
+  visible_.resize(n);
+  hidden_.resize(n);
+  outline_fill_.assign(n, 0.0);
+  if (outline_history_.size() != n) {
+    OutlineHistory fresh;
+    fresh.starts_in_motion = sequence_in_motion_;
+    outline_history_.assign(n, fresh);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const ObjectLines& o = objects_[i];
     VisibilityParams visibility;
-    visibility.segment_tolerance_cap = medianEdgeLength(d.mesh(), edge_lengths_);
-    splitStrokes(d.strokes(), camera_, depth_, visibility, &visible_[i], &hidden_[i]);
+    visibility.segment_tolerance_cap = o.median_edge;
+    splitStrokes(o.strokes, camera_, depth_, visibility, &visible_[i], &hidden_[i]);
     // Intersection lines (static, world space) through the same test.
-    if (obj.style.lines[LineKind::kIntersection].enabled && obj.intersections.strokeCount() > 0) {
-      splitStrokes(obj.intersections, camera_, depth_, visibility, &scratch_, &scratch2_);
+    if (o.intersections_on) {
+      splitStrokes(*o.intersections, camera_, depth_, visibility, &scratch_, &scratch2_);
       appendStrokes(scratch_, visible_[i]);
       appendStrokes(scratch2_, hidden_[i]);
     }
     // The exterior outline, completed where the interpolated contour leaves it.
-    if (d.silhouetteStrokes().strokeCount() > 0 && obj.style.lines[LineKind::kContour].enabled)
-      outline_fill_[i] = completeOutline(d.silhouetteStrokes(), camera_, depth_, visibility, OutlineParams{},
-                                         visible_[i], outline_scratch_, &outline_history_[i]);
+    if (o.silhouettes.strokeCount() > 0 && o.contours_on)
+      outline_fill_[i] = completeOutline(o.silhouettes, camera_, depth_, visibility, OutlineParams{}, visible_[i],
+                                         outline_scratch_, &outline_history_[i]);
     else
       outline_history_[i].fill.clear();
   }

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -73,6 +74,15 @@ class ScenePresenter {
   /// (startSequence() starts afresh). Errors: shader compilation for new objects, a style
   /// check() refuses.
   Status present(const SceneDrawing& scene, const Camera& camera, const FrameParams& frame, bool all_meshes);
+  /// As present(), and runs `overlap` on a second thread as soon as present() no longer reads
+  /// `scene`: once the meshes are uploaded and each object's strokes, silhouette and median
+  /// edge are copied, before the faces are drawn. present() returns when both are done. So
+  /// the next frame's CPU stages (SceneDrawing::frame) can run while this frame is drawn,
+  /// its depth read back and its lines split and drawn (docs/performance.md, "Frames in a
+  /// pipeline"); the image is the one present() draws. `overlap` may modify `scene` (it must
+  /// not touch this presenter or its GL context, nor throw); a null `overlap` is present().
+  Status present(const SceneDrawing& scene, const Camera& camera, const FrameParams& frame, bool all_meshes,
+                 const std::function<void()>& overlap);
 
   /// The next present() starts a new sequence (no hysteresis from earlier frames). With
   /// `in_motion` (a capture) its first frame is already drawn as a frame in motion, so the
@@ -142,7 +152,18 @@ class ScenePresenter {
   virtual Image readColour() = 0;
 
  private:
-  void splitObjectLines(const SceneDrawing& scene);
+  /// What the frame's later steps need of each object, copied from the scene so that the
+  /// scene can change meanwhile (present()'s `overlap`).
+  struct ObjectLines {
+    StrokeSet strokes, silhouettes;
+    const StrokeSet* intersections = nullptr;  ///< the scene's (fixed when it is built)
+    bool intersections_on = false, contours_on = false;
+    float median_edge = 0.0f;
+    Bounds bounds;
+  };
+  void copyObjectLines(const SceneDrawing& scene);
+  void splitObjectLines();
+  std::vector<ObjectLines> objects_;
   Camera camera_;
   FrameParams frame_;
   std::vector<ObjectStyle> styles_;

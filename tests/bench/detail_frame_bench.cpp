@@ -221,6 +221,79 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   state.counters["full_ms"] = bench::median(full_lines) + bench::median(full_draw);
 }
 
+// Frames in a pipeline (issue 21; docs/performance.md, "Frames in a pipeline"): frame i + 1's
+// CPU stages run on a second thread while frame i is presented (ScenePresenter::present's
+// `overlap`). Two identical scenes take the same orbit, one frame after the other in each
+// iteration: `pipelined` presents frame i while its stages compute frame i + 1, `sequential`
+// computes its stages and then presents. The wall time of each frame, then `static`: the
+// sequential scene's drawing presented again (upload, draw, visibility, strokes). The two
+// scenes' drawings are the same frame for frame (`same_faces` counts the frames whose active
+// face counts agree; the images are compared in tests/present/presenter_test.cpp).
+//   ./build/tests/bench/detail_frame_bench --benchmark_filter=pipelined --benchmark_counters_tabular=true
+void pipelinedFrame(benchmark::State& state, const std::string& name, float target_area) {
+  auto model = loadModel(name);
+  if (!model) {
+    state.SkipWithError(("cannot load " + name + " (run scripts/setup.sh)").c_str());
+    return;
+  }
+  auto ctx = createHeadlessContext(ContextBackend::kEgl);
+  if (!ctx) {
+    state.SkipWithError(ctx.error().message.c_str());
+    return;
+  }
+  FrameParams frame;
+  frame.msaa = 1;
+  auto pipelined_presenter = GlPresenter::createOnCurrentContext();
+  auto sequential_presenter = GlPresenter::createOnCurrentContext();
+  if (!pipelined_presenter || !sequential_presenter) {
+    state.SkipWithError("presenter set-up failed");
+    return;
+  }
+  SceneDrawing pipelined = sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm), name);
+  SceneDrawing sequential = sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm), name);
+  DetailParams detail;
+  detail.target_area = target_area;
+  const float aspect = frame.aspect();
+  const float dt = 1.0f / 30.0f;
+  auto camera = [&](int i) {
+    return orbitCamera(pipelined.bounds(), {static_cast<float>(i), 20.0f, 0.0f}, 35.0f, aspect);
+  };
+  for (SceneDrawing* s : {&pipelined, &sequential})
+    (void)s->converge(camera(0), frame.width, frame.height, detail, dt, 300);
+  (void)pipelined.frame(camera(0), frame.width, frame.height, detail, dt);  // frame 0's stages
+  std::vector<double> pipe_ms, seq_ms, static_ms, overlapped_stages;
+  double same = 0.0;
+  int i = 0;
+  for (auto _ : state) {
+    const bool first = i == 0;
+    const double pipe_faces = stagesOf(pipelined).faces;  // frame i, computed during the last present
+    Stopwatch sw;
+    (void)(*pipelined_presenter)
+        ->present(pipelined, camera(i), frame, first,
+                  [&] {
+                    Stopwatch st;
+                    (void)pipelined.frame(camera(i + 1), frame.width, frame.height, detail, dt);
+                    overlapped_stages.push_back(st.lap());
+                  });
+    pipe_ms.push_back(sw.lap());
+    (void)sequential.frame(camera(i), frame.width, frame.height, detail, dt);
+    same += stagesOf(sequential).faces == pipe_faces;
+    (void)(*sequential_presenter)->present(sequential, camera(i), frame, first);
+    seq_ms.push_back(sw.lap());
+    (void)(*sequential_presenter)->present(sequential, camera(i), frame, false);
+    static_ms.push_back(sw.lap());
+    ++i;
+  }
+  const double pipe = bench::median(pipe_ms), seq = bench::median(seq_ms), stat = bench::median(static_ms);
+  state.counters["pipelined_ms"] = pipe;
+  state.counters["sequential_ms"] = seq;
+  state.counters["static_present_ms"] = stat;
+  state.counters["pipelined_over_static"] = pipe / stat;
+  state.counters["sequential_over_static"] = seq / stat;
+  state.counters["same_faces"] = same;
+  state.counters["overlapped_stages_ms"] = bench::median(overlapped_stages);
+}
+
 // Resident and peak resident memory of this process, bytes (/proc/self/status).
 std::pair<double, double> residentBytes() {
   std::ifstream in("/proc/self/status");
@@ -486,6 +559,13 @@ int main(int argc, char** argv) {
   for (const double faces : {1e5, 3e5, 1e6, 3e6, 1e7}) {
     const std::string label = "scale/knot_" + std::to_string(static_cast<int>(faces / 1e5)) + "00k/T:16";
     benchmark::RegisterBenchmark(label.c_str(), [faces](benchmark::State& s) { lodline::scaleFrame(s, faces, 16.0f); })
+        ->Iterations(30)
+        ->Unit(benchmark::kMillisecond);
+  }
+  for (const auto& [name, t] : cases) {
+    const std::string label = std::string("pipelined/") + name + "/T:" + std::to_string(static_cast<int>(t));
+    benchmark::RegisterBenchmark(label.c_str(),
+                                 [name, t](benchmark::State& s) { lodline::pipelinedFrame(s, name, t); })
         ->Iterations(30)
         ->Unit(benchmark::kMillisecond);
   }

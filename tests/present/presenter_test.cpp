@@ -3,10 +3,14 @@
 // software presenter refuses what it cannot draw.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "frame/scene_drawing.h"
 #include "io/generate.h"
+#include "pm/progressive_mesh.h"
 #include "present/frame_report.h"
 #include "present/gl_presenter.h"
 #include "present/soft_presenter.h"
@@ -139,6 +143,57 @@ TEST_F(Presenter, ReportTotalsAreTheSumsOfTheObjects) {
   EXPECT_EQ(j["strokes"].get<uint64_t>(), r.total.strokes);
   EXPECT_EQ(j["objects"][1]["name"], "back");
   EXPECT_EQ(j["objects"][1]["style"], "lines");
+}
+
+// Frames in a pipeline: frame i + 1's stages run (present()'s `overlap`) while frame i is
+// drawn. The frames must be the ones drawn one after the other: same images, same strokes.
+TEST(PresenterPipeline, OverlappedStagesGiveTheFramesDrawnInTurn) {
+  const FrameParams frame = smallFrame();
+  const TriMesh knot = makeTorusKnot(2, 3, 1.0f, 0.3f, 240, 24, 0.25f);
+  auto pm = buildProgressiveMesh(knot);
+  ASSERT_TRUE(pm.ok());
+  const auto shared = std::make_shared<const ProgressiveMesh>(std::move(pm.value()));
+  auto sceneOfKnot = [&] {
+    SceneDrawing scene;
+    SceneDrawing::Object o;
+    o.name = "knot";
+    o.style.style = Style::kLines;
+    o.input_faces = knot.faceCount();
+    o.input_vertices = knot.vertexCount();
+    o.drawing = std::make_unique<LodDrawing>(knot, shared);
+    scene.add(std::move(o));
+    return scene;
+  };
+  SceneDrawing in_turn = sceneOfKnot(), pipelined = sceneOfKnot();
+  auto a = GlPresenter::createHeadless(ContextBackend::kEgl, frame);
+  if (!a) GTEST_SKIP() << a.error().message;
+  auto b = GlPresenter::createHeadless(ContextBackend::kEgl, frame);
+  ASSERT_TRUE(b.ok());
+  auto camera = [&](int i) {
+    Camera cam = frontCamera();
+    const float az = glm::radians(4.0f * static_cast<float>(i));
+    cam.eye = glm::vec3(5.0f * std::sin(az), 1.5f, 5.0f * std::cos(az));
+    return cam;
+  };
+  const float dt = 1.0f / 30.0f;
+  ASSERT_TRUE(pipelined.frame(camera(0), frame.width, frame.height, DetailParams{}, dt).ok());
+  int overlaps = 0, differing = 0;
+  for (int i = 0; i < 8; ++i) {
+    ASSERT_TRUE(in_turn.frame(camera(i), frame.width, frame.height, DetailParams{}, dt).ok());
+    ASSERT_TRUE((*a)->present(in_turn, camera(i), frame, i == 0).ok());
+    ASSERT_TRUE((*b)->present(pipelined, camera(i), frame, i == 0, [&] {
+                   (void)pipelined.frame(camera(i + 1), frame.width, frame.height, DetailParams{}, dt);
+                   ++overlaps;
+                 }).ok());
+    const Image ia = (*a)->readImage(), ib = (*b)->readImage();
+    differing += ia.rgba != ib.rgba;
+    EXPECT_EQ((*a)->visible()[0].strokeCount(), (*b)->visible()[0].strokeCount()) << "frame " << i;
+    EXPECT_EQ((*a)->visible()[0].points.size(), (*b)->visible()[0].points.size()) << "frame " << i;
+  }
+  EXPECT_EQ(overlaps, 8);
+  EXPECT_EQ(differing, 0);
+  // The camera moved and detail changed: the frames were not all alike.
+  EXPECT_GT((*a)->visible()[0].strokeCount(), 0u);
 }
 
 TEST(SoftPresenter, RefusesTheShadedStyleAndChamferHighlights) {
