@@ -10,7 +10,8 @@
 #
 # On the target: tar xzf lodline-gpu-bench.tar.gz && lodline-gpu-bench/run.sh [FILTER]
 # writes lodline-gpu-bench/results.txt: the GL renderer, then one table (medians per stage,
-# ms; Google Benchmark's tabular counters). FILTER defaults to the detail_frame cases.
+# ms; Google Benchmark's tabular counters). FILTER defaults to the detail_frame and
+# pipelined cases (frames in turn, and with the next frame's CPU stages run during the draw).
 # Needs a target glibc at least as new as the build machine's (Debian 12: 2.36).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -49,7 +50,7 @@ pack() {
 # Runs lodline's frame benchmarks here through EGL (see scripts/gpu_bench_bundle.sh).
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
-filter=${1:-detail_frame/}
+filter=${1:-(detail_frame|pipelined)/}
 lib="$here/lib"
 # libglvnd's libEGL from the bundle only where the system has none (ldconfig is often not on
 # a user's PATH).
