@@ -21,6 +21,7 @@ WorkerPool::~WorkerPool() {
 }
 
 WorkerPool::Awake::Awake(WorkerPool* pool) : pool_(pool) {
+  if (pool_ && pool_->quiet_.load(std::memory_order_relaxed)) pool_ = nullptr;  // a no-op scope
   if (!pool_ || pool_->workers_.empty()) return;
   if (pool_->awake_.fetch_add(1, std::memory_order_relaxed) == 0) {
     std::lock_guard lock(pool_->mutex_);  // sleeping workers re-check and start polling

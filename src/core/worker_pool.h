@@ -43,7 +43,7 @@ class WorkerPool {
   unsigned threadCount() const { return static_cast<unsigned>(workers_.size()) + 1; }
 
   /// While one exists, idle workers wait for the next loop by polling (wakes them now if
-  /// they sleep). Scopes nest.
+  /// they sleep). Scopes nest. No effect while the pool is quiet (setQuiet()).
   class Awake {
    public:
     explicit Awake(WorkerPool* pool);
@@ -54,6 +54,12 @@ class WorkerPool {
    private:
     WorkerPool* pool_;
   };
+
+  /// Quiet: Awake scopes made from now on do not make the workers poll. For loops that run
+  /// beside other work on the same cores (the next frame's stages while a frame is drawn:
+  /// docs/performance.md, "Frames in a pipeline"), where polling workers take cycles the
+  /// other work needs. Scopes alive when it changes keep what they did.
+  void setQuiet(bool quiet) { quiet_.store(quiet, std::memory_order_relaxed); }
 
   /// Calls fn(begin, end) on contiguous, disjoint chunks that cover [0, n) and returns when
   /// all are done. Chunks hold at least min_chunk items (the last may hold fewer) and are
@@ -115,6 +121,7 @@ class WorkerPool {
   }
   static constexpr int kSpinMicros = 100;
   std::atomic<int> awake_{0};  // Awake scopes alive
+  std::atomic<bool> quiet_{false};  // setQuiet()
 
   std::vector<std::thread> workers_;
   std::mutex run_mutex_;  // one loop at a time

@@ -53,6 +53,25 @@ Status SceneDrawing::frame(const Camera& camera, int width, int height, const De
   return {};
 }
 
+Status SceneDrawing::frameWhileDrawing(const Camera& camera, int width, int height, const DetailParams& detail,
+                                       float dt, float smoothing) {
+  quiet_pools_.clear();
+  for (Object& o : objects_) {
+    WorkerPool* p = o.drawing->drawing().sharedWorkers().get();
+    if (p && std::find(quiet_pools_.begin(), quiet_pools_.end(), p) == quiet_pools_.end()) {
+      p->setQuiet(true);
+      quiet_pools_.push_back(p);
+    }
+  }
+  struct Restore {
+    std::vector<WorkerPool*>& pools;
+    ~Restore() {
+      for (WorkerPool* p : pools) p->setQuiet(false);
+    }
+  } restore{quiet_pools_};
+  return frame(camera, width, height, detail, dt, smoothing);
+}
+
 Result<int> SceneDrawing::converge(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
                                    int max_steps) {
   const WorkerPool::Awake awake(pool());

@@ -56,6 +56,12 @@ class SceneDrawing {
   /// One frame of every object (LodDrawing::frame), T scaled by each object's factor.
   Status frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
                float smoothing = 1.0f);
+  /// frame(), for a caller that runs it while a frame is drawn (ScenePresenter::present's
+  /// overlap): the objects' worker pools are quiet meanwhile (WorkerPool::setQuiet), so their
+  /// idle workers sleep between loops instead of polling, and leave the cores to the drawing.
+  /// The result is frame()'s.
+  Status frameWhileDrawing(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
+                           float smoothing = 1.0f);
   /// The step by which converging for a still advances time: longer than any geomorph, so
   /// splits and collapses show at once (a still needs no morphs, and waiting for them took
   /// hundreds of steps on a 1M-face model). Where the adaptation stops depends on the step,
@@ -74,6 +80,7 @@ class SceneDrawing {
   WorkerPool* pool() const;  // the first object's (scenes built by the app share one)
   std::vector<Object> objects_;
   Bounds bounds_;
+  std::vector<WorkerPool*> quiet_pools_;  // frameWhileDrawing(): the distinct pools it quietened
 };
 
 /// The smallest box, and a sphere around its centre, that hold `a` and `b` (radius: the

@@ -77,11 +77,13 @@ Camera CaptureRun::cameraAt(int64_t k) const {
 // One step of the simulation at frame k: the state every later frame builds on (level of
 // detail, geomorphs, temporal smoothing). Detail parameters were checked by the caller, so
 // frame() cannot fail.
-Camera CaptureRun::simulate(int64_t k) {
+Camera CaptureRun::simulate(int64_t k, bool while_drawing) {
   SceneDrawing& scene = loaded_.drawing;
   const FrameParams& frame = loaded_.view.frame;
   const Camera cam = cameraAt(k);
-  (void)scene.frame(cam, frame.width, frame.height, loaded_.detail.params, static_cast<float>(1.0 / fps_), smoothing_w_);
+  const float dt = static_cast<float>(1.0 / fps_);
+  if (while_drawing) (void)scene.frameWhileDrawing(cam, frame.width, frame.height, loaded_.detail.params, dt, smoothing_w_);
+  else (void)scene.frame(cam, frame.width, frame.height, loaded_.detail.params, dt, smoothing_w_);
   return cam;
 }
 
@@ -128,7 +130,7 @@ Result<CapturedFrame> CaptureRun::next() {
   // Pipelined: the next frame's stages run while this one is drawn.
   const bool ahead = pipeline_ && next_ < range_.end;
   std::function<void()> overlap;
-  if (ahead) overlap = [this, k = next_] { (void)simulate(k); };
+  if (ahead) overlap = [this, k = next_] { (void)simulate(k, /*while_drawing=*/true); };
   simulated_ahead_ = false;
   if (Status s = presenter_.present(scene, f.camera, loaded_.view.frame, f.index == 0, overlap); !s)
     return s.error();
@@ -173,8 +175,10 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
   CaptureRequest first = rq;
   if (want_svg) first.range = {0, rq.range.end};
   // Nothing reads the scene between frames unless metrics or SVGs are written: then the
-  // frames are pipelined (the same frames, sooner).
-  auto run = CaptureRun::start(loaded, p, first, want_metrics, /*pipeline=*/!want_svg);
+  // frames are pipelined (the same frames, sooner). Not with an adaptation time budget,
+  // which stops on the clock: overlapped stages run slower, so the frames would differ.
+  const bool pipeline = !want_svg && !(loaded.detail.params.max_adapt_ms > 0.0f);
+  auto run = CaptureRun::start(loaded, p, first, want_metrics, pipeline);
   if (!run) return run.error();
   CaptureRun& r = **run;
 

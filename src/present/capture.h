@@ -100,7 +100,7 @@ class CaptureRun {
  private:
   CaptureRun(LoadedScene& loaded, ScenePresenter& presenter, const CaptureRequest& request, bool measure);
   Camera cameraAt(int64_t k) const;
-  Camera simulate(int64_t k);
+  Camera simulate(int64_t k, bool while_drawing = false);
   LoadedScene& loaded_;
   ScenePresenter& presenter_;
   CameraPath path_;

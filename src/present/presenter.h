@@ -74,13 +74,15 @@ class ScenePresenter {
   /// (startSequence() starts afresh). Errors: shader compilation for new objects, a style
   /// check() refuses.
   Status present(const SceneDrawing& scene, const Camera& camera, const FrameParams& frame, bool all_meshes);
-  /// As present(), and runs `overlap` on a second thread as soon as present() no longer reads
-  /// `scene`: once the meshes are uploaded and each object's strokes, silhouette and median
-  /// edge are copied, before the faces are drawn. present() returns when both are done. So
-  /// the next frame's CPU stages (SceneDrawing::frame) can run while this frame is drawn,
-  /// its depth read back and its lines split and drawn (docs/performance.md, "Frames in a
-  /// pipeline"); the image is the one present() draws. `overlap` may modify `scene` (it must
-  /// not touch this presenter or its GL context, nor throw); a null `overlap` is present().
+  /// As present(), and runs `overlap` on a second thread once the meshes are uploaded and
+  /// each object's strokes, silhouette, median edge and bounds are copied, before the faces
+  /// are drawn; present() returns when both are done. From then on present() reads only the
+  /// objects' intersection lines, fixed when the scene is built. So the next frame's CPU
+  /// stages (SceneDrawing::frameWhileDrawing) can run while this frame is drawn, its depth
+  /// read back and its lines split and drawn (docs/performance.md, "Frames in a pipeline");
+  /// the image is the one present() draws. `overlap` may advance `scene` (frame, converge),
+  /// not add or remove objects; it must not touch this presenter or its GL context, nor
+  /// throw. A null `overlap` is present().
   Status present(const SceneDrawing& scene, const Camera& camera, const FrameParams& frame, bool all_meshes,
                  const std::function<void()>& overlap);
 

@@ -116,7 +116,8 @@ TEST(ViewQuantities, DwKrMatchesFiniteDifferencesOnTorus) {
 
 // The whole-mesh pass runs several vertices a step (with AVX2 where the processor has it);
 // the per-vertex path that lazily evaluated derivatives use must give the same bits, or the
-// lines drawn with lazy tensors would differ from the eager ones.
+// lines drawn with lazy tensors would differ from the eager ones. This checks the clone this
+// machine picks (core/simd_clones.h).
 TEST(ViewQuantities, VectorPassEqualsThePerVertexPathBitForBit) {
   const TriMesh m = makeTorus(1.0f, 0.4f, 96, 48);
   ShapeCache shape;
@@ -133,11 +134,24 @@ TEST(ViewQuantities, VectorPassEqualsThePerVertexPathBitForBit) {
     computeSuggestiveQuantities(shape.fields(m), view, 0.03f, all, each);
     ASSERT_EQ(whole.dwkr.size(), m.vertexCount());
     ASSERT_EQ(each.dwkr.size(), m.vertexCount());
-    size_t differ = 0;
-    for (size_t i = 0; i < m.vertexCount(); ++i)
+    // n·v and kr·sin²θ as the per-vertex code forms them (view_quantities.cpp, viewAt()).
+    const SurfaceFields f = shape.fields(m);
+    const glm::vec3 ortho_dir = glm::normalize(view.toward_viewer);
+    size_t differ = 0, differ_kr = 0;
+    for (size_t i = 0; i < m.vertexCount(); ++i) {
       differ += whole.dwkr[i] != each.dwkr[i] || whole.sc_num[i] != each.sc_num[i] ||
                 whole.sc_den[i] != each.sc_den[i];
+      glm::vec3 vdir = ortho_dir;
+      if (!ortho) {
+        const glm::vec3 d = view.eye - f.positions[i];
+        vdir = d / glm::length(d);
+      }
+      const float ndotv = glm::dot(vdir, f.normals[i]);
+      const float u = glm::dot(vdir, f.pdir1[i]), v = glm::dot(vdir, f.pdir2[i]);
+      differ_kr += whole.ndotv[i] != ndotv || whole.kr[i] != f.k1[i] * (u * u) + f.k2[i] * (v * v);
+    }
     EXPECT_EQ(differ, 0u) << (ortho ? "orthographic" : "perspective");
+    EXPECT_EQ(differ_kr, 0u) << (ortho ? "orthographic" : "perspective");
   }
 }
 

@@ -182,7 +182,7 @@ TEST(PresenterPipeline, OverlappedStagesGiveTheFramesDrawnInTurn) {
     ASSERT_TRUE(in_turn.frame(camera(i), frame.width, frame.height, DetailParams{}, dt).ok());
     ASSERT_TRUE((*a)->present(in_turn, camera(i), frame, i == 0).ok());
     ASSERT_TRUE((*b)->present(pipelined, camera(i), frame, i == 0, [&] {
-                   (void)pipelined.frame(camera(i + 1), frame.width, frame.height, DetailParams{}, dt);
+                   (void)pipelined.frameWhileDrawing(camera(i + 1), frame.width, frame.height, DetailParams{}, dt);
                    ++overlaps;
                  }).ok());
     const Image ia = (*a)->readImage(), ib = (*b)->readImage();
