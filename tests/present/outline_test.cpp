@@ -246,7 +246,9 @@ TEST(Outline, ASplicedPieceFollowsTheRunsDirection) {
   float top = 1e9f;
   for (uint32_t i = visible.offsets[0]; i < visible.offsets[1]; ++i) {
     top = std::min(top, visible.points[i].y);
-    if (i > visible.offsets[0]) EXPECT_LT(visible.points[i].x, visible.points[i - 1].x + 0.5f);
+    if (i > visible.offsets[0]) {
+      EXPECT_LT(visible.points[i].x, visible.points[i - 1].x + 0.5f);
+    }
   }
   EXPECT_LT(top, 51.0f);
 }
