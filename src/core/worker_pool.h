@@ -43,7 +43,7 @@ class WorkerPool {
   unsigned threadCount() const { return static_cast<unsigned>(workers_.size()) + 1; }
 
   /// While one exists, idle workers wait for the next loop by polling (wakes them now if
-  /// they sleep). Scopes nest. No effect while the pool is quiet (setQuiet()).
+  /// they sleep). Scopes nest. None made while the pool is quiet (setQuiet()) has an effect.
   class Awake {
    public:
     explicit Awake(WorkerPool* pool);
@@ -55,21 +55,23 @@ class WorkerPool {
     WorkerPool* pool_;
   };
 
-  /// Quiet: Awake scopes made from now on do not make the workers poll. For loops that run
-  /// beside other work on the same cores (the next frame's stages while a frame is drawn:
-  /// docs/performance.md, "Frames in a pipeline"), where polling workers take cycles the
-  /// other work needs. Scopes alive when it changes keep what they did.
+  /// Quiet: loops run on the calling thread alone and Awake scopes made from now on do
+  /// nothing, so the workers sleep. For loops that run beside other work on the same cores
+  /// (the next frame's stages while a frame is drawn: docs/performance.md, "Frames in a
+  /// pipeline"), where waking and polling workers take cycles the other work needs. Results
+  /// are the same (they never depend on the thread count). Scopes alive when it changes keep
+  /// what they did.
   void setQuiet(bool quiet) { quiet_.store(quiet, std::memory_order_relaxed); }
 
   /// Calls fn(begin, end) on contiguous, disjoint chunks that cover [0, n) and returns when
   /// all are done. Chunks hold at least min_chunk items (the last may hold fewer) and are
   /// handed out as threads become free, so uneven work balances. Loops shorter than
-  /// 2·min_chunk run inline as one call. `fn` must not throw. Calls from several threads at
-  /// once are serialised.
+  /// 2·min_chunk, and every loop while the pool is quiet, run inline as one call. `fn` must
+  /// not throw. Calls from several threads at once are serialised (inline ones need not be).
   template <class Fn>
   void forRange(size_t n, size_t min_chunk, Fn&& fn) {
     min_chunk = std::max<size_t>(min_chunk, 1);
-    if (threadCount() <= 1 || n < 2 * min_chunk) {
+    if (threadCount() <= 1 || n < 2 * min_chunk || quiet_.load(std::memory_order_relaxed)) {
       if (n > 0) fn(size_t{0}, n);
       return;
     }
@@ -85,7 +87,7 @@ class WorkerPool {
   template <class Fn>
   void forRangeWithSlot(size_t n, size_t min_chunk, Fn&& fn) {
     min_chunk = std::max<size_t>(min_chunk, 1);
-    if (threadCount() <= 1 || n < 2 * min_chunk) {
+    if (threadCount() <= 1 || n < 2 * min_chunk || quiet_.load(std::memory_order_relaxed)) {
       if (n > 0) fn(size_t{0}, n, 0u);
       return;
     }

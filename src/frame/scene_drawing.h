@@ -57,9 +57,9 @@ class SceneDrawing {
   Status frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
                float smoothing = 1.0f);
   /// frame(), for a caller that runs it while a frame is drawn (ScenePresenter::present's
-  /// overlap): the objects' worker pools are quiet meanwhile (WorkerPool::setQuiet), so their
-  /// idle workers sleep between loops instead of polling, and leave the cores to the drawing.
-  /// The result is frame()'s.
+  /// overlap): the objects' worker pools are quiet meanwhile (WorkerPool::setQuiet), so the
+  /// stages run on the calling thread alone and the workers sleep, leaving the other cores
+  /// to the drawing. The result is frame()'s.
   Status frameWhileDrawing(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
                            float smoothing = 1.0f);
   /// The step by which converging for a still advances time: longer than any geomorph, so

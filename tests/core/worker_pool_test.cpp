@@ -1,6 +1,7 @@
 #include "core/worker_pool.h"
 
 #include <atomic>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -44,6 +45,31 @@ TEST(WorkerPool, ShortLoopsRunInline) {
     EXPECT_EQ(std::this_thread::get_id(), caller);
   });
   EXPECT_EQ(calls, 1);
+}
+
+// A quiet pool (the stages beside a drawn frame) runs every loop inline, as one call on the
+// caller's thread with slot 0, Awake scopes or not; once no longer quiet it spreads loops
+// over its threads again.
+TEST(WorkerPool, AQuietPoolRunsLoopsOnTheCallersThread) {
+  WorkerPool pool(4);
+  const auto caller = std::this_thread::get_id();
+  pool.setQuiet(true);
+  {
+    const WorkerPool::Awake awake(&pool);
+    int calls = 0;
+    pool.forRangeWithSlot(100000, 64, [&](size_t begin, size_t end, unsigned slot) {
+      ++calls;
+      EXPECT_EQ(begin, 0u);
+      EXPECT_EQ(end, 100000u);
+      EXPECT_EQ(slot, 0u);
+      EXPECT_EQ(std::this_thread::get_id(), caller);
+    });
+    EXPECT_EQ(calls, 1);
+  }
+  pool.setQuiet(false);
+  std::atomic<int> calls{0};
+  pool.forRange(100000, 64, [&](size_t, size_t) { ++calls; });
+  EXPECT_GT(calls.load(), 1);
 }
 
 // Many loops in a row, as a frame loop issues them: each sees all of its range and none of
