@@ -35,10 +35,11 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
   styles_.clear();
   for (const auto& o : scene.objects()) styles_.push_back(o.style);
   if (Status s = uploadMeshes(scene, all_meshes); !s) return s;
-  copyObjectLines(scene);
+  takeObjectLines(scene, /*copy=*/static_cast<bool>(overlap));
   times_.upload = sw.lap();
-  // From here on the scene is not read: `overlap` may change it. It starts before the faces
-  // are drawn, so that on a GPU it runs while the GPU draws.
+  // With an overlap, the scene is not read from here on (the lines were copied): `overlap` may
+  // change it. It starts before the faces are drawn, so that on a GPU it runs while the GPU
+  // draws.
   std::thread worker;
   struct Join {
     std::thread& t;
@@ -101,14 +102,20 @@ float medianEdgeLength(const TriMesh& mesh, std::vector<float>& lengths) {
 
 }  // namespace
 
-void ScenePresenter::copyObjectLines(const SceneDrawing& scene) {
+void ScenePresenter::takeObjectLines(const SceneDrawing& scene, bool copy) {
   objects_.resize(scene.size());
   for (size_t i = 0; i < scene.size(); ++i) {
     const SceneDrawing::Object& obj = scene[i];
     const LineDrawing& d = obj.drawing->drawing();
     ObjectLines& o = objects_[i];
-    o.strokes = d.strokes();  // assignment keeps the vectors' capacity: no allocation once warm
-    o.silhouettes = d.silhouetteStrokes();
+    o.strokes = &d.strokes();
+    o.silhouettes = &d.silhouetteStrokes();
+    if (copy) {  // assignment keeps the vectors' capacity: no allocation once warm
+      o.strokes_copy = d.strokes();
+      o.silhouettes_copy = d.silhouetteStrokes();
+      o.strokes = &o.strokes_copy;
+      o.silhouettes = &o.silhouettes_copy;
+    }
     o.intersections = &obj.intersections;
     o.intersections_on = obj.style.lines[LineKind::kIntersection].enabled && obj.intersections.strokeCount() > 0;
     o.contours_on = obj.style.lines[LineKind::kContour].enabled;
@@ -131,7 +138,7 @@ void ScenePresenter::splitObjectLines() {
     const ObjectLines& o = objects_[i];
     VisibilityParams visibility;
     visibility.segment_tolerance_cap = o.median_edge;
-    splitStrokes(o.strokes, camera_, depth_, visibility, &visible_[i], &hidden_[i]);
+    splitStrokes(*o.strokes, camera_, depth_, visibility, &visible_[i], &hidden_[i]);
     // Intersection lines (static, world space) through the same test.
     if (o.intersections_on) {
       splitStrokes(*o.intersections, camera_, depth_, visibility, &scratch_, &scratch2_);
@@ -139,8 +146,8 @@ void ScenePresenter::splitObjectLines() {
       appendStrokes(scratch2_, hidden_[i]);
     }
     // The exterior outline, completed where the interpolated contour leaves it.
-    if (o.silhouettes.strokeCount() > 0 && o.contours_on)
-      outline_fill_[i] = completeOutline(o.silhouettes, camera_, depth_, visibility, OutlineParams{}, visible_[i],
+    if (o.silhouettes->strokeCount() > 0 && o.contours_on)
+      outline_fill_[i] = completeOutline(*o.silhouettes, camera_, depth_, visibility, OutlineParams{}, visible_[i],
                                          outline_scratch_, &outline_history_[i]);
     else
       outline_history_[i].fill.clear();

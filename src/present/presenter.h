@@ -154,16 +154,19 @@ class ScenePresenter {
   virtual Image readColour() = 0;
 
  private:
-  /// What the frame's later steps need of each object, copied from the scene so that the
-  /// scene can change meanwhile (present()'s `overlap`).
+  /// What the frame's later steps need of each object, taken from the scene before they
+  /// run. The strokes are read in place, or, when the scene may change meanwhile
+  /// (present()'s `overlap`), from copies.
   struct ObjectLines {
-    StrokeSet strokes, silhouettes;
+    const StrokeSet* strokes = nullptr;      ///< the drawing's, or `strokes_copy`
+    const StrokeSet* silhouettes = nullptr;  ///< the drawing's, or `silhouettes_copy`
+    StrokeSet strokes_copy, silhouettes_copy;
     const StrokeSet* intersections = nullptr;  ///< the scene's (fixed when it is built)
     bool intersections_on = false, contours_on = false;
     float median_edge = 0.0f;
     Bounds bounds;
   };
-  void copyObjectLines(const SceneDrawing& scene);
+  void takeObjectLines(const SceneDrawing& scene, bool copy);
   void splitObjectLines();
   std::vector<ObjectLines> objects_;
   Camera camera_;

@@ -35,6 +35,7 @@
 #include <string>
 #include <map>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -155,31 +156,51 @@ struct ControlledFrames {
   }
 };
 
-void detailFrame(benchmark::State& state, const std::string& name, float target_area, bool fades) {
-  auto model = loadModel(name);
-  if (!model) {
+// What a side-by-side frame case needs: the model, a headless EGL context and two presenters
+// on it (as two windows of one program would be). Null, with the benchmark skipped and the
+// reason given, when any is missing.
+struct TwoPresenters {
+  std::shared_ptr<Model> model;
+  std::unique_ptr<GlContext> context;
+  std::unique_ptr<GlPresenter> first, second;
+};
+std::optional<TwoPresenters> twoPresenters(benchmark::State& state, const std::string& name) {
+  TwoPresenters t;
+  t.model = loadModel(name);
+  if (!t.model) {
     state.SkipWithError(("cannot load " + name + " (run scripts/setup.sh)").c_str());
-    return;
+    return std::nullopt;
   }
   auto ctx = createHeadlessContext(ContextBackend::kEgl);
   if (!ctx) {
     state.SkipWithError(ctx.error().message.c_str());
-    return;
+    return std::nullopt;
   }
+  t.context = std::move(ctx.value());
+  auto a = GlPresenter::createOnCurrentContext();
+  auto b = GlPresenter::createOnCurrentContext();
+  if (!a || !b) {
+    state.SkipWithError("presenter set-up failed");
+    return std::nullopt;
+  }
+  t.first = std::move(a.value());
+  t.second = std::move(b.value());
+  return t;
+}
+
+void detailFrame(benchmark::State& state, const std::string& name, float target_area, bool fades) {
+  auto set_up = twoPresenters(state, name);
+  if (!set_up) return;
+  const std::shared_ptr<Model>& model = set_up->model;
+  GlPresenter* controlled_presenter = set_up->first.get();
+  GlPresenter* full_presenter = set_up->second.get();
   FrameParams frame;
   frame.msaa = 1;
-  // Two presenters on the one context, as two windows of one program would be.
-  auto controlled_presenter = GlPresenter::createOnCurrentContext();
-  auto full_presenter = GlPresenter::createOnCurrentContext();
-  if (!controlled_presenter || !full_presenter) {
-    state.SkipWithError("presenter set-up failed");
-    return;
-  }
   LineParams line_params;
   if (fades) {
     line_params.suggestive_motion_fade_start = 3.0f;
     line_params.suggestive_motion_fade_end = 12.0f;
-    (*controlled_presenter)->setFadeStep((1.0f / 30.0f) / 0.25f);
+    controlled_presenter->setFadeStep((1.0f / 30.0f) / 0.25f);
   }
   SceneDrawing controlled =
       sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm, line_params), name);
@@ -197,18 +218,18 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   for (auto _ : state) {
     const Camera cam = orbitCamera(controlled.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
     az += 1.0f;
-    frames.record(controlled, **controlled_presenter, cam, frame, detail, first);
+    frames.record(controlled, *controlled_presenter, cam, frame, detail, first);
     // The same adapted mesh drawn again: the static cost of what controlled detail draws
     // (the draw alone, and the whole present: upload, draw, visibility of the lines, strokes).
-    (void)(*controlled_presenter)->present(controlled, cam, frame, false);
-    const auto& again = (*controlled_presenter)->times();
+    (void)controlled_presenter->present(controlled, cam, frame, false);
+    const auto& again = controlled_presenter->times();
     static_draw.push_back(again.render);
     static_present.push_back(again.upload + again.render + again.visibility + again.strokes);
     // Full detail: lines on the full mesh, full mesh drawn.
     Stopwatch sw;
     (void)full.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
     full_lines.push_back(sw.lap());
-    (void)(*full_presenter)->present(full, cam, frame, first);
+    (void)full_presenter->present(full, cam, frame, first);
     full_draw.push_back(sw.lap());
     first = false;
   }
@@ -234,24 +255,13 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
 // face counts agree; the images are compared in tests/present/presenter_test.cpp).
 //   ./build/tests/bench/detail_frame_bench --benchmark_filter=pipelined --benchmark_counters_tabular=true
 void pipelinedFrame(benchmark::State& state, const std::string& name, float target_area) {
-  auto model = loadModel(name);
-  if (!model) {
-    state.SkipWithError(("cannot load " + name + " (run scripts/setup.sh)").c_str());
-    return;
-  }
-  auto ctx = createHeadlessContext(ContextBackend::kEgl);
-  if (!ctx) {
-    state.SkipWithError(ctx.error().message.c_str());
-    return;
-  }
+  auto set_up = twoPresenters(state, name);
+  if (!set_up) return;
+  const std::shared_ptr<Model>& model = set_up->model;
+  GlPresenter* pipelined_presenter = set_up->first.get();
+  GlPresenter* sequential_presenter = set_up->second.get();
   FrameParams frame;
   frame.msaa = 1;
-  auto pipelined_presenter = GlPresenter::createOnCurrentContext();
-  auto sequential_presenter = GlPresenter::createOnCurrentContext();
-  if (!pipelined_presenter || !sequential_presenter) {
-    state.SkipWithError("presenter set-up failed");
-    return;
-  }
   SceneDrawing pipelined = sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm), name);
   SceneDrawing sequential = sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm), name);
   DetailParams detail;
@@ -271,7 +281,7 @@ void pipelinedFrame(benchmark::State& state, const std::string& name, float targ
     const bool first = i == 0;
     const double pipe_faces = stagesOf(pipelined).faces;  // frame i, computed during the last present
     Stopwatch sw;
-    (void)(*pipelined_presenter)
+    (void)pipelined_presenter
         ->present(pipelined, camera(i), frame, first,
                   [&] {
                     Stopwatch st;
@@ -281,9 +291,9 @@ void pipelinedFrame(benchmark::State& state, const std::string& name, float targ
     pipe_ms.push_back(sw.lap());
     (void)sequential.frame(camera(i), frame.width, frame.height, detail, dt);
     same += stagesOf(sequential).faces == pipe_faces;
-    (void)(*sequential_presenter)->present(sequential, camera(i), frame, first);
+    (void)sequential_presenter->present(sequential, camera(i), frame, first);
     seq_ms.push_back(sw.lap());
-    (void)(*sequential_presenter)->present(sequential, camera(i), frame, false);
+    (void)sequential_presenter->present(sequential, camera(i), frame, false);
     present_ms.push_back(sw.lap());
     ++i;
   }
