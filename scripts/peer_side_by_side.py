@@ -11,9 +11,11 @@ point areas included) and `perview median Y ms/view` (n.v, kr and the suggestive
 vertex, then contours where kr > 0 and suggestive contours, threshold 0.01/fs^2, fade
 0.03/fs^2, back faces culled, over the orbit of tests/bench/lines_bench).
 
-lodline's counterparts, one thread, the meshes as stored:
+lodline's counterparts, one thread, on each mesh as stored and as lodline orders a
+full-detail mesh when it loads it (core/mesh_order.h; the "ordered" rows):
   curvature + derivatives, fresh   BM_ShapeFullWithAdjacency threads:1 (new cache: arrays,
-                                   adjacency, corner areas, normals, curvature, derivatives)
+                                   adjacency, corner areas, normals, curvature, derivatives);
+                                   in the ordered rows plus the reorder (BM_OrderForLocality)
   curvature + derivatives, kept    BM_ShapeFull derivs:1 threads:1 (adjacency kept: what a
                                    frame pays when every vertex moved)
   contours + suggestive per view   BM_ContoursSuggestive
@@ -43,9 +45,12 @@ ap.add_argument("--views", type=int, default=100, help="peer views per repetitio
 args = ap.parse_args()
 
 meshes = args.meshes.split(",")
-# Indices of the meshes in tests/bench/shape_bench.cpp (kMeshes) and lines_bench.cpp (kPeerMeshes).
+# Indices of the meshes in tests/bench/shape_bench.cpp (kMeshes) and lines_bench.cpp
+# (kPeerMeshes), as stored and ordered.
 shape_index = {"armadillo.off": 0, "bunny00.off": 1, "refined_elephant.off": 2}
+shape_ordered = {"armadillo.off": 4, "bunny00.off": 5, "refined_elephant.off": 6}
 lines_index = {"armadillo.off": 0, "bunny00.off": 1, "refined_elephant.off": 2}
+lines_ordered = {"armadillo.off": 3, "bunny00.off": 4, "refined_elephant.off": 5}
 for m in meshes:
     if m not in shape_index:
         sys.exit(f"peer_side_by_side.py: {m}: not among the benchmarks' meshes {sorted(shape_index)}")
@@ -79,6 +84,7 @@ def bench(exe, pattern):
 
 
 rows = {m: [] for m in meshes}
+ordered_rows = {m: [] for m in meshes}
 for run in range(args.runs):
     for m in meshes:
         p_curv, p_view = peer(m)
@@ -87,14 +93,20 @@ for run in range(args.runs):
         kept = bench("shape_bench", f"^BM_ShapeFull/mesh:{s}/derivs:1/threads:1$")
         view = bench("lines_bench", f"^BM_ContoursSuggestive/mesh:{lines_index[m]}$")
         rows[m].append((p_curv, fresh, kept, p_view, view))
-        print(f"run {run + 1} {m}: curvature peer {p_curv:.2f} ms, lodline fresh {fresh:.2f} / kept {kept:.2f} ms; "
-              f"per view peer {p_view:.3f} ms, lodline {view:.3f} ms", file=sys.stderr)
+        o = shape_ordered[m]
+        reorder = bench("shape_bench", f"^BM_OrderForLocality/mesh:{s}$")
+        o_fresh = bench("shape_bench", f"^BM_ShapeFullWithAdjacency/mesh:{o}/threads:1$") + reorder
+        o_kept = bench("shape_bench", f"^BM_ShapeFull/mesh:{o}/derivs:1/threads:1$")
+        o_view = bench("lines_bench", f"^BM_ContoursSuggestive/mesh:{lines_ordered[m]}$")
+        ordered_rows[m].append((p_curv, o_fresh, o_kept, p_view, o_view))
+        print(f"run {run + 1} {m}: curvature peer {p_curv:.2f} ms, lodline fresh {fresh:.2f} / kept {kept:.2f} ms, "
+              f"ordered: fresh {o_fresh:.2f} (of it reorder {reorder:.2f}) / kept {o_kept:.2f} ms; "
+              f"per view peer {p_view:.3f} ms, lodline {view:.3f} ms, ordered {o_view:.3f} ms", file=sys.stderr)
 
 print("| mesh | curvature + derivatives: rtsc / lodline fresh / lodline kept (ms) | speed-up fresh, kept "
       "| contours + suggestive per view: rtsc / lodline (ms) | speed-up |")
 print("|---|---|---|---|---|")
-for m in meshes:
-    r = rows[m]
+for m, r in [(m, rows[m]) for m in meshes] + [(m + " (ordered)", ordered_rows[m]) for m in meshes]:
     med = lambda k: statistics.median(x[k] for x in r)
     fresh_ratio = [x[0] / x[1] for x in r]
     kept_ratio = [x[0] / x[2] for x in r]

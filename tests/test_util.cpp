@@ -202,4 +202,30 @@ std::string offText(const TriMesh& m) {
   return o.str();
 }
 
+TriMesh shuffledMesh(TriMesh m, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<uint32_t> perm(m.positions.size());
+  for (uint32_t i = 0; i < perm.size(); ++i) perm[i] = i;
+  std::shuffle(perm.begin(), perm.end(), rng);
+  std::vector<glm::vec3> pos(m.positions.size());
+  for (uint32_t i = 0; i < perm.size(); ++i) pos[perm[i]] = m.positions[i];
+  m.positions = pos;
+  for (auto& f : m.faces)
+    for (auto& v : f) v = perm[v];
+  for (auto& e : m.marked_edges)
+    for (auto& v : e) v = perm[v];
+  std::vector<size_t> order(m.faces.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<std::array<uint32_t, 3>> faces;
+  std::vector<uint32_t> materials;
+  for (size_t i : order) {
+    faces.push_back(m.faces[i]);
+    if (m.face_materials.size() == m.faces.size()) materials.push_back(m.face_materials[i]);
+  }
+  m.faces = std::move(faces);
+  m.face_materials = std::move(materials);
+  return m;
+}
+
 }  // namespace lodline::test

@@ -74,4 +74,8 @@ std::string pngHeaderOnly(uint32_t w, uint32_t h);
 /// `m` as the text of an ASCII OFF file.
 std::string offText(const TriMesh& m);
 
+/// `m` with its vertices renumbered and its faces reordered at random (seeded), as a refined
+/// mesh's file may store them; marked edges and face materials follow.
+TriMesh shuffledMesh(TriMesh m, unsigned seed);
+
 }  // namespace lodline::test

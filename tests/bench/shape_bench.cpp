@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/mesh.h"
+#include "core/mesh_order.h"
 #include "io/generate.h"
 #include "io/load_mesh.h"
 #include "shape/shape_cache.h"
@@ -21,43 +22,9 @@
 namespace lodline {
 namespace {
 
-// Renumbers vertices along a Morton curve and sorts faces by their first vertex: the memory
-// locality a cache-aware mesh order (or the LOD stage's own) gives. The demo files as stored
-// have vertex indices spread over about half the mesh within a single face.
-void reorderForLocality(TriMesh& m) {
-  const Bounds b = computeBounds(m.positions);
-  const glm::vec3 ext = glm::max(b.max - b.min, glm::vec3(1e-12f));
-  auto spread = [](uint32_t x) {  // 10 bits → every third bit
-    x &= 0x3ff;
-    x = (x | (x << 16)) & 0x030000ff;
-    x = (x | (x << 8)) & 0x0300f00f;
-    x = (x | (x << 4)) & 0x030c30c3;
-    x = (x | (x << 2)) & 0x09249249;
-    return x;
-  };
-  const size_t nv = m.positions.size();
-  std::vector<std::pair<uint32_t, uint32_t>> keyed(nv);
-  for (uint32_t i = 0; i < nv; ++i) {
-    const glm::vec3 q = (m.positions[i] - b.min) / ext * 1023.0f;
-    keyed[i] = {spread(uint32_t(q.x)) | (spread(uint32_t(q.y)) << 1) | (spread(uint32_t(q.z)) << 2), i};
-  }
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<uint32_t> remap(nv);
-  std::vector<glm::vec3> pos(nv);
-  for (uint32_t i = 0; i < nv; ++i) {
-    remap[keyed[i].second] = i;
-    pos[i] = m.positions[keyed[i].second];
-  }
-  m.positions = std::move(pos);
-  for (auto& f : m.faces)
-    for (auto& v : f) v = remap[v];
-  std::sort(m.faces.begin(), m.faces.end(), [](const auto& a, const auto& c) {
-    return std::min({a[0], a[1], a[2]}) < std::min({c[0], c[1], c[2]});
-  });
-}
-
 // Meshes are loaded once per process. Null when the file is missing (setup.sh not run).
-// A name ending in ":sorted" is the same mesh after reorderForLocality().
+// A name ending in ":sorted" is the same mesh after orderForLocality(), the order lodline
+// draws a full-detail mesh in (core/mesh_order.h).
 const TriMesh* benchMesh(const std::string& full_name) {
   static std::map<std::string, std::unique_ptr<TriMesh>> cache;
   auto it = cache.find(full_name);
@@ -71,7 +38,7 @@ const TriMesh* benchMesh(const std::string& full_name) {
     auto loaded = loadMesh(std::string(LODLINE_DATA_MESHES) + "/" + name);
     if (loaded) mesh = std::make_unique<TriMesh>(std::move(loaded.value()));
   }
-  if (mesh && colon != std::string::npos) reorderForLocality(*mesh);
+  if (mesh && colon != std::string::npos) orderForLocality(*mesh);
   return cache.emplace(full_name, std::move(mesh)).first->second.get();
 }
 
@@ -120,9 +87,28 @@ void BM_ShapeFullWithAdjacency(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh->vertexCount()));
 }
 BENCHMARK(BM_ShapeFullWithAdjacency)
-    ->ArgsProduct({{0, 1, 2, 3}, {1, 0}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7}, {1, 0}})
     ->ArgNames({"mesh", "threads"})
     ->Unit(benchmark::kMillisecond);
+
+// The reorder itself (core/mesh_order.h), on a copy of the mesh as stored: what loading a
+// full-detail model adds before the stages above.
+void BM_OrderForLocality(benchmark::State& state) {
+  const TriMesh* mesh = benchMesh(kMeshes[state.range(0)]);
+  if (!mesh) return state.SkipWithError("mesh not found (run scripts/setup.sh)");
+  state.SetLabel(kMeshes[state.range(0)]);
+  TriMesh m;
+  for (auto _ : state) {
+    state.PauseTiming();
+    m = *mesh;
+    state.ResumeTiming();
+    orderForLocality(m);
+    benchmark::DoNotOptimize(m.faces.data());
+  }
+  state.counters["spread_before"] = medianCornerSpread(*mesh);
+  state.counters["spread_after"] = medianCornerSpread(m);
+}
+BENCHMARK(BM_OrderForLocality)->DenseRange(0, 3)->ArgName("mesh")->Unit(benchmark::kMillisecond);
 
 // Connectivity changes every frame (the LOD stage splits and collapses): update() rebuilds
 // the adjacency (O(V + F)) and recomputes around the changed face slot only. Two face arrays

@@ -5,8 +5,12 @@
 
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
+#include "core/mesh_order.h"
 #include "frame/line_drawing.h"
 #include "io/generate.h"
+#include "test_util.h"
 
 namespace lodline {
 namespace {
@@ -46,6 +50,37 @@ TEST(LineDrawing, LazyDerivativesDrawTheSameLines) {
     EXPECT_LT(valid, moving.vertexCount()) << "frame " << k;
   }
   EXPECT_GT(suggestive, 100u);  // the comparison covered suggestive contours
+}
+
+// The order a full-detail mesh is drawn in (core/mesh_order.h) changes its indices, not its
+// lines: per kind the same segments up to the rounding of sums taken in another order.
+TEST(LineDrawing, MeshOrderDrawsTheSameLines) {
+  const TriMesh mesh = test::shuffledMesh(makeTorusKnot(2, 3, 1.0f, 0.2f, 300, 24, 0.18f), 11);
+  TriMesh ordered = mesh;
+  ASSERT_TRUE(orderForLocality(ordered));
+  LineDrawing a(mesh), b(ordered);
+  std::array<bool, kLineKindCount> enabled{};
+  enabled.fill(true);
+  auto length = [](const LineSet& s, int kind) {
+    double sum = 0.0;
+    for (size_t i = 0; i < s.kinds.size(); ++i)
+      if (static_cast<int>(s.kinds[i]) == kind) sum += glm::length(s.points[2 * i + 1] - s.points[2 * i]);
+    return sum;
+  };
+  size_t compared = 0;
+  for (int k = 0; k < 4; ++k) {
+    const Camera cam = orbitCamera(a.bounds(), {35.0f + 40.0f * k, 20.0f, 0.0f}, 35.0f, 16.0f / 9.0f);
+    a.update(cam, enabled);
+    b.update(cam, enabled);
+    for (int kind = 0; kind < kLineKindCount; ++kind) {
+      const double na = a.segments().counts[kind], nb = b.segments().counts[kind];
+      EXPECT_NEAR(nb, na, std::max(2.0, 0.01 * na)) << "view " << k << ", kind " << kind;
+      const double la = length(a.segments(), kind), lb = length(b.segments(), kind);
+      EXPECT_NEAR(lb, la, 0.01 * la + 1e-6) << "view " << k << ", kind " << kind;
+      compared += a.segments().counts[kind];
+    }
+  }
+  EXPECT_GT(compared, 1000u);
 }
 
 TEST(LineDrawing, FittedRidgesAreSmoothedInASequence) {

@@ -1,0 +1,102 @@
+#include "core/mesh_order.h"
+
+#include <algorithm>
+#include <utility>
+
+#include <glm/common.hpp>
+
+namespace lodline {
+namespace {
+
+// The low 10 bits of x spread to every third bit (bit i → bit 3i).
+uint32_t spreadBits(uint32_t x) {
+  x &= 0x3ff;
+  x = (x | (x << 16)) & 0x030000ff;
+  x = (x | (x << 8)) & 0x0300f00f;
+  x = (x | (x << 4)) & 0x030c30c3;
+  x = (x | (x << 2)) & 0x09249249;
+  return x;
+}
+
+uint32_t spreadOf(const std::array<uint32_t, 3>& f) {
+  return std::max({f[0], f[1], f[2]}) - std::min({f[0], f[1], f[2]});
+}
+
+uint32_t median(std::vector<uint32_t>& v) {
+  if (v.empty()) return 0;
+  auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+}  // namespace
+
+bool orderForLocality(TriMesh& mesh) {
+  const size_t nv = mesh.positions.size(), nf = mesh.faces.size();
+  if (nv == 0 || nf == 0) return false;
+  const Bounds b = computeBounds(mesh.positions);
+  const glm::vec3 extent = glm::max(b.max - b.min, glm::vec3(1e-30f));
+  auto cell = [](float t) {  // t in [0, 1] → 0..1023 (non-finite → 0)
+    return t >= 0.0f ? static_cast<uint32_t>(std::min(t, 1.0f) * 1023.0f) : 0u;
+  };
+  // Vertices by Morton code, stably (ties keep the stored order): a least-significant-digit
+  // radix sort of the 30-bit codes, 10 bits a pass.
+  std::vector<uint32_t> code(nv), by_code(nv), tmp(nv);
+  for (uint32_t i = 0; i < nv; ++i) {
+    const glm::vec3 t = (mesh.positions[i] - b.min) / extent;
+    code[i] = spreadBits(cell(t.x)) | (spreadBits(cell(t.y)) << 1) | (spreadBits(cell(t.z)) << 2);
+    by_code[i] = i;
+  }
+  std::vector<uint32_t> count(1025);
+  for (int shift = 0; shift < 30; shift += 10) {
+    std::fill(count.begin(), count.end(), 0u);
+    for (uint32_t i : by_code) ++count[((code[i] >> shift) & 1023u) + 1];
+    for (size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
+    for (uint32_t i : by_code) tmp[count[(code[i] >> shift) & 1023u]++] = i;
+    by_code.swap(tmp);
+  }
+  std::vector<uint32_t> remap(nv);
+  for (uint32_t i = 0; i < nv; ++i) remap[by_code[i]] = i;
+  // Only where it helps: the median spread of the faces' corners after against before.
+  std::vector<uint32_t> spreads(nf);
+  for (size_t f = 0; f < nf; ++f) spreads[f] = spreadOf(mesh.faces[f]);
+  const uint32_t before = median(spreads);
+  for (size_t f = 0; f < nf; ++f) {
+    const auto& c = mesh.faces[f];
+    if (c[0] >= nv || c[1] >= nv || c[2] >= nv) return false;  // invalid: validateMesh reports it
+    spreads[f] = spreadOf({remap[c[0]], remap[c[1]], remap[c[2]]});
+  }
+  if (!(median(spreads) < before)) return false;
+  std::vector<glm::vec3> positions(nv);
+  for (uint32_t i = 0; i < nv; ++i) positions[i] = mesh.positions[by_code[i]];
+  mesh.positions = std::move(positions);
+  for (auto& f : mesh.faces)
+    for (auto& v : f) v = remap[v];
+  for (auto& e : mesh.marked_edges)
+    for (auto& v : e) v = v < nv ? remap[v] : v;
+  // Faces by their lowest corner, stably: a counting sort over the vertices.
+  std::vector<uint32_t> start(nv + 1, 0), order(nf);
+  for (const auto& f : mesh.faces) ++start[std::min({f[0], f[1], f[2]}) + 1];
+  for (size_t v = 1; v <= nv; ++v) start[v] += start[v - 1];
+  for (uint32_t f = 0; f < nf; ++f) {
+    const auto& c = mesh.faces[f];
+    order[start[std::min({c[0], c[1], c[2]})]++] = f;
+  }
+  std::vector<std::array<uint32_t, 3>> faces(nf);
+  for (size_t k = 0; k < nf; ++k) faces[k] = mesh.faces[order[k]];
+  mesh.faces = std::move(faces);
+  if (mesh.face_materials.size() == nf) {
+    std::vector<uint32_t> materials(nf);
+    for (size_t k = 0; k < nf; ++k) materials[k] = mesh.face_materials[order[k]];
+    mesh.face_materials = std::move(materials);
+  }
+  return true;
+}
+
+uint32_t medianCornerSpread(const TriMesh& mesh) {
+  std::vector<uint32_t> spreads(mesh.faces.size());
+  for (size_t f = 0; f < mesh.faces.size(); ++f) spreads[f] = spreadOf(mesh.faces[f]);
+  return median(spreads);
+}
+
+}  // namespace lodline

@@ -1,0 +1,27 @@
+// Mesh order for memory locality (docs/performance.md, "Vertex order"): the stages that run
+// over a full-detail mesh — adjacency, curvature and its derivatives, the per-view line
+// passes — read each face's three corners and each vertex's ring. In the order many files
+// store them (a refined mesh appends the new vertices at the end), a face's corners lie
+// about half the mesh apart, and every corner read is a cache miss. Numbering the vertices
+// along a Morton (Z-order) curve through the bounding box and sorting the faces by their
+// lowest corner puts neighbours near each other in every array.
+#pragma once
+
+#include "core/mesh.h"
+
+namespace lodline {
+
+/// Renumbers `mesh`'s vertices along a Morton curve over its bounding box (10 bits an axis;
+/// ties keep the stored order) and sorts its faces by their lowest new vertex index (ties
+/// keep the stored order), when that brings the corners nearer: only if the median corner
+/// spread (below) falls, so a mesh stored in a good order already (a generated tube, ring by
+/// ring) keeps it. Each face keeps its corners' cyclic order, so its orientation; marked
+/// edges and face materials follow their vertices and faces. The surface is the same: only
+/// the indices change. Returns whether the mesh was reordered. Linear in the size plus sorts.
+bool orderForLocality(TriMesh& mesh);
+
+/// The median, over faces, of the largest minus the smallest corner index: how far apart in
+/// the vertex arrays a face's corners lie (0 for an empty mesh).
+uint32_t medianCornerSpread(const TriMesh& mesh);
+
+}  // namespace lodline

@@ -1,0 +1,100 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <tuple>
+#include <vector>
+
+#include "core/mesh.h"
+#include "core/mesh_order.h"
+#include "io/generate.h"
+#include "test_util.h"
+
+namespace lodline {
+namespace {
+
+// A triangle as its corners' positions, turned to start at its smallest corner (the cyclic
+// order, so the orientation, is kept).
+using Corners = std::array<std::tuple<float, float, float>, 3>;
+std::vector<Corners> triangles(const TriMesh& m) {
+  std::vector<Corners> out;
+  for (const auto& f : m.faces) {
+    Corners c;
+    for (int i = 0; i < 3; ++i) c[i] = {m.positions[f[i]].x, m.positions[f[i]].y, m.positions[f[i]].z};
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    out.push_back(c);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(MeshOrder, SameSurfaceNearerCorners) {
+  TriMesh m = makeTorusKnot(2, 3, 1.0f, 0.3f, 256, 24, 0.1f);
+  // A material per face (by position) and a few marked edges, to follow the renumbering.
+  m.face_materials.resize(m.faces.size());
+  for (size_t f = 0; f < m.faces.size(); ++f) m.face_materials[f] = m.positions[m.faces[f][0]].x > 0.0f ? 1 : 0;
+  for (size_t f = 0; f < m.faces.size(); f += 97) m.marked_edges.push_back({m.faces[f][0], m.faces[f][1]});
+  const TriMesh stored = test::shuffledMesh(m, 7);
+  TriMesh ordered = stored;
+  ASSERT_TRUE(orderForLocality(ordered));
+
+  ASSERT_EQ(ordered.positions.size(), stored.positions.size());
+  ASSERT_EQ(ordered.faces.size(), stored.faces.size());
+  EXPECT_EQ(triangles(ordered), triangles(stored));  // the same oriented triangles
+  // Each face keeps its material; each marked edge joins the same two points.
+  std::vector<std::pair<Corners, uint32_t>> a, b;
+  auto with_materials = [](const TriMesh& t, std::vector<std::pair<Corners, uint32_t>>& out) {
+    for (size_t f = 0; f < t.faces.size(); ++f) {
+      Corners c;
+      for (int i = 0; i < 3; ++i)
+        c[i] = {t.positions[t.faces[f][i]].x, t.positions[t.faces[f][i]].y, t.positions[t.faces[f][i]].z};
+      std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+      out.push_back({c, t.face_materials[f]});
+    }
+    std::sort(out.begin(), out.end());
+  };
+  with_materials(stored, a);
+  with_materials(ordered, b);
+  EXPECT_EQ(a, b);
+  ASSERT_EQ(ordered.marked_edges.size(), stored.marked_edges.size());
+  for (size_t k = 0; k < stored.marked_edges.size(); ++k)
+    for (int i = 0; i < 2; ++i)
+      EXPECT_EQ(ordered.positions[ordered.marked_edges[k][i]], stored.positions[stored.marked_edges[k][i]]);
+
+  // Faces by their lowest corner; corners far nearer each other than in the shuffled file.
+  for (size_t f = 1; f < ordered.faces.size(); ++f) {
+    const auto lo = [&](size_t g) { return *std::min_element(ordered.faces[g].begin(), ordered.faces[g].end()); };
+    ASSERT_LE(lo(f - 1), lo(f));
+  }
+  const uint32_t before = medianCornerSpread(stored), after = medianCornerSpread(ordered);
+  std::printf("median corner spread: shuffled %u, ordered %u (%zu vertices)\n", before, after,
+              ordered.positions.size());
+  EXPECT_LT(after, before / 20);
+  // Ordered again: nothing to gain, nothing changes.
+  TriMesh again = ordered;
+  EXPECT_FALSE(orderForLocality(again));
+  EXPECT_EQ(again.faces, ordered.faces);
+}
+
+TEST(MeshOrder, EmptyAndDegenerateInputs) {
+  TriMesh empty;
+  EXPECT_FALSE(orderForLocality(empty));
+  EXPECT_EQ(medianCornerSpread(empty), 0u);
+  // All vertices at one point: the order is the stored one.
+  TriMesh flat;
+  flat.positions.assign(4, glm::vec3(1.0f));
+  flat.faces = {{0, 1, 2}, {0, 2, 3}};
+  EXPECT_FALSE(orderForLocality(flat));
+  EXPECT_EQ(flat.faces[0], (std::array<uint32_t, 3>{0, 1, 2}));
+  EXPECT_EQ(flat.faces[1], (std::array<uint32_t, 3>{0, 2, 3}));
+  // An index out of range: left for validateMesh to report, nothing reordered.
+  TriMesh bad = test::shuffledMesh(makeIcoSphere(1.0f, 3), 3);
+  const TriMesh bad_before = bad;
+  bad.faces.back()[1] = static_cast<uint32_t>(bad.positions.size());
+  TriMesh copy = bad;
+  EXPECT_FALSE(orderForLocality(copy));
+  EXPECT_EQ(copy.faces, bad.faces);
+  EXPECT_EQ(copy.positions, bad_before.positions);
+}
+
+}  // namespace
+}  // namespace lodline
