@@ -3,12 +3,22 @@
 #include <algorithm>
 #include <numeric>
 
+#include "core/mesh_order.h"
 #include "core/timer.h"
 
 namespace lodline {
 
+namespace {
+// The full-detail stages run over the whole mesh every frame: neighbours near each other in
+// memory (core/mesh_order.h). Detail control has its own order (the progressive mesh's).
+TriMesh ordered(TriMesh mesh) {
+  orderForLocality(mesh);
+  return mesh;
+}
+}  // namespace
+
 LodDrawing::LodDrawing(TriMesh full, const LineParams& params, std::shared_ptr<WorkerPool> pool)
-    : drawing_(std::move(full), params, {}, std::move(pool)) {}
+    : drawing_(ordered(std::move(full)), params, {}, std::move(pool)) {}
 
 namespace {
 // Converging for a still stops once no more than max(kCycleOps, active vertices /

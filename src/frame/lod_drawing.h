@@ -17,8 +17,10 @@ namespace lodline {
 
 class LodDrawing {
  public:
-  /// Full detail: the mesh is drawn as it is. In every constructor, `pool` runs the
-  /// data-parallel loops (null: a pool of its own; see LineDrawing).
+  /// Full detail: the mesh is drawn as it is, its vertices and faces renumbered for memory
+  /// locality where that helps (orderForLocality, core/mesh_order.h: the same surface, other
+  /// indices). In every constructor, `pool` runs the data-parallel loops (null: a pool of its
+  /// own; see LineDrawing).
   explicit LodDrawing(TriMesh full, const LineParams& params = {}, std::shared_ptr<WorkerPool> pool = nullptr);
   /// Detail control: `full` is the input mesh (for bounds and feature size), `pm` its
   /// progressive mesh. Starts at the base mesh.

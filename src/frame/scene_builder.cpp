@@ -4,7 +4,6 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "core/mesh_order.h"
 #include "core/timer.h"
 #include "core/worker_pool.h"
 #include "pm/pm_file.h"
@@ -100,9 +99,6 @@ Result<SceneDrawing> buildSceneDrawing(const Scene& scene, std::span<const Objec
     o.input_faces = input_faces[i];
     o.intersections = std::move(crossings[i]);
     if (std::holds_alternative<FullDetail>(lod)) {
-      // The full-detail stages run over the whole mesh: neighbours near each other in memory
-      // (core/mesh_order.h). Detail control builds its own order (the progressive mesh's).
-      orderForLocality(mesh);
       o.drawing = std::make_unique<LodDrawing>(std::move(mesh), lines, pool);
     } else if (const auto* cluster = std::get_if<ClusteredDetail>(&lod)) {
       o.drawing = std::make_unique<LodDrawing>(std::move(mesh), cluster->params, lines, pool);
