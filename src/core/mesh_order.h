@@ -13,9 +13,9 @@ namespace lodline {
 
 /// Renumbers `mesh`'s vertices along a Morton curve over its bounding box (10 bits an axis;
 /// ties keep the stored order) and sorts its faces by their lowest new vertex index (ties
-/// keep the stored order), when that brings the corners nearer: only if the median corner
-/// spread (below) falls, so a mesh stored in a good order already (a generated tube, ring by
-/// ring) keeps it. Each face keeps its corners' cyclic order, so its orientation; marked
+/// keep the stored order), when the stored order is not local already: only if the median
+/// corner spread (below) is above 256 and falls, so a mesh stored in a good order (a
+/// generated tube, ring by ring) keeps it. Each face keeps its corners' cyclic order, so its orientation; marked
 /// edges and face materials follow their vertices and faces. The surface is the same: only
 /// the indices change. Returns whether the mesh was reordered. Linear in the size plus sorts.
 bool orderForLocality(TriMesh& mesh);

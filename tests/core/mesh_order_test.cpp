@@ -75,7 +75,7 @@ TEST(MeshOrder, SameSurfaceNearerCorners) {
   EXPECT_EQ(again.faces, ordered.faces);
 }
 
-TEST(MeshOrder, EmptyAndDegenerateInputs) {
+TEST(MeshOrder, LocalEmptyAndInvalidMeshesKeepTheirOrder) {
   TriMesh empty;
   EXPECT_FALSE(orderForLocality(empty));
   EXPECT_EQ(medianCornerSpread(empty), 0u);
@@ -86,6 +86,12 @@ TEST(MeshOrder, EmptyAndDegenerateInputs) {
   EXPECT_FALSE(orderForLocality(flat));
   EXPECT_EQ(flat.faces[0], (std::array<uint32_t, 3>{0, 1, 2}));
   EXPECT_EQ(flat.faces[1], (std::array<uint32_t, 3>{0, 2, 3}));
+  // Stored in a local order already (a generated tube, ring by ring): kept.
+  const TriMesh knot = makeTorusKnot(2, 3, 1.0f, 0.3f, 256, 24, 0.1f);
+  TriMesh knot_copy = knot;
+  EXPECT_LE(medianCornerSpread(knot), 256u);
+  EXPECT_FALSE(orderForLocality(knot_copy));
+  EXPECT_EQ(knot_copy.faces, knot.faces);
   // An index out of range: left for validateMesh to report, nothing reordered.
   TriMesh bad = test::shuffledMesh(makeIcoSphere(1.0f, 3), 3);
   const TriMesh bad_before = bad;
