@@ -36,7 +36,7 @@ uint32_t median(std::vector<uint32_t>& v) {
 
 }  // namespace
 
-bool orderForLocality(TriMesh& mesh) {
+bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn) {
   const size_t nv = mesh.positions.size(), nf = mesh.faces.size();
   if (nv == 0 || nf == 0) return false;
   const Bounds b = computeBounds(mesh.positions);
@@ -95,6 +95,7 @@ bool orderForLocality(TriMesh& mesh) {
     for (size_t k = 0; k < nf; ++k) materials[k] = mesh.face_materials[order[k]];
     mesh.face_materials = std::move(materials);
   }
+  if (stored_to_drawn) *stored_to_drawn = std::move(remap);
   return true;
 }
 

@@ -7,6 +7,9 @@
 // lowest corner puts neighbours near each other in every array.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "core/mesh.h"
 
 namespace lodline {
@@ -17,8 +20,9 @@ namespace lodline {
 /// corner spread (below) is above 256 and falls, so a mesh stored in a good order (a
 /// generated tube, ring by ring) keeps it. Each face keeps its corners' cyclic order, so its orientation; marked
 /// edges and face materials follow their vertices and faces. The surface is the same: only
-/// the indices change. Returns whether the mesh was reordered. Linear in the size plus sorts.
-bool orderForLocality(TriMesh& mesh);
+/// the indices change. Returns whether the mesh was reordered; then `stored_to_drawn`, if
+/// given, receives the new index of each vertex as stored. Linear in the size plus sorts.
+bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn = nullptr);
 
 /// The median, over faces, of the largest minus the smallest corner index: how far apart in
 /// the vertex arrays a face's corners lie (0 for an empty mesh).

@@ -14,7 +14,7 @@
 namespace lodline {
 
 LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapeParams& shape_params,
-                         std::shared_ptr<WorkerPool> pool, FullMesh use)
+                         std::shared_ptr<WorkerPool> pool, FullMesh use, std::span<const uint32_t> stored_to_drawn)
     : pool_(pool ? std::move(pool) : std::make_shared<WorkerPool>(shape_params.threads)),
       mesh_(std::move(mesh)),
       params_(params),
@@ -27,7 +27,7 @@ LineDrawing::LineDrawing(TriMesh mesh, const LineParams& params, const ShapePara
   Stopwatch sw;
   if (use == FullMesh::kDrawn) {
     shape_.compute(mesh_);
-    feature_size_ = computeFeatureSize(shape_.k1(), shape_.k2(), bounds_.radius);
+    feature_size_ = computeFeatureSize(shape_.k1(), shape_.k2(), bounds_.radius, {}, stored_to_drawn);
     computeFullCreaseDots(shape_.adjacency(), shape_.faceNormals());
     closed_outward_ = isClosedOutward(mesh_, shape_.adjacency());
   } else {

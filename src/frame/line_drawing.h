@@ -44,8 +44,12 @@ class LineDrawing {
   /// a pool of ShapeParams::threads threads of its own. Drawings of one scene share one pool
   /// (they run one after the other), so a scene wakes one set of workers, not one per object.
   /// With FullMesh::kReplaced, updateMesh() must come before the first update().
+  /// `stored_to_drawn`: for a mesh renumbered for locality after loading (core/mesh_order.h),
+  /// the new index of each vertex as stored, so the feature size samples the same vertices
+  /// (computeFeatureSize); empty when the mesh is as stored.
   explicit LineDrawing(TriMesh mesh, const LineParams& params = {}, const ShapeParams& shape_params = {},
-                       std::shared_ptr<WorkerPool> pool = nullptr, FullMesh use = FullMesh::kDrawn);
+                       std::shared_ptr<WorkerPool> pool = nullptr, FullMesh use = FullMesh::kDrawn,
+                       std::span<const uint32_t> stored_to_drawn = {});
 
   /// Replaces the mesh by an adapted one (level of detail): `positions` per vertex slot,
   /// `faces` indexing them; `changed` lists the vertices whose position or incident faces
@@ -97,6 +101,8 @@ class LineDrawing {
   std::span<const glm::vec3> normals() const;
   /// The extracted segments (all enabled kinds), as the lines stage produced them.
   const LineSet& segments() const { return segments_; }
+  /// The full-detail model's feature size (model units; computeFeatureSize).
+  float featureSize() const { return feature_size_; }
   const StrokeSet& strokes() const { return strokes_; }
   /// The mesh's own silhouette chained into strokes (kind contour), extracted with the
   /// contours when LineParams::complete_outline is set (else empty): what completes the

@@ -8,17 +8,15 @@
 
 namespace lodline {
 
-namespace {
 // The full-detail stages run over the whole mesh every frame: neighbours near each other in
 // memory (core/mesh_order.h). Detail control has its own order (the progressive mesh's).
-TriMesh ordered(TriMesh mesh) {
-  orderForLocality(mesh);
-  return mesh;
-}
-}  // namespace
+LodDrawing::OrderedMesh::OrderedMesh(TriMesh m) : mesh(std::move(m)) { orderForLocality(mesh, &stored_to_drawn); }
 
 LodDrawing::LodDrawing(TriMesh full, const LineParams& params, std::shared_ptr<WorkerPool> pool)
-    : drawing_(ordered(std::move(full)), params, {}, std::move(pool)) {}
+    : LodDrawing(OrderedMesh(std::move(full)), params, std::move(pool)) {}
+
+LodDrawing::LodDrawing(OrderedMesh&& full, const LineParams& params, std::shared_ptr<WorkerPool> pool)
+    : drawing_(std::move(full.mesh), params, {}, std::move(pool), FullMesh::kDrawn, full.stored_to_drawn) {}
 
 namespace {
 // Converging for a still stops once no more than max(kCycleOps, active vertices /

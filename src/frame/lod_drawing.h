@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <variant>
+#include <vector>
 
 #include "frame/line_drawing.h"
 #include "lod/adaptive_mesh.h"
@@ -70,6 +71,15 @@ class LodDrawing {
   bool backFacesHidden() const { return drawing_.closedOutward() && clustering() == nullptr; }
 
  private:
+  // A full-detail mesh in locality order, with the new index of each stored vertex (empty
+  // when it kept its order).
+  struct OrderedMesh {
+    explicit OrderedMesh(TriMesh m);
+    TriMesh mesh;
+    std::vector<uint32_t> stored_to_drawn;
+  };
+  LodDrawing(OrderedMesh&& full, const LineParams& params, std::shared_ptr<WorkerPool> pool);
+
   // The level of detail: one of three, chosen at construction.
   struct FullLevel {};
   struct PmLevel {

@@ -178,7 +178,8 @@ static size_t featureSampleCount(size_t nv, const FeatureSizeParams& params) {
 static size_t featureSample(size_t i, size_t nv, size_t nsamp) { return i * nv / nsamp; }
 
 float computeFeatureSize(std::span<const float> k1, std::span<const float> k2,
-                         float bounding_radius, const FeatureSizeParams& params) {
+                         float bounding_radius, const FeatureSizeParams& params,
+                         std::span<const uint32_t> stored_to_drawn) {
   const size_t nv = std::min(k1.size(), k2.size());
   const float cap = params.max_fraction_of_radius * bounding_radius;
   if (nv == 0 || !(cap > 0.0f)) return cap > 0.0f ? cap : 1.0f;
@@ -186,7 +187,8 @@ float computeFeatureSize(std::span<const float> k1, std::span<const float> k2,
   std::vector<float> samples;
   samples.reserve(2 * nsamp);
   for (size_t i = 0; i < nsamp; ++i) {
-    const size_t v = featureSample(i, nv, nsamp);
+    size_t v = featureSample(i, nv, nsamp);
+    if (stored_to_drawn.size() == nv && stored_to_drawn[v] < nv) v = stored_to_drawn[v];
     if (std::isfinite(k1[v])) samples.push_back(std::abs(k1[v]));
     if (std::isfinite(k2[v])) samples.push_back(std::abs(k2[v]));
   }

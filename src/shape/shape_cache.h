@@ -112,8 +112,13 @@ struct FeatureSizeParams {
 /// A length scale of the model (docs/design.md §3.5), in model units, for making
 /// thresholds scale-free (suggestive-contour thresholds scale as 1/fs²). Deterministic.
 /// Returns the cap when all sampled curvatures vanish, and 1 for an empty or zero-size input.
+/// `stored_to_drawn` (one entry per vertex, or empty): for a mesh renumbered after it was
+/// loaded (orderForLocality, core/mesh_order.h), the new index of each vertex as stored; the
+/// samples are then the same vertices as in the stored order, so the feature size does not
+/// depend on the numbering.
 float computeFeatureSize(std::span<const float> k1, std::span<const float> k2,
-                         float bounding_radius, const FeatureSizeParams& params = {});
+                         float bounding_radius, const FeatureSizeParams& params = {},
+                         std::span<const uint32_t> stored_to_drawn = {});
 
 /// The same feature size for a mesh too large to be worth a whole ShapeCache (a full-detail
 /// mesh that level of detail replaces before it is drawn): the curvature is computed only at

@@ -6,10 +6,12 @@
 #include <cstring>
 #include <memory>
 
+#include "core/mesh_order.h"
 #include "frame/lod_drawing.h"
 #include "io/generate.h"
 #include "lines/view_quantities.h"
 #include "shape/shape_test_util.h"
+#include "test_util.h"
 
 namespace lodline {
 namespace {
@@ -95,6 +97,18 @@ TEST(LodDrawing, IncrementalStateEqualsAFreshComputeEveryFrame) {
 // vertex's split used to force back-facing neighbours' splits first; those coarsened again
 // the next frame and the vertex wanted its split again, a cycle that never ended
 // (docs/temporal-coherence.md, "Limit cycles at a fixed view").
+// A full-detail drawing renumbers a mesh stored in a scattered order (core/mesh_order.h) and
+// keeps the feature size of the mesh as stored: the same model, the same thresholds, whether
+// drawn at full detail or under detail control (whose feature size samples the stored order).
+TEST(LodDrawing, FullDetailIsDrawnInLocalityOrderWithTheStoredFeatureSize) {
+  const TriMesh stored = test::shuffledMesh(makeTorusKnot(2, 3, 1.0f, 0.2f, 300, 24, 0.18f), 5);
+  LodDrawing full(stored);
+  const LineDrawing as_stored(stored);
+  EXPECT_LT(medianCornerSpread(full.drawing().mesh()), medianCornerSpread(stored) / 20);
+  EXPECT_EQ(full.drawing().mesh().faceCount(), stored.faceCount());
+  EXPECT_NEAR(full.drawing().featureSize(), as_stored.featureSize(), 1e-5f * as_stored.featureSize());
+}
+
 TEST(LodDrawing, ConvergedDetailStaysPutAtAFixedView) {
   const TriMesh mesh = makeTorusKnot(2, 3, 1.0f, 0.16f, 1200, 80, 0.18f);
   auto pm = buildProgressiveMesh(mesh);
