@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/mesh_order.h"
@@ -130,13 +131,15 @@ const Scene* peerScene(int which) {
   if (!loaded) return nullptr;
   auto s = std::make_unique<Scene>();
   s->mesh = std::move(loaded.value());
-  if (which >= 3) orderForLocality(s->mesh);
+  // Ordered as a full-detail drawing orders it, with the feature size of the stored order.
+  std::vector<uint32_t> stored_to_drawn;
+  if (which >= 3) orderForLocality(s->mesh, &stored_to_drawn);
   ShapeParams sp;
   sp.threads = 1;
   s->shape = ShapeCache(sp);
   s->shape.compute(s->mesh);
   s->bounds = computeBounds(s->mesh.positions);
-  s->feature_size = computeFeatureSize(s->shape.k1(), s->shape.k2(), s->bounds.radius);
+  s->feature_size = computeFeatureSize(s->shape.k1(), s->shape.k2(), s->bounds.radius, {}, stored_to_drawn);
   scenes[which] = std::move(s);
   return scenes[which].get();
 }
