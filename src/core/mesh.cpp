@@ -38,4 +38,22 @@ void computeFaceNormals(const TriMesh& mesh, std::vector<glm::vec3>& out) {
   }
 }
 
+float medianEdgeLength(const TriMesh& mesh, std::vector<float>& lengths) {
+  const size_t nf = mesh.faces.size(), nv = mesh.positions.size();
+  lengths.clear();
+  if (nf == 0) return 0.0f;
+  const size_t samples = std::min<size_t>(nf, 4096);
+  for (size_t k = 0; k < samples; ++k) {
+    const auto& f = mesh.faces[k * nf / samples];
+    for (int j = 0; j < 3; ++j) {
+      const uint32_t a = f[j], b = f[(j + 1) % 3];
+      if (a < nv && b < nv) lengths.push_back(glm::length(mesh.positions[a] - mesh.positions[b]));
+    }
+  }
+  if (lengths.empty()) return 0.0f;
+  auto mid = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
+  std::nth_element(lengths.begin(), mid, lengths.end());
+  return std::isfinite(*mid) ? *mid : 0.0f;
+}
+
 }  // namespace lodline

@@ -43,6 +43,11 @@ struct Bounds {
 /// Bounds of `positions` (empty span: all zero).
 Bounds computeBounds(std::span<const glm::vec3> positions);
 
+/// The median edge length of `mesh` (model units), from the edges of up to 4096 faces spread
+/// evenly over the face list (VisibilityParams::segment_tolerance_cap); 0 for an empty mesh.
+/// `lengths` is scratch, reused from call to call.
+float medianEdgeLength(const TriMesh& mesh, std::vector<float>& lengths);
+
 /// Area-weighted face normals: `out` gets faceCount() unit vectors (zero for a
 /// degenerate face).
 void computeFaceNormals(const TriMesh& mesh, std::vector<glm::vec3>& out);

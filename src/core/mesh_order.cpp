@@ -1,6 +1,8 @@
 #include "core/mesh_order.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <utility>
 
 #include <glm/common.hpp>
@@ -37,11 +39,17 @@ uint32_t median(std::vector<uint32_t>& v) {
 }  // namespace
 
 bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn) {
+  if (stored_to_drawn) stored_to_drawn->clear();
   const size_t nv = mesh.positions.size(), nf = mesh.faces.size();
-  if (nv == 0 || nf == 0) return false;
+  if (nv == 0 || nf == 0 || nv > UINT32_MAX || nf > UINT32_MAX) return false;
+  // Invalid meshes are left as they are, for validateMesh to report.
+  for (const glm::vec3& p : mesh.positions)
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return false;
+  for (const auto& c : mesh.faces)
+    if (c[0] >= nv || c[1] >= nv || c[2] >= nv) return false;
   const Bounds b = computeBounds(mesh.positions);
   const glm::vec3 extent = glm::max(b.max - b.min, glm::vec3(1e-30f));
-  auto cell = [](float t) {  // t in [0, 1] → 0..1023 (non-finite → 0)
+  auto cell = [](float t) {  // t in [0, 1] → 0..1023
     return t >= 0.0f ? static_cast<uint32_t>(std::min(t, 1.0f) * 1023.0f) : 0u;
   };
   // Vertices by Morton code, stably (ties keep the stored order): a least-significant-digit
@@ -68,7 +76,6 @@ bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn) {
   const uint32_t before = median(spreads);
   for (size_t f = 0; f < nf; ++f) {
     const auto& c = mesh.faces[f];
-    if (c[0] >= nv || c[1] >= nv || c[2] >= nv) return false;  // invalid: validateMesh reports it
     spreads[f] = spreadOf({remap[c[0]], remap[c[1]], remap[c[2]]});
   }
   if (before <= kLocalSpread || !(median(spreads) < before)) return false;
@@ -78,7 +85,7 @@ bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn) {
   for (auto& f : mesh.faces)
     for (auto& v : f) v = remap[v];
   for (auto& e : mesh.marked_edges)
-    for (auto& v : e) v = v < nv ? remap[v] : v;
+    for (auto& v : e) v = v < nv ? remap[v] : v;  // an index out of range stays so
   // Faces by their lowest corner, stably: a counting sort over the vertices.
   std::vector<uint32_t> start(nv + 1, 0), order(nf);
   for (const auto& f : mesh.faces) ++start[std::min({f[0], f[1], f[2]}) + 1];

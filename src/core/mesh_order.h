@@ -20,8 +20,10 @@ namespace lodline {
 /// corner spread (below) is above 256 and falls, so a mesh stored in a good order (a
 /// generated tube, ring by ring) keeps it. Each face keeps its corners' cyclic order, so its orientation; marked
 /// edges and face materials follow their vertices and faces. The surface is the same: only
-/// the indices change. Returns whether the mesh was reordered; then `stored_to_drawn`, if
-/// given, receives the new index of each vertex as stored. Linear in the size plus sorts.
+/// the indices change. A mesh with a non-finite position or an index out of range is left
+/// as it is (validateMesh reports it). Returns whether the mesh was reordered; then
+/// `stored_to_drawn`, if given, receives the new index of each vertex as stored (else it is
+/// emptied). Linear in the size plus sorts.
 bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn = nullptr);
 
 /// The median, over faces, of the largest minus the smallest corner index: how far apart in

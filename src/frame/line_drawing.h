@@ -46,7 +46,8 @@ class LineDrawing {
   /// With FullMesh::kReplaced, updateMesh() must come before the first update().
   /// `stored_to_drawn`: for a mesh renumbered for locality after loading (core/mesh_order.h),
   /// the new index of each vertex as stored, so the feature size samples the same vertices
-  /// (computeFeatureSize); empty when the mesh is as stored.
+  /// (computeFeatureSize); empty when the mesh is as stored. Unused with FullMesh::kReplaced
+  /// (that feature size samples the stored mesh itself).
   explicit LineDrawing(TriMesh mesh, const LineParams& params = {}, const ShapeParams& shape_params = {},
                        std::shared_ptr<WorkerPool> pool = nullptr, FullMesh use = FullMesh::kDrawn,
                        std::span<const uint32_t> stored_to_drawn = {});

@@ -10,13 +10,23 @@ namespace lodline {
 
 // The full-detail stages run over the whole mesh every frame: neighbours near each other in
 // memory (core/mesh_order.h). Detail control has its own order (the progressive mesh's).
-LodDrawing::OrderedMesh::OrderedMesh(TriMesh m) : mesh(std::move(m)) { orderForLocality(mesh, &stored_to_drawn); }
+LodDrawing::OrderedMesh::OrderedMesh(TriMesh m) : mesh(std::move(m)) {
+  std::vector<float> lengths;
+  median_edge = lodline::medianEdgeLength(mesh, lengths);
+  orderForLocality(mesh, &stored_to_drawn);
+}
 
 LodDrawing::LodDrawing(TriMesh full, const LineParams& params, std::shared_ptr<WorkerPool> pool)
     : LodDrawing(OrderedMesh(std::move(full)), params, std::move(pool)) {}
 
 LodDrawing::LodDrawing(OrderedMesh&& full, const LineParams& params, std::shared_ptr<WorkerPool> pool)
-    : drawing_(std::move(full.mesh), params, {}, std::move(pool), FullMesh::kDrawn, full.stored_to_drawn) {}
+    : drawing_(std::move(full.mesh), params, {}, std::move(pool), FullMesh::kDrawn, full.stored_to_drawn),
+      full_median_edge_(full.median_edge) {}
+
+float LodDrawing::medianEdgeLength(std::vector<float>& lengths) const {
+  if (std::holds_alternative<FullLevel>(level_)) return full_median_edge_;
+  return lodline::medianEdgeLength(drawing_.mesh(), lengths);
+}
 
 namespace {
 // Converging for a still stops once no more than max(kCycleOps, active vertices /

@@ -55,6 +55,10 @@ class LodDrawing {
   void setLineParams(LineParams params);
 
   const LineDrawing& drawing() const { return drawing_; }
+  /// The median edge length of the drawn mesh (core/mesh.h, medianEdgeLength; `lengths` is
+  /// scratch). At full detail that of the mesh as stored, so it does not depend on the
+  /// renumbering (its samples are faces by index).
+  float medianEdgeLength(std::vector<float>& lengths) const;
   const Bounds& bounds() const { return drawing_.bounds(); }
   /// The adapted progressive mesh; null at full detail and with clustering.
   const AdaptiveMesh* lod() const;
@@ -77,6 +81,7 @@ class LodDrawing {
     explicit OrderedMesh(TriMesh m);
     TriMesh mesh;
     std::vector<uint32_t> stored_to_drawn;
+    float median_edge = 0.0f;  ///< of the mesh as stored
   };
   LodDrawing(OrderedMesh&& full, const LineParams& params, std::shared_ptr<WorkerPool> pool);
 
@@ -100,6 +105,7 @@ class LodDrawing {
   std::vector<uint32_t> changed_;
   uint64_t crease_version_ = 0;  // LineDrawing::creaseVersion() the crease mask was built for
   double adapt_ms_ = 0.0;
+  float full_median_edge_ = 0.0f;  ///< full detail: the stored mesh's median edge length
   bool mesh_changed_ = true;
   bool first_ = true;
 };

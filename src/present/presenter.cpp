@@ -77,31 +77,6 @@ Status ScenePresenter::present(const SceneDrawing& scene, const Camera& camera, 
   return {};
 }
 
-namespace {
-
-// The median edge length of `mesh` (model units), from the edges of up to 4096 faces spread
-// over it (VisibilityParams::segment_tolerance_cap); 0 for an empty mesh. `lengths` is
-// scratch, reused from frame to frame.
-float medianEdgeLength(const TriMesh& mesh, std::vector<float>& lengths) {
-  const size_t nf = mesh.faces.size(), nv = mesh.positions.size();
-  lengths.clear();
-  if (nf == 0) return 0.0f;
-  const size_t samples = std::min<size_t>(nf, 4096);
-  for (size_t k = 0; k < samples; ++k) {
-    const auto& f = mesh.faces[k * nf / samples];
-    for (int j = 0; j < 3; ++j) {
-      const uint32_t a = f[j], b = f[(j + 1) % 3];
-      if (a < nv && b < nv) lengths.push_back(glm::length(mesh.positions[a] - mesh.positions[b]));
-    }
-  }
-  if (lengths.empty()) return 0.0f;
-  auto mid = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
-  std::nth_element(lengths.begin(), mid, lengths.end());
-  return std::isfinite(*mid) ? *mid : 0.0f;
-}
-
-}  // namespace
-
 void ScenePresenter::takeObjectLines(const SceneDrawing& scene, bool copy) {
   objects_.resize(scene.size());
   for (size_t i = 0; i < scene.size(); ++i) {
@@ -119,7 +94,7 @@ void ScenePresenter::takeObjectLines(const SceneDrawing& scene, bool copy) {
     o.intersections = &obj.intersections;
     o.intersections_on = obj.style.lines[LineKind::kIntersection].enabled && obj.intersections.strokeCount() > 0;
     o.contours_on = obj.style.lines[LineKind::kContour].enabled;
-    o.median_edge = medianEdgeLength(d.mesh(), edge_lengths_);
+    o.median_edge = obj.drawing->medianEdgeLength(edge_lengths_);
     o.bounds = obj.drawing->bounds();
   }
 }

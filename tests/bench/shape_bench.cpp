@@ -24,7 +24,8 @@ namespace {
 
 // Meshes are loaded once per process. Null when the file is missing (setup.sh not run).
 // A name ending in ":sorted" is the same mesh after orderForLocality(), the order lodline
-// draws a full-detail mesh in (core/mesh_order.h).
+// draws a full-detail mesh in (core/mesh_order.h); a mesh local already would keep its order
+// (none of these is: BM_OrderForLocality's spread_after counter shows it).
 const TriMesh* benchMesh(const std::string& full_name) {
   static std::map<std::string, std::unique_ptr<TriMesh>> cache;
   auto it = cache.find(full_name);

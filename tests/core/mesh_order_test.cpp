@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 #include <vector>
 
@@ -86,6 +87,22 @@ TEST(MeshOrder, LocalEmptyAndInvalidMeshesKeepTheirOrder) {
   EXPECT_FALSE(orderForLocality(flat));
   EXPECT_EQ(flat.faces[0], (std::array<uint32_t, 3>{0, 1, 2}));
   EXPECT_EQ(flat.faces[1], (std::array<uint32_t, 3>{0, 2, 3}));
+  // Scattered, but every vertex at one point: all Morton codes equal, the stable sort keeps the
+  // stored order, nothing to gain.
+  TriMesh collapsed = test::shuffledMesh(makeIcoSphere(1.0f, 4), 9);
+  for (auto& p : collapsed.positions) p = glm::vec3(0.5f);
+  ASSERT_GT(medianCornerSpread(collapsed), 256u);
+  TriMesh collapsed_copy = collapsed;
+  std::vector<uint32_t> map{1, 2, 3};
+  EXPECT_FALSE(orderForLocality(collapsed_copy, &map));
+  EXPECT_EQ(collapsed_copy.faces, collapsed.faces);
+  EXPECT_TRUE(map.empty());
+  // A non-finite position: left for validateMesh to report.
+  TriMesh nan_mesh = test::shuffledMesh(makeIcoSphere(1.0f, 4), 4);
+  nan_mesh.positions[17].y = std::nanf("");
+  TriMesh nan_copy = nan_mesh;
+  EXPECT_FALSE(orderForLocality(nan_copy));
+  EXPECT_EQ(nan_copy.faces, nan_mesh.faces);
   // Stored in a local order already (a generated tube, ring by ring): kept.
   const TriMesh knot = makeTorusKnot(2, 3, 1.0f, 0.3f, 256, 24, 0.1f);
   TriMesh knot_copy = knot;
