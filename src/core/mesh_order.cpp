@@ -47,6 +47,9 @@ bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn) {
     if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return false;
   for (const auto& c : mesh.faces)
     if (c[0] >= nv || c[1] >= nv || c[2] >= nv) return false;
+  // A local order is kept as it is, before any sorting.
+  const uint32_t before = medianCornerSpread(mesh);
+  if (before <= kLocalSpread) return false;
   const Bounds b = computeBounds(mesh.positions);
   const glm::vec3 extent = glm::max(b.max - b.min, glm::vec3(1e-30f));
   auto cell = [](float t) {  // t in [0, 1] → 0..1023
@@ -72,13 +75,11 @@ bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn) {
   for (uint32_t i = 0; i < nv; ++i) remap[by_code[i]] = i;
   // Only where it helps: the median spread of the faces' corners after against before.
   std::vector<uint32_t> spreads(nf);
-  for (size_t f = 0; f < nf; ++f) spreads[f] = spreadOf(mesh.faces[f]);
-  const uint32_t before = median(spreads);
   for (size_t f = 0; f < nf; ++f) {
     const auto& c = mesh.faces[f];
     spreads[f] = spreadOf({remap[c[0]], remap[c[1]], remap[c[2]]});
   }
-  if (before <= kLocalSpread || !(median(spreads) < before)) return false;
+  if (!(median(spreads) < before)) return false;
   std::vector<glm::vec3> positions(nv);
   for (uint32_t i = 0; i < nv; ++i) positions[i] = mesh.positions[by_code[i]];
   mesh.positions = std::move(positions);

@@ -13,17 +13,23 @@
 namespace lodline {
 namespace {
 
-// A triangle as its corners' positions, turned to start at its smallest corner (the cyclic
+// Face f as its corners' positions, turned to start at its smallest corner (the cyclic
 // order, so the orientation, is kept).
 using Corners = std::array<std::tuple<float, float, float>, 3>;
-std::vector<Corners> triangles(const TriMesh& m) {
-  std::vector<Corners> out;
-  for (const auto& f : m.faces) {
-    Corners c;
-    for (int i = 0; i < 3; ++i) c[i] = {m.positions[f[i]].x, m.positions[f[i]].y, m.positions[f[i]].z};
-    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
-    out.push_back(c);
+Corners cornersOf(const TriMesh& m, size_t f) {
+  Corners c;
+  for (int i = 0; i < 3; ++i) {
+    const glm::vec3& p = m.positions[m.faces[f][i]];
+    c[i] = {p.x, p.y, p.z};
   }
+  std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+  return c;
+}
+
+// Every face's corners with its material, sorted: the same for any numbering of one surface.
+std::vector<std::pair<Corners, uint32_t>> facesWithMaterials(const TriMesh& m) {
+  std::vector<std::pair<Corners, uint32_t>> out;
+  for (size_t f = 0; f < m.faces.size(); ++f) out.push_back({cornersOf(m, f), m.face_materials[f]});
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -40,22 +46,8 @@ TEST(MeshOrder, SameSurfaceNearerCorners) {
 
   ASSERT_EQ(ordered.positions.size(), stored.positions.size());
   ASSERT_EQ(ordered.faces.size(), stored.faces.size());
-  EXPECT_EQ(triangles(ordered), triangles(stored));  // the same oriented triangles
-  // Each face keeps its material; each marked edge joins the same two points.
-  std::vector<std::pair<Corners, uint32_t>> a, b;
-  auto with_materials = [](const TriMesh& t, std::vector<std::pair<Corners, uint32_t>>& out) {
-    for (size_t f = 0; f < t.faces.size(); ++f) {
-      Corners c;
-      for (int i = 0; i < 3; ++i)
-        c[i] = {t.positions[t.faces[f][i]].x, t.positions[t.faces[f][i]].y, t.positions[t.faces[f][i]].z};
-      std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
-      out.push_back({c, t.face_materials[f]});
-    }
-    std::sort(out.begin(), out.end());
-  };
-  with_materials(stored, a);
-  with_materials(ordered, b);
-  EXPECT_EQ(a, b);
+  // The same oriented triangles, each with its material.
+  EXPECT_EQ(facesWithMaterials(ordered), facesWithMaterials(stored));
   ASSERT_EQ(ordered.marked_edges.size(), stored.marked_edges.size());
   for (size_t k = 0; k < stored.marked_edges.size(); ++k)
     for (int i = 0; i < 2; ++i)
