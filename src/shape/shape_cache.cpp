@@ -10,6 +10,8 @@
 #include <glm/geometric.hpp>
 
 #include "core/result.h"
+#include "core/simd_clones.h"
+#include "shape/fit_lanes.h"
 
 namespace lodline {
 namespace {
@@ -120,29 +122,217 @@ inline glm::vec4 principalInFace(const glm::vec4& m, const glm::vec2& ab) {
 
 // Solves the symmetric tridiagonal system with diagonal d[0..N) and off-diagonal o[0..N-1)
 // (the full matrix: entry (i, i+1) = entry (i+1, i) = o[i]; cf. docs/design.md §3.2 on the
-// upper-triangle-only bug) by LDLᵀ in double. False when a pivot is not clearly positive
-// (degenerate face).
-template <int N>
-bool solveSymTridiagonal(const double (&d)[N], const double (&o)[N - 1], double (&x)[N]) {
-  double scale = 0.0;
-  for (int i = 0; i < N; ++i) scale = std::max(scale, std::abs(d[i]));
-  if (!(scale > 0.0) || !std::isfinite(scale)) return false;
-  double piv[N], l[N];
-  piv[0] = d[0];
-  l[0] = 0.0;
-  if (!(piv[0] > 1e-10 * scale)) return false;
-  for (int i = 1; i < N; ++i) {
-    l[i] = o[i - 1] / piv[i - 1];
-    piv[i] = d[i] - l[i] * o[i - 1];
-    if (!(piv[i] > 1e-10 * scale)) return false;
+// upper-triangle-only bug) in double, through its inverse written with continuants (Usmani
+// 1994, "Inversion of a tridiagonal Jacobi matrix"): with θ_k the determinant of the leading
+// k×k block and φ_k that of the trailing block from row k,
+//   (T⁻¹)_ij = (−1)^(i+j) · o_i···o_(j−1) · θ_i · φ_(j+1) / θ_N   for i ≤ j.
+// One division in all, where LDLᵀ divides N + N − 1 times in a dependent chain. The mask is
+// false (x then holds garbage) when a pivot θ_(k+1)/θ_k of that LDLᵀ is not clearly positive
+// (a degenerate face), tested without dividing as θ_(k+1) > 1e-10·scale·θ_k, or when the
+// solution is not finite. D is double, or eight doubles (fit_lanes.h).
+template <int N, class D>
+[[gnu::always_inline]] inline auto solveSymTridiagonal(const D (&d)[N], const D (&o)[N - 1], D (&x)[N]) {
+  using lanes::both;
+  using lanes::finite;
+  D scale{};
+  for (int i = 0; i < N; ++i) {
+    const D ad = lanes::absValue(d[i]);
+    scale = lanes::select(scale < ad, ad, scale);
   }
-  for (int i = 1; i < N; ++i) x[i] -= l[i] * x[i - 1];
-  x[N - 1] /= piv[N - 1];
-  for (int i = N - 2; i >= 0; --i) x[i] = x[i] / piv[i] - l[i + 1] * x[i + 1];
-  for (int i = 0; i < N; ++i)
-    if (!std::isfinite(x[i])) return false;
-  return true;
+  auto ok = both(scale > D{}, finite(scale));
+  const D eps = 1e-10 * scale;
+  D theta[N + 1], phi[N + 1];
+  theta[0] = D{} + 1.0;
+  theta[1] = d[0];
+  ok = both(ok, theta[1] > eps);
+  for (int k = 2; k <= N; ++k) {
+    theta[k] = d[k - 1] * theta[k - 1] - o[k - 2] * o[k - 2] * theta[k - 2];
+    ok = both(ok, theta[k] > eps * theta[k - 1]);
+  }
+  phi[N] = D{} + 1.0;
+  phi[N - 1] = d[N - 1];
+  for (int k = N - 2; k >= 0; --k) phi[k] = d[k] * phi[k + 1] - o[k] * o[k] * phi[k + 2];
+  const D inv_det = 1.0 / theta[N];
+  D y[N];
+  for (int i = 0; i < N; ++i) {
+    D sum{};
+    for (int j = 0; j < N; ++j) {
+      const int lo = std::min(i, j), hi = std::max(i, j);
+      D c = theta[lo] * phi[hi + 1];
+      for (int k = lo; k < hi; ++k) c = c * -o[k];
+      sum = sum + c * x[j];
+    }
+    y[i] = sum * inv_det;
+  }
+  for (int i = 0; i < N; ++i) {
+    ok = both(ok, finite(y[i]));
+    x[i] = y[i];
+  }
+  return ok;
 }
+
+// The per-face fits of Rusinkiewicz 2004 §3–§4, written once for one face (F = float) and
+// for eight faces at a time (F = lanes::F8; fit_lanes.h). Their inputs and outputs travel as
+// rows of W floats, one per lane: `in[k * W + lane]`.
+namespace fit {
+
+// Curvature fit inputs: the corners' positions, the vertex frames (n, u, w) at the corners,
+// the face frame (t, b, n).
+constexpr int kP = 0, kN = 9, kU = 18, kW = 27, kFt = 36, kFb = 39, kFn = 42, kCurvIn = 45;
+// Outputs: the corner relations rel[j] (4 each), the face's (e, f, g), and (e, f, g) in each
+// corner's vertex frame, the term that corner's vertex sums (vertexCurvature()).
+constexpr int kRel = 0, kCurv = 12, kCurvTerm = 15, kCurvOut = 24;
+// Derivative fit inputs: positions, face t and b, the corner relations, the vertices'
+// (k1, k2, a, b). Outputs: the face's derivative tensor, and the tensor in each corner's
+// principal frame, the term that corner's vertex sums (vertexDerivative()).
+constexpr int kDP = 0, kDFt = 9, kDFb = 12, kDRel = 15, kDKab = 27, kDerivIn = 39;
+constexpr int kDcurv = 0, kDcurvTerm = 4, kDerivOut = 16;
+
+template <class F, int W>
+inline lanes::Vec3L<F> load3(const float* in, int k) {
+  return {lanes::load<F>(in + k * W), lanes::load<F>(in + (k + 1) * W),
+          lanes::load<F>(in + (k + 2) * W)};
+}
+
+// The face frame relative to each corner's vertex frame (rotateFrame/frameRelation, here
+// with selects for the antipodal case), then the least-squares fit of the second fundamental
+// form to the normal differences along the three edges. Returns the fit's mask.
+template <class F, int W>
+[[gnu::always_inline]] inline auto curvatureFit(const float* in, float* out) {
+  using lanes::dot;
+  using lanes::select;
+  using lanes::toDouble;
+  using V = lanes::Vec3L<F>;
+  using D = decltype(toDouble(F{}));
+  V p[3], n[3], u[3], w[3];
+  for (int j = 0; j < 3; ++j) {
+    p[j] = load3<F, W>(in, kP + 3 * j);
+    n[j] = load3<F, W>(in, kN + 3 * j);
+    u[j] = load3<F, W>(in, kU + 3 * j);
+    w[j] = load3<F, W>(in, kW + 3 * j);
+  }
+  const V ft = load3<F, W>(in, kFt), fb = load3<F, W>(in, kFb), fn = load3<F, W>(in, kFn);
+  for (int j = 0; j < 3; ++j) {
+    // rotateFrame(u_j, w_j, n_j, fn): the vertex frame turned into the face's plane.
+    const F ndot = dot(n[j], fn);
+    const V perp_old = fn - ndot * n[j];
+    const V dperp = (1.0f / (1.0f + ndot)) * (n[j] + fn);
+    const V ru = u[j] - dot(u[j], perp_old) * dperp;
+    const V rv = w[j] - dot(w[j], perp_old) * dperp;
+    const auto flip = ndot <= -1.0f;
+    const V fu{select(flip, -u[j].x, ru.x), select(flip, -u[j].y, ru.y), select(flip, -u[j].z, ru.z)};
+    const V fv{select(flip, -w[j].x, rv.x), select(flip, -w[j].y, rv.y), select(flip, -w[j].z, rv.z)};
+    lanes::store(out + (kRel + 4 * j) * W, dot(fu, ft));
+    lanes::store(out + (kRel + 4 * j + 1) * W, dot(fu, fb));
+    lanes::store(out + (kRel + 4 * j + 2) * W, dot(fv, ft));
+    lanes::store(out + (kRel + 4 * j + 3) * W, dot(fv, fb));
+  }
+  D a{}, b{}, c{}, m[3] = {D{}, D{}, D{}};
+  for (int j = 0; j < 3; ++j) {
+    const int jp = j == 0 ? 2 : j - 1, jn = j == 2 ? 0 : j + 1;
+    const V e = p[jp] - p[jn];
+    const V dn = n[jp] - n[jn];
+    const D eu = toDouble(dot(e, ft)), ev = toDouble(dot(e, fb));
+    const D dnu = toDouble(dot(dn, ft)), dnv = toDouble(dot(dn, fb));
+    a = a + eu * eu;
+    b = b + eu * ev;
+    c = c + ev * ev;
+    m[0] = m[0] + dnu * eu;
+    m[1] = m[1] + (dnu * ev + dnv * eu);
+    m[2] = m[2] + dnv * ev;
+  }
+  // Normal equations of Δn_t = e·u + f·v, Δn_b = f·u + g·v over the three edges:
+  // [[Σu², Σuv, 0], [Σuv, Σu²+Σv², Σuv], [0, Σuv, Σv²]] (full symmetric matrix).
+  const D d[3] = {a, a + c, c};
+  const D o[2] = {b, b};
+  const auto ok = solveSymTridiagonal<3>(d, o, m);
+  const F k[3] = {lanes::toFloat(m[0]), lanes::toFloat(m[1]), lanes::toFloat(m[2])};
+  for (int i = 0; i < 3; ++i) lanes::store(out + (kCurv + i) * W, k[i]);
+  // projectCurvature(k, rel[j]) for each corner.
+  for (int j = 0; j < 3; ++j) {
+    const F u1 = lanes::load<F>(out + (kRel + 4 * j) * W), v1 = lanes::load<F>(out + (kRel + 4 * j + 1) * W);
+    const F u2 = lanes::load<F>(out + (kRel + 4 * j + 2) * W), v2 = lanes::load<F>(out + (kRel + 4 * j + 3) * W);
+    lanes::store(out + (kCurvTerm + 3 * j) * W, k[0] * u1 * u1 + k[1] * (2.0f * u1 * v1) + k[2] * v1 * v1);
+    lanes::store(out + (kCurvTerm + 3 * j + 1) * W, k[0] * u1 * u2 + k[1] * (u1 * v2 + u2 * v1) + k[2] * v1 * v2);
+    lanes::store(out + (kCurvTerm + 3 * j + 2) * W, k[0] * u2 * u2 + k[1] * (2.0f * u2 * v2) + k[2] * v2 * v2);
+  }
+  return lanes::toFloatMask(ok);
+}
+
+// Each corner's curvature re-expressed in the face frame, then the least-squares fit of the
+// derivative tensor C to its differences along the three edges (Rusinkiewicz 2004 §4).
+template <class F, int W>
+[[gnu::always_inline]] inline auto derivativeFit(const float* in, float* out) {
+  using lanes::dot;
+  using lanes::toDouble;
+  using V = lanes::Vec3L<F>;
+  using D = decltype(toDouble(F{}));
+  V p[3], fcurv[3];
+  F principal[3][4];  // principalInFace per corner
+  const V ft = load3<F, W>(in, kDFt), fb = load3<F, W>(in, kDFb);
+  for (int j = 0; j < 3; ++j) {
+    p[j] = load3<F, W>(in, kDP + 3 * j);
+    const F m0 = lanes::load<F>(in + (kDRel + 4 * j) * W), m1 = lanes::load<F>(in + (kDRel + 4 * j + 1) * W);
+    const F m2 = lanes::load<F>(in + (kDRel + 4 * j + 2) * W), m3 = lanes::load<F>(in + (kDRel + 4 * j + 3) * W);
+    const F k0 = lanes::load<F>(in + (kDKab + 4 * j) * W), k2 = lanes::load<F>(in + (kDKab + 4 * j + 1) * W);
+    const F pa = lanes::load<F>(in + (kDKab + 4 * j + 2) * W), pb = lanes::load<F>(in + (kDKab + 4 * j + 3) * W);
+    // principalInFace: the principal axes in face coordinates (u1, v1, u2, v2).
+    const F q0 = pa * m0 + pb * m2, q1 = pa * m1 + pb * m3, q2 = -pb * m0 + pa * m2, q3 = -pb * m1 + pa * m3;
+    // projectCurvature((k1, 0, k2), (q0, q2, q1, q3)): the face axes in principal coordinates.
+    principal[j][0] = q0, principal[j][1] = q1, principal[j][2] = q2, principal[j][3] = q3;
+    const F u1 = q0, v1 = q2, u2 = q1, v2 = q3;
+    const F k1{};
+    fcurv[j] = V{k0 * u1 * u1 + k1 * (2.0f * u1 * v1) + k2 * v1 * v1,
+                 k0 * u1 * u2 + k1 * (u1 * v2 + u2 * v1) + k2 * v1 * v2,
+                 k0 * u2 * u2 + k1 * (2.0f * u2 * v2) + k2 * v2 * v2};
+  }
+  D a{}, b{}, c{}, m[4] = {D{}, D{}, D{}, D{}};
+  for (int j = 0; j < 3; ++j) {
+    const int jp = j == 0 ? 2 : j - 1, jn = j == 2 ? 0 : j + 1;
+    const V e = p[jp] - p[jn];
+    const V dk = fcurv[jp] - fcurv[jn];
+    const D eu = toDouble(dot(e, ft)), ev = toDouble(dot(e, fb));
+    const D dk0 = toDouble(dk.x), dk1 = toDouble(dk.y), dk2 = toDouble(dk.z);
+    a = a + eu * eu;
+    b = b + eu * ev;
+    c = c + ev * ev;
+    m[0] = m[0] + eu * dk0;
+    m[1] = m[1] + (ev * dk0 + 2.0 * eu * dk1);
+    m[2] = m[2] + (2.0 * ev * dk1 + eu * dk2);
+    m[3] = m[3] + ev * dk2;
+  }
+  // Normal equations of Δe = C0·u + C1·v, Δf = C1·u + C2·v (weight 2), Δg = C2·u + C3·v:
+  // tridiagonal [Σu², 2Σu²+Σv², Σu²+2Σv², Σv²] with off-diagonal [Σuv, 2Σuv, Σuv].
+  const D d[4] = {a, 2.0 * a + c, a + 2.0 * c, c};
+  const D o[3] = {b, 2.0 * b, b};
+  const auto ok = solveSymTridiagonal<4>(d, o, m);
+  const F cd[4] = {lanes::toFloat(m[0]), lanes::toFloat(m[1]), lanes::toFloat(m[2]), lanes::toFloat(m[3])};
+  for (int i = 0; i < 4; ++i) lanes::store(out + (kDcurv + i) * W, cd[i]);
+  // projectDerivative(C, principalInFace(rel[j], ab_j)) for each corner.
+  for (int j = 0; j < 3; ++j) {
+    const F u1 = principal[j][0], v1 = principal[j][1], u2 = principal[j][2], v2 = principal[j][3];
+    const F t[4] = {cd[0] * u1 * u1 * u1 + cd[1] * 3.0f * u1 * u1 * v1 + cd[2] * 3.0f * u1 * v1 * v1 +
+                        cd[3] * v1 * v1 * v1,
+                    cd[0] * u1 * u1 * u2 + cd[1] * (u1 * u1 * v2 + 2.0f * u2 * u1 * v1) +
+                        cd[2] * (u2 * v1 * v1 + 2.0f * u1 * v1 * v2) + cd[3] * v1 * v1 * v2,
+                    cd[0] * u1 * u2 * u2 + cd[1] * (u2 * u2 * v1 + 2.0f * u1 * u2 * v2) +
+                        cd[2] * (u1 * v2 * v2 + 2.0f * u2 * v2 * v1) + cd[3] * v1 * v2 * v2,
+                    cd[0] * u2 * u2 * u2 + cd[1] * 3.0f * u2 * u2 * v2 + cd[2] * 3.0f * u2 * v2 * v2 +
+                        cd[3] * v2 * v2 * v2};
+    for (int i = 0; i < 4; ++i) lanes::store(out + (kDcurvTerm + 4 * j + i) * W, t[i]);
+  }
+  return lanes::toFloatMask(ok);
+}
+
+// Eight faces at once; built for AVX2 as well as the baseline where the machine has it.
+LODLINE_AVX2_CLONES void curvatureFit8(const float* in, float* out, int32_t* ok) {
+  lanes::storeMask(ok, curvatureFit<lanes::F8, lanes::kWidth>(in, out));
+}
+LODLINE_AVX2_CLONES void derivativeFit8(const float* in, float* out, int32_t* ok) {
+  lanes::storeMask(ok, derivativeFit<lanes::F8, lanes::kWidth>(in, out));
+}
+
+}  // namespace fit
 
 }  // namespace
 
@@ -322,40 +512,55 @@ void ShapeCache::finishNormal(uint32_t v, glm::vec3 n, float area) {
   frameFromNormal(n, fr.u, fr.w);
 }
 
-void ShapeCache::faceCurvatureFit(const TriMesh& mesh, uint32_t f) {
+template <int W>
+void ShapeCache::gatherCurvatureFit(const TriMesh& mesh, uint32_t f, float* in, int lane) const {
+  auto put = [&](int k, const glm::vec3& x) {
+    for (int i = 0; i < 3; ++i) in[(k + i) * W + lane] = x[i];
+  };
+  const auto& t = mesh.faces[f];
+  for (int j = 0; j < 3; ++j) {
+    const VertexFrame& fr = frames_[t[j]];
+    put(fit::kP + 3 * j, mesh.positions[t[j]]);
+    put(fit::kN + 3 * j, fr.n);
+    put(fit::kU + 3 * j, fr.u);
+    put(fit::kW + 3 * j, fr.w);
+  }
+  put(fit::kFt, face_t_[f]);
+  put(fit::kFb, face_b_[f]);
+  put(fit::kFn, face_normals_[f]);
+}
+
+template <int W>
+void ShapeCache::storeCurvatureFit(uint32_t f, const float* out, int lane, bool ok) {
   FaceRecord& rec = faces_[f];
   rec.ok &= static_cast<uint8_t>(~kCurvOk);
   rec.curv = glm::vec3(0.0f);
   if (!(rec.ok & kGeomOk)) return;
-  const auto& t = mesh.faces[f];
-  const glm::vec3 p[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
-  const glm::vec3& ft = face_t_[f];
-  const glm::vec3& fb = face_b_[f];
   // Corner relations (vertex frame axes in face coordinates), reused by every later gather.
-  const VertexFrame* fr[3] = {&frames_[t[0]], &frames_[t[1]], &frames_[t[2]]};
   for (int j = 0; j < 3; ++j)
-    rec.rel[j] = frameRelation(ft, fb, face_normals_[f], fr[j]->u, fr[j]->w, fr[j]->n);
-  double a = 0, b = 0, c = 0, m[3] = {0, 0, 0};
-  for (int j = 0; j < 3; ++j) {
-    const glm::vec3 e = p[prevCorner(j)] - p[nextCorner(j)];
-    const glm::vec3 dn = fr[prevCorner(j)]->n - fr[nextCorner(j)]->n;
-    const double u = glm::dot(e, ft), v = glm::dot(e, fb);
-    const double dnu = glm::dot(dn, ft), dnv = glm::dot(dn, fb);
-    a += u * u;
-    b += u * v;
-    c += v * v;
-    m[0] += dnu * u;
-    m[1] += dnu * v + dnv * u;
-    m[2] += dnv * v;
-  }
-  // Normal equations of Δn_t = e·u + f·v, Δn_b = f·u + g·v over the three edges:
-  // [[Σu², Σuv, 0], [Σuv, Σu²+Σv², Σuv], [0, Σuv, Σv²]] (full symmetric matrix).
-  const double d[3] = {a, a + c, c};
-  const double o[2] = {b, b};
-  if (!solveSymTridiagonal<3>(d, o, m)) return;
-  rec.curv = glm::vec3(static_cast<float>(m[0]), static_cast<float>(m[1]),
-                       static_cast<float>(m[2]));
+    for (int i = 0; i < 4; ++i) rec.rel[j][i] = out[(fit::kRel + 4 * j + i) * W + lane];
+  if (!ok) return;
+  for (int i = 0; i < 3; ++i) rec.curv[i] = out[(fit::kCurv + i) * W + lane];
   rec.ok |= kCurvOk;
+}
+
+void ShapeCache::faceCurvatureFit(const TriMesh& mesh, uint32_t f) {
+  if (!(faces_[f].ok & kGeomOk)) return storeCurvatureFit<1>(f, nullptr, 0, false);
+  float in[fit::kCurvIn], out[fit::kCurvOut];
+  gatherCurvatureFit<1>(mesh, f, in, 0);
+  const bool ok = fit::curvatureFit<float, 1>(in, out);
+  storeCurvatureFit<1>(f, out, 0, ok);
+}
+
+void ShapeCache::curvatureFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count,
+                                   float* out) {
+  constexpr int W = lanes::kWidth;
+  alignas(32) float in[fit::kCurvIn * W] = {};
+  alignas(32) int32_t ok[W];
+  for (uint32_t l = 0; l < count; ++l)
+    if (faces_[faces[l]].ok & kGeomOk) gatherCurvatureFit<W>(mesh, faces[l], in, static_cast<int>(l));
+  fit::curvatureFit8(in, out, ok);
+  for (uint32_t l = 0; l < count; ++l) storeCurvatureFit<W>(faces[l], out, static_cast<int>(l), ok[l] != 0);
 }
 
 void ShapeCache::vertexCurvature(uint32_t v) {
@@ -413,44 +618,50 @@ void ShapeCache::finishCurvature(uint32_t v, glm::vec3 k, float wsum) {
   pdir2_[v] = ab.x * w - ab.y * u;  // = n × pdir1
 }
 
-void ShapeCache::faceDerivativeFit(const TriMesh& mesh, uint32_t f) {
+template <int W>
+void ShapeCache::gatherDerivativeFit(const TriMesh& mesh, uint32_t f, float* in, int lane) const {
+  auto put = [&](int k, const auto& x, int n) {
+    for (int i = 0; i < n; ++i) in[(k + i) * W + lane] = x[i];
+  };
+  const auto& t = mesh.faces[f];
+  const FaceRecord& rec = faces_[f];
+  for (int j = 0; j < 3; ++j) {
+    put(fit::kDP + 3 * j, mesh.positions[t[j]], 3);
+    put(fit::kDRel + 4 * j, rec.rel[j], 4);
+    // Principal axes in face coordinates; transposed: face axes in principal coordinates.
+    put(fit::kDKab + 4 * j, vertex_kab_[t[j]], 4);
+  }
+  put(fit::kDFt, face_t_[f], 3);
+  put(fit::kDFb, face_b_[f], 3);
+}
+
+template <int W>
+void ShapeCache::storeDerivativeFit(uint32_t f, const float* out, int lane, bool ok) {
   FaceRecord& rec = faces_[f];
   rec.ok &= static_cast<uint8_t>(~kDcurvOk);
   rec.dcurv = glm::vec4(0.0f);
-  if (!(rec.ok & kGeomOk)) return;
-  const auto& t = mesh.faces[f];
-  const glm::vec3 p[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
-  const glm::vec3& ft = face_t_[f];
-  const glm::vec3& fb = face_b_[f];
-  glm::vec3 fcurv[3];
-  for (int j = 0; j < 3; ++j) {
-    const uint32_t vj = t[j];
-    // Principal axes in face coordinates; transposed: face axes in principal coordinates.
-    const glm::vec4 kab = vertex_kab_[vj];
-    const glm::vec4 q = principalInFace(rec.rel[j], glm::vec2(kab[2], kab[3]));
-    fcurv[j] = projectCurvature(glm::vec3(kab[0], 0.0f, kab[1]), glm::vec4(q[0], q[2], q[1], q[3]));
-  }
-  double a = 0, b = 0, c = 0, m[4] = {0, 0, 0, 0};
-  for (int j = 0; j < 3; ++j) {
-    const glm::vec3 e = p[prevCorner(j)] - p[nextCorner(j)];
-    const glm::vec3 dk = fcurv[prevCorner(j)] - fcurv[nextCorner(j)];
-    const double u = glm::dot(e, ft), v = glm::dot(e, fb);
-    a += u * u;
-    b += u * v;
-    c += v * v;
-    m[0] += u * dk[0];
-    m[1] += v * dk[0] + 2.0 * u * dk[1];
-    m[2] += 2.0 * v * dk[1] + u * dk[2];
-    m[3] += v * dk[2];
-  }
-  // Normal equations of Δe = C0·u + C1·v, Δf = C1·u + C2·v (weight 2), Δg = C2·u + C3·v:
-  // tridiagonal [Σu², 2Σu²+Σv², Σu²+2Σv², Σv²] with off-diagonal [Σuv, 2Σuv, Σuv].
-  const double d[4] = {a, 2.0 * a + c, a + 2.0 * c, c};
-  const double o[3] = {b, 2.0 * b, b};
-  if (!solveSymTridiagonal<4>(d, o, m)) return;
-  rec.dcurv = glm::vec4(static_cast<float>(m[0]), static_cast<float>(m[1]),
-                             static_cast<float>(m[2]), static_cast<float>(m[3]));
+  if (!(rec.ok & kGeomOk) || !ok) return;
+  for (int i = 0; i < 4; ++i) rec.dcurv[i] = out[(fit::kDcurv + i) * W + lane];
   rec.ok |= kDcurvOk;
+}
+
+void ShapeCache::faceDerivativeFit(const TriMesh& mesh, uint32_t f) {
+  if (!(faces_[f].ok & kGeomOk)) return storeDerivativeFit<1>(f, nullptr, 0, false);
+  float in[fit::kDerivIn], out[fit::kDerivOut];
+  gatherDerivativeFit<1>(mesh, f, in, 0);
+  const bool ok = fit::derivativeFit<float, 1>(in, out);
+  storeDerivativeFit<1>(f, out, 0, ok);
+}
+
+void ShapeCache::derivativeFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count,
+                                    float* out) {
+  constexpr int W = lanes::kWidth;
+  alignas(32) float in[fit::kDerivIn * W] = {};
+  alignas(32) int32_t ok[W];
+  for (uint32_t l = 0; l < count; ++l)
+    if (faces_[faces[l]].ok & kGeomOk) gatherDerivativeFit<W>(mesh, faces[l], in, static_cast<int>(l));
+  fit::derivativeFit8(in, out, ok);
+  for (uint32_t l = 0; l < count; ++l) storeDerivativeFit<W>(faces[l], out, static_cast<int>(l), ok[l] != 0);
 }
 
 void ShapeCache::vertexDerivative(uint32_t v) {
@@ -503,35 +714,41 @@ void ShapeCache::computeScattered(const TriMesh& mesh, bool eager_derivatives) {
     }
   }
   for (uint32_t v = 0; v < nv; ++v) finishNormal(v, glm::vec3(sum_[v]), sum_w_[v]);
-  // Curvature, then derivatives: the faces with a fit (`ok_bit`) add `term` where their
-  // corner weight is positive, as vertexCurvature() and vertexDerivative() gather them.
-  auto scatter = [&](auto fit, uint8_t ok_bit, auto term) {
+  // Curvature, then derivatives. The fits run eight faces at a time (fit_lanes.h); then each
+  // of those faces with a fit (`ok_bit`) adds its corners' terms, computed with the fit as
+  // vertexCurvature() and vertexDerivative() compute them, where the corner weight is positive.
+  constexpr uint32_t W = lanes::kWidth;
+  alignas(32) float out[std::max(fit::kCurvOut, fit::kDerivOut) * W];
+  auto scatter = [&](auto fit_block, uint8_t ok_bit, int term_row, int term_size) {
     std::fill(sum_.begin(), sum_.end(), glm::vec4(0.0f));
     std::fill(sum_w_.begin(), sum_w_.end(), 0.0f);
-    for (uint32_t f = 0; f < nf; ++f) {
-      fit(f);
-      const FaceRecord& rec = faces_[f];
-      if (!valid[f] || !(rec.ok & ok_bit)) continue;
-      for (int j = 0; j < 3; ++j) {
-        const float wt = rec.corner[j];
-        if (!(wt > 0.0f)) continue;
-        const uint32_t v = mesh.faces[f][j];
-        sum_[v] += term(rec, j, v, wt);
-        sum_w_[v] += wt;
+    for (uint32_t f0 = 0; f0 < nf; f0 += W) {
+      const uint32_t count = std::min<uint32_t>(W, nf - f0);
+      uint32_t block[W];
+      for (uint32_t l = 0; l < count; ++l) block[l] = f0 + l;
+      fit_block(block, count, out);
+      for (uint32_t l = 0; l < count; ++l) {
+        const uint32_t f = f0 + l;
+        const FaceRecord& rec = faces_[f];
+        if (!valid[f] || !(rec.ok & ok_bit)) continue;
+        for (int j = 0; j < 3; ++j) {
+          const float wt = rec.corner[j];
+          if (!(wt > 0.0f)) continue;
+          const uint32_t v = mesh.faces[f][j];
+          glm::vec4 term(0.0f);
+          for (int i = 0; i < term_size; ++i) term[i] = out[(term_row + term_size * j + i) * W + l];
+          sum_[v] += wt * term;
+          sum_w_[v] += wt;
+        }
       }
     }
   };
-  scatter([&](uint32_t f) { faceCurvatureFit(mesh, f); }, kCurvOk,
-          [](const FaceRecord& rec, int j, uint32_t, float wt) {
-            return glm::vec4(wt * projectCurvature(rec.curv, rec.rel[j]), 0.0f);
-          });
+  scatter([&](const uint32_t* faces, uint32_t count, float* o) { curvatureFitBlock(mesh, faces, count, o); },
+          kCurvOk, fit::kCurvTerm, 3);
   for (uint32_t v = 0; v < nv; ++v) finishCurvature(v, glm::vec3(sum_[v]), sum_w_[v]);
   if (!eager_derivatives) return;
-  scatter([&](uint32_t f) { faceDerivativeFit(mesh, f); }, kDcurvOk,
-          [&](const FaceRecord& rec, int j, uint32_t v, float wt) {
-            const glm::vec2 ab(vertex_kab_[v][2], vertex_kab_[v][3]);
-            return wt * projectDerivative(rec.dcurv, principalInFace(rec.rel[j], ab));
-          });
+  scatter([&](const uint32_t* faces, uint32_t count, float* o) { derivativeFitBlock(mesh, faces, count, o); },
+          kDcurvOk, fit::kDcurvTerm, 4);
   for (uint32_t v = 0; v < nv; ++v) finishDerivative(v, sum_[v], sum_w_[v]);
 }
 

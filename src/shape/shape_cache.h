@@ -211,6 +211,21 @@ class ShapeCache {
   void vertexCurvature(uint32_t v);
   void faceDerivativeFit(const TriMesh& mesh, uint32_t f);
   void vertexDerivative(uint32_t v);
+  // The two fits for up to eight faces at once, `faces[0 .. count)`, count ≤ 8: the same bits
+  // as the one-face kernels above (shape/fit_lanes.h).
+  // `out` receives the fits' rows, eight floats wide, with each corner's term for its
+  // vertex's sum (computeScattered()).
+  void curvatureFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count, float* out);
+  void derivativeFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count, float* out);
+  // A fit's inputs for face f into lane `lane` of rows W wide, and its results back.
+  template <int W>
+  void gatherCurvatureFit(const TriMesh& mesh, uint32_t f, float* in, int lane) const;
+  template <int W>
+  void storeCurvatureFit(uint32_t f, const float* out, int lane, bool ok);
+  template <int W>
+  void gatherDerivativeFit(const TriMesh& mesh, uint32_t f, float* in, int lane) const;
+  template <int W>
+  void storeDerivativeFit(uint32_t f, const float* out, int lane, bool ok);
   // The vertex kernels' last step, from the ring's sums (shared by gather and scatter).
   void finishNormal(uint32_t v, glm::vec3 n, float area);
   void finishCurvature(uint32_t v, glm::vec3 k, float wsum);
