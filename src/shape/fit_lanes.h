@@ -1,9 +1,9 @@
 // Lane types for the per-face fits of shape_cache.cpp: the same source computes one face
-// (float, double, bool masks) or eight faces at once (GCC vector extensions: eight floats,
-// eight doubles, and their comparison masks). Every operation is an IEEE operation applied
+// (float, double, bool masks) or kWidth faces at once (GCC vector extensions: floats,
+// doubles, and their comparison masks). Every operation is an IEEE operation applied
 // lane by lane, in the order written, and the build fuses no multiply-adds
-// (-ffp-contract=off, CMakeLists.txt), so each lane of the eight-face form computes the bits
-// the one-face form computes for that face: the full compute (eight at a time) and the
+// (-ffp-contract=off, CMakeLists.txt), so each lane of the several-face form computes the bits
+// the one-face form computes for that face: the full compute (kWidth at a time) and the
 // incremental updates (one face at a time) agree bit for bit (docs/design.md, convention 18).
 // Branches become selects: both sides are computed and the mask picks one.
 #pragma once
@@ -16,30 +16,32 @@
 
 namespace lodline::lanes {
 
-using F8 = float __attribute__((vector_size(32)));
-using D8 = double __attribute__((vector_size(64)));
-using MF8 = int32_t __attribute__((vector_size(32)));   // mask of a float comparison
-using MD8 = int64_t __attribute__((vector_size(64)));   // mask of a double comparison
-inline constexpr int kWidth = 8;
+/// Four lanes: four doubles fill an AVX2 register (the fits solve in double), and no type is
+/// wider than the hardware's, which GCC would otherwise lower element by element.
+inline constexpr int kWidth = 4;
+using FL = float __attribute__((vector_size(4 * kWidth)));
+using DL = double __attribute__((vector_size(8 * kWidth)));
+using MFL = int32_t __attribute__((vector_size(4 * kWidth)));  // mask of a float comparison
+using MDL = int64_t __attribute__((vector_size(8 * kWidth)));  // mask of a double comparison
 
 inline double toDouble(float x) { return static_cast<double>(x); }
-inline D8 toDouble(F8 x) { return __builtin_convertvector(x, D8); }
+inline DL toDouble(FL x) { return __builtin_convertvector(x, DL); }
 inline float toFloat(double x) { return static_cast<float>(x); }
-inline F8 toFloat(D8 x) { return __builtin_convertvector(x, F8); }
+inline FL toFloat(DL x) { return __builtin_convertvector(x, FL); }
 inline bool toDoubleMask(bool m) { return m; }
-inline MD8 toDoubleMask(MF8 m) { return __builtin_convertvector(m, MD8); }
+inline MDL toDoubleMask(MFL m) { return __builtin_convertvector(m, MDL); }
 inline bool toFloatMask(bool m) { return m; }
-inline MF8 toFloatMask(MD8 m) { return __builtin_convertvector(m, MF8); }
+inline MFL toFloatMask(MDL m) { return __builtin_convertvector(m, MFL); }
 
 inline bool both(bool a, bool b) { return a && b; }
-inline MF8 both(MF8 a, MF8 b) { return a & b; }
-inline MD8 both(MD8 a, MD8 b) { return a & b; }
+inline MFL both(MFL a, MFL b) { return a & b; }
+inline MDL both(MDL a, MDL b) { return a & b; }
 
 /// m ? a : b, lane by lane.
 inline float select(bool m, float a, float b) { return m ? a : b; }
 inline double select(bool m, double a, double b) { return m ? a : b; }
-inline F8 select(MF8 m, F8 a, F8 b) { return m ? a : b; }
-inline D8 select(MD8 m, D8 a, D8 b) { return m ? a : b; }
+inline FL select(MFL m, FL a, FL b) { return m ? a : b; }
+inline DL select(MDL m, DL a, DL b) { return m ? a : b; }
 
 /// x is neither infinite nor NaN (x − x is 0 exactly then, NaN otherwise).
 template <class T>
@@ -80,7 +82,7 @@ inline T dot(const Vec3L<T>& a, const Vec3L<T>& b) {
 
 namespace lodline::lanes {
 
-/// W consecutive floats from p as one value of F (W = 1 for float, 8 for F8).
+/// W consecutive floats from p as one value of F (W = 1 for float, 8 for FL).
 template <class F>
 inline F load(const float* p);
 template <>
@@ -88,14 +90,14 @@ inline float load<float>(const float* p) {
   return *p;
 }
 template <>
-inline F8 load<F8>(const float* p) {
-  F8 v;
+inline FL load<FL>(const float* p) {
+  FL v;
   __builtin_memcpy(&v, p, sizeof v);
   return v;
 }
 inline void store(float* p, float v) { *p = v; }
-inline void store(float* p, F8 v) { __builtin_memcpy(p, &v, sizeof v); }
+inline void store(float* p, FL v) { __builtin_memcpy(p, &v, sizeof v); }
 inline void storeMask(int32_t* p, bool m) { *p = m ? -1 : 0; }
-inline void storeMask(int32_t* p, MF8 m) { __builtin_memcpy(p, &m, sizeof m); }
+inline void storeMask(int32_t* p, MFL m) { __builtin_memcpy(p, &m, sizeof m); }
 
 }  // namespace lodline::lanes

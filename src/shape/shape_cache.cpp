@@ -129,7 +129,7 @@ inline glm::vec4 principalInFace(const glm::vec4& m, const glm::vec2& ab) {
 // One division in all, where LDLᵀ divides N + N − 1 times in a dependent chain. The mask is
 // false (x then holds garbage) when a pivot θ_(k+1)/θ_k of that LDLᵀ is not clearly positive
 // (a degenerate face), tested without dividing as θ_(k+1) > 1e-10·scale·θ_k, or when the
-// solution is not finite. D is double, or eight doubles (fit_lanes.h).
+// solution is not finite. D is double, or lanes of doubles (fit_lanes.h).
 template <int N, class D>
 [[gnu::always_inline]] inline auto solveSymTridiagonal(const D (&d)[N], const D (&o)[N - 1], D (&x)[N]) {
   using lanes::both;
@@ -172,7 +172,7 @@ template <int N, class D>
 }
 
 // The per-face fits of Rusinkiewicz 2004 §3–§4, written once for one face (F = float) and
-// for eight faces at a time (F = lanes::F8; fit_lanes.h). Their inputs and outputs travel as
+// for lanes::kWidth faces at a time (F = lanes::FL; fit_lanes.h). Their inputs and outputs travel as
 // rows of W floats, one per lane: `in[k * W + lane]`.
 namespace fit {
 
@@ -324,12 +324,12 @@ template <class F, int W>
   return lanes::toFloatMask(ok);
 }
 
-// Eight faces at once; built for AVX2 as well as the baseline where the machine has it.
-LODLINE_AVX2_CLONES void curvatureFit8(const float* in, float* out, int32_t* ok) {
-  lanes::storeMask(ok, curvatureFit<lanes::F8, lanes::kWidth>(in, out));
+// lanes::kWidth faces at once; built for AVX2 as well as the baseline, picked at load.
+LODLINE_AVX2_CLONES void curvatureFitLanes(const float* in, float* out, int32_t* ok) {
+  lanes::storeMask(ok, curvatureFit<lanes::FL, lanes::kWidth>(in, out));
 }
-LODLINE_AVX2_CLONES void derivativeFit8(const float* in, float* out, int32_t* ok) {
-  lanes::storeMask(ok, derivativeFit<lanes::F8, lanes::kWidth>(in, out));
+LODLINE_AVX2_CLONES void derivativeFitLanes(const float* in, float* out, int32_t* ok) {
+  lanes::storeMask(ok, derivativeFit<lanes::FL, lanes::kWidth>(in, out));
 }
 
 }  // namespace fit
@@ -559,7 +559,7 @@ void ShapeCache::curvatureFitBlock(const TriMesh& mesh, const uint32_t* faces, u
   alignas(32) int32_t ok[W];
   for (uint32_t l = 0; l < count; ++l)
     if (faces_[faces[l]].ok & kGeomOk) gatherCurvatureFit<W>(mesh, faces[l], in, static_cast<int>(l));
-  fit::curvatureFit8(in, out, ok);
+  fit::curvatureFitLanes(in, out, ok);
   for (uint32_t l = 0; l < count; ++l) storeCurvatureFit<W>(faces[l], out, static_cast<int>(l), ok[l] != 0);
 }
 
@@ -660,7 +660,7 @@ void ShapeCache::derivativeFitBlock(const TriMesh& mesh, const uint32_t* faces, 
   alignas(32) int32_t ok[W];
   for (uint32_t l = 0; l < count; ++l)
     if (faces_[faces[l]].ok & kGeomOk) gatherDerivativeFit<W>(mesh, faces[l], in, static_cast<int>(l));
-  fit::derivativeFit8(in, out, ok);
+  fit::derivativeFitLanes(in, out, ok);
   for (uint32_t l = 0; l < count; ++l) storeDerivativeFit<W>(faces[l], out, static_cast<int>(l), ok[l] != 0);
 }
 
@@ -714,7 +714,7 @@ void ShapeCache::computeScattered(const TriMesh& mesh, bool eager_derivatives) {
     }
   }
   for (uint32_t v = 0; v < nv; ++v) finishNormal(v, glm::vec3(sum_[v]), sum_w_[v]);
-  // Curvature, then derivatives. The fits run eight faces at a time (fit_lanes.h); then each
+  // Curvature, then derivatives. The fits run lanes::kWidth faces at a time (fit_lanes.h); then each
   // of those faces with a fit (`ok_bit`) adds its corners' terms, computed with the fit as
   // vertexCurvature() and vertexDerivative() compute them, where the corner weight is positive.
   constexpr uint32_t W = lanes::kWidth;

@@ -211,9 +211,9 @@ class ShapeCache {
   void vertexCurvature(uint32_t v);
   void faceDerivativeFit(const TriMesh& mesh, uint32_t f);
   void vertexDerivative(uint32_t v);
-  // The two fits for up to eight faces at once, `faces[0 .. count)`, count ≤ 8: the same bits
+  // The two fits for up to lanes::kWidth faces at once, `faces[0 .. count)`: the same bits
   // as the one-face kernels above (shape/fit_lanes.h).
-  // `out` receives the fits' rows, eight floats wide, with each corner's term for its
+  // `out` receives the fits' rows, kWidth floats wide, with each corner's term for its
   // vertex's sum (computeScattered()).
   void curvatureFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count, float* out);
   void derivativeFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count, float* out);
