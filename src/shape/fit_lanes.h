@@ -43,6 +43,14 @@ inline double select(bool m, double a, double b) { return m ? a : b; }
 inline FL select(MFL m, FL a, FL b) { return m ? a : b; }
 inline DL select(MDL m, DL a, DL b) { return m ? a : b; }
 
+/// Square root, lane by lane (exact IEEE, as std::sqrt).
+inline float sqrtLanes(float x) { return __builtin_sqrtf(x); }
+inline FL sqrtLanes(FL x) {
+  FL r;
+  for (int i = 0; i < kWidth; ++i) r[i] = __builtin_sqrtf(x[i]);
+  return r;
+}
+
 /// x is neither infinite nor NaN (x − x is 0 exactly then, NaN otherwise).
 template <class T>
 inline auto finite(T x) {
@@ -95,6 +103,21 @@ inline FL load<FL>(const float* p) {
   __builtin_memcpy(&v, p, sizeof v);
   return v;
 }
+/// Float k of each lane's source: src[lane][k] for lane 0 .. W − 1, one value of F. Built
+/// from scalar loads: staging the lanes through memory and loading them as one vector would
+/// stall on store forwarding.
+template <class F>
+inline F gather(const float* const* src, int k);
+template <>
+inline float gather<float>(const float* const* src, int k) {
+  return src[0][k];
+}
+template <>
+inline FL gather<FL>(const float* const* src, int k) {
+  static_assert(kWidth == 4);
+  return FL{src[0][k], src[1][k], src[2][k], src[3][k]};
+}
+
 inline void store(float* p, float v) { *p = v; }
 inline void store(float* p, FL v) { __builtin_memcpy(p, &v, sizeof v); }
 inline void storeMask(int32_t* p, bool m) { *p = m ? -1 : 0; }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -17,6 +18,8 @@ namespace lodline {
 namespace {
 
 constexpr uint8_t kGeomOk = 1, kCurvOk = 2, kDcurvOk = 4;
+// What the lane kernels read for lanes without a face (a short block, an invalid face).
+alignas(16) constexpr float kZeros[12] = {};
 const glm::vec3 kFallbackNormal{0.0f, 0.0f, 1.0f};
 
 inline int nextCorner(int j) { return j == 2 ? 0 : j + 1; }
@@ -176,29 +179,32 @@ template <int N, class D>
 // rows of W floats, one per lane: `in[k * W + lane]`.
 namespace fit {
 
-// Curvature fit inputs: the corners' positions, the vertex frames (n, u, w) at the corners,
-// the face frame (t, b, n).
-constexpr int kP = 0, kN = 9, kU = 18, kW = 27, kFt = 36, kFb = 39, kFn = 42, kCurvIn = 45;
+// The kernels read their inputs through `src[group * W + lane]`: per group of inputs, a
+// pointer to the floats of that group for each lane (lanes::gather).
+// Curvature fit inputs: the corners' positions, the vertex frames (n, u, w: 9 floats) at the
+// corners, the face frame (t, b, n).
+constexpr int kP = 0, kFrame = 3, kFt = 6, kFb = 7, kFn = 8, kCurvIn = 9;
 // Outputs: the corner relations rel[j] (4 each), the face's (e, f, g), and (e, f, g) in each
 // corner's vertex frame, the term that corner's vertex sums (vertexCurvature()).
 constexpr int kRel = 0, kCurv = 12, kCurvTerm = 15, kCurvOut = 24;
-// Derivative fit inputs: positions, face t and b, the corner relations, the vertices'
-// (k1, k2, a, b). Outputs: the face's derivative tensor, and the tensor in each corner's
+// Derivative fit inputs: positions, face t and b, the corner relations (12 floats), the
+// vertices' (k1, k2, a, b). Outputs: the face's derivative tensor, and the tensor in each corner's
 // principal frame, the term that corner's vertex sums (vertexDerivative()).
-constexpr int kDP = 0, kDFt = 9, kDFb = 12, kDRel = 15, kDKab = 27, kDerivIn = 39;
+constexpr int kDP = 0, kDFt = 3, kDFb = 4, kDRel = 5, kDKab = 6, kDerivIn = 9;
 constexpr int kDcurv = 0, kDcurvTerm = 4, kDerivOut = 16;
 
+// Three consecutive floats from offset k of input group g.
 template <class F, int W>
-inline lanes::Vec3L<F> load3(const float* in, int k) {
-  return {lanes::load<F>(in + k * W), lanes::load<F>(in + (k + 1) * W),
-          lanes::load<F>(in + (k + 2) * W)};
+inline lanes::Vec3L<F> load3(const float* const* src, int g, int k = 0) {
+  return {lanes::gather<F>(src + g * W, k), lanes::gather<F>(src + g * W, k + 1),
+          lanes::gather<F>(src + g * W, k + 2)};
 }
 
 // The face frame relative to each corner's vertex frame (rotateFrame/frameRelation, here
 // with selects for the antipodal case), then the least-squares fit of the second fundamental
 // form to the normal differences along the three edges. Returns the fit's mask.
 template <class F, int W>
-[[gnu::always_inline]] inline auto curvatureFit(const float* in, float* out) {
+[[gnu::always_inline]] inline auto curvatureFit(const float* const* in, float* out) {
   using lanes::dot;
   using lanes::select;
   using lanes::toDouble;
@@ -206,10 +212,10 @@ template <class F, int W>
   using D = decltype(toDouble(F{}));
   V p[3], n[3], u[3], w[3];
   for (int j = 0; j < 3; ++j) {
-    p[j] = load3<F, W>(in, kP + 3 * j);
-    n[j] = load3<F, W>(in, kN + 3 * j);
-    u[j] = load3<F, W>(in, kU + 3 * j);
-    w[j] = load3<F, W>(in, kW + 3 * j);
+    p[j] = load3<F, W>(in, kP + j);
+    n[j] = load3<F, W>(in, kFrame + j, 0);
+    u[j] = load3<F, W>(in, kFrame + j, 3);
+    w[j] = load3<F, W>(in, kFrame + j, 6);
   }
   const V ft = load3<F, W>(in, kFt), fb = load3<F, W>(in, kFb), fn = load3<F, W>(in, kFn);
   for (int j = 0; j < 3; ++j) {
@@ -262,7 +268,7 @@ template <class F, int W>
 // Each corner's curvature re-expressed in the face frame, then the least-squares fit of the
 // derivative tensor C to its differences along the three edges (Rusinkiewicz 2004 §4).
 template <class F, int W>
-[[gnu::always_inline]] inline auto derivativeFit(const float* in, float* out) {
+[[gnu::always_inline]] inline auto derivativeFit(const float* const* in, float* out) {
   using lanes::dot;
   using lanes::toDouble;
   using V = lanes::Vec3L<F>;
@@ -271,11 +277,13 @@ template <class F, int W>
   F principal[3][4];  // principalInFace per corner
   const V ft = load3<F, W>(in, kDFt), fb = load3<F, W>(in, kDFb);
   for (int j = 0; j < 3; ++j) {
-    p[j] = load3<F, W>(in, kDP + 3 * j);
-    const F m0 = lanes::load<F>(in + (kDRel + 4 * j) * W), m1 = lanes::load<F>(in + (kDRel + 4 * j + 1) * W);
-    const F m2 = lanes::load<F>(in + (kDRel + 4 * j + 2) * W), m3 = lanes::load<F>(in + (kDRel + 4 * j + 3) * W);
-    const F k0 = lanes::load<F>(in + (kDKab + 4 * j) * W), k2 = lanes::load<F>(in + (kDKab + 4 * j + 1) * W);
-    const F pa = lanes::load<F>(in + (kDKab + 4 * j + 2) * W), pb = lanes::load<F>(in + (kDKab + 4 * j + 3) * W);
+    p[j] = load3<F, W>(in, kDP + j);
+    const float* const* rel = in + kDRel * W;
+    const float* const* kab = in + (kDKab + j) * W;
+    const F m0 = lanes::gather<F>(rel, 4 * j), m1 = lanes::gather<F>(rel, 4 * j + 1);
+    const F m2 = lanes::gather<F>(rel, 4 * j + 2), m3 = lanes::gather<F>(rel, 4 * j + 3);
+    const F k0 = lanes::gather<F>(kab, 0), k2 = lanes::gather<F>(kab, 1);
+    const F pa = lanes::gather<F>(kab, 2), pb = lanes::gather<F>(kab, 3);
     // principalInFace: the principal axes in face coordinates (u1, v1, u2, v2).
     const F q0 = pa * m0 + pb * m2, q1 = pa * m1 + pb * m3, q2 = -pb * m0 + pa * m2, q3 = -pb * m1 + pa * m3;
     // projectCurvature((k1, 0, k2), (q0, q2, q1, q3)): the face axes in principal coordinates.
@@ -324,11 +332,88 @@ template <class F, int W>
   return lanes::toFloatMask(ok);
 }
 
+// Face geometry inputs: the corners' positions. Outputs: the unit normal, the face frame
+// (t along the edge opposite corner 0, b = n × t), the corner areas, twice the area, the
+// squared edge lengths and, per corner j, e[j−1]·e[j+1] (the normal weights' inputs).
+constexpr int kGP = 0, kGeomIn = 3;
+constexpr int kGN = 0, kGT = 3, kGB = 6, kGCorner = 9, kGLen = 12, kGL2 = 13, kGDot = 16, kGeomOut = 19;
+
+template <class T>
+[[gnu::always_inline]] inline lanes::Vec3L<T> cross(const lanes::Vec3L<T>& x, const lanes::Vec3L<T>& y) {
+  return {x.y * y.z - y.y * x.z, x.z * y.x - y.z * x.x, x.x * y.y - y.x * x.y};  // as glm::cross
+}
+
+// faceNormalOf, glm::normalize and cornerAreasOf over lanes (the obtuse cases as selects,
+// the first obtuse corner winning as in cornerAreasOf's loop). Returns the mask of faces with
+// a finite normal, a positive area and a finite edge direction.
+template <class F, int W>
+[[gnu::always_inline]] inline auto faceGeometry(const float* const* in, float* out) {
+  using lanes::both;
+  using lanes::dot;
+  using lanes::finite;
+  using lanes::select;
+  using V = lanes::Vec3L<F>;
+  const V p0 = load3<F, W>(in, kGP), p1 = load3<F, W>(in, kGP + 1), p2 = load3<F, W>(in, kGP + 2);
+  const V e[3] = {p2 - p1, p0 - p2, p1 - p0};
+  const V cr = cross(p2 - p1, p0 - p2);
+  const F len = lanes::sqrtLanes(dot(cr, cr));
+  const V n{cr.x / len, cr.y / len, cr.z / len};
+  const F inv = 1.0f / lanes::sqrtLanes(dot(e[0], e[0]));  // glm::normalize: v · inversesqrt(v·v)
+  const V t{e[0].x * inv, e[0].y * inv, e[0].z * inv};
+  const V b = cross(n, t);
+  auto ok = both(len > 0.0f, finite(len));
+  ok = both(ok, both(finite(n.x), both(finite(n.y), finite(n.z))));
+  ok = both(ok, both(finite(t.x), both(finite(t.y), finite(t.z))));
+  // Corner areas (cornerAreasOf).
+  const F area = 0.5f * len;
+  const F l2[3] = {dot(e[0], e[0]), dot(e[1], e[1]), dot(e[2], e[2])};
+  const F ew[3] = {l2[0] * (l2[1] + l2[2] - l2[0]), l2[1] * (l2[2] + l2[0] - l2[1]),
+                   l2[2] * (l2[0] + l2[1] - l2[2])};
+  const F scale = 0.5f * area / (ew[0] + ew[1] + ew[2]);
+  F corner[3];
+  for (int j = 0; j < 3; ++j) {
+    const int jn = j == 2 ? 0 : j + 1, jp = j == 0 ? 2 : j - 1;
+    corner[j] = scale * (ew[jn] + ew[jp]);
+  }
+  for (int j = 2; j >= 0; --j) {  // obtuse at corner j: the lowest such j decides
+    const int j1 = j == 2 ? 0 : j + 1, j2 = j == 0 ? 2 : j - 1;
+    F c[3];
+    c[j1] = -0.25f * l2[j2] * area / dot(e[j], e[j2]);
+    c[j2] = -0.25f * l2[j1] * area / dot(e[j], e[j1]);
+    c[j] = area - c[j1] - c[j2];
+    const auto obtuse = ew[j] <= 0.0f;
+    for (int i = 0; i < 3; ++i) {
+      const F clamped = select(both(finite(c[i]), c[i] >= 0.0f), c[i], F{});
+      corner[i] = select(obtuse, clamped, corner[i]);
+    }
+  }
+  auto put = [&](int k, const V& v) {
+    lanes::store(out + k * W, v.x);
+    lanes::store(out + (k + 1) * W, v.y);
+    lanes::store(out + (k + 2) * W, v.z);
+  };
+  put(kGN, n);
+  put(kGT, t);
+  put(kGB, b);
+  for (int j = 0; j < 3; ++j) {
+    const int jn = j == 2 ? 0 : j + 1, jp = j == 0 ? 2 : j - 1;
+    lanes::store(out + (kGCorner + j) * W, corner[j]);
+    lanes::store(out + (kGL2 + j) * W, l2[j]);
+    lanes::store(out + (kGDot + j) * W, dot(e[jp], e[jn]));
+  }
+  lanes::store(out + kGLen * W, len);
+  return ok;
+}
+
+LODLINE_AVX2_CLONES void faceGeometryLanes(const float* const* in, float* out, int32_t* ok) {
+  lanes::storeMask(ok, faceGeometry<lanes::FL, lanes::kWidth>(in, out));
+}
+
 // lanes::kWidth faces at once; built for AVX2 as well as the baseline, picked at load.
-LODLINE_AVX2_CLONES void curvatureFitLanes(const float* in, float* out, int32_t* ok) {
+LODLINE_AVX2_CLONES void curvatureFitLanes(const float* const* in, float* out, int32_t* ok) {
   lanes::storeMask(ok, curvatureFit<lanes::FL, lanes::kWidth>(in, out));
 }
-LODLINE_AVX2_CLONES void derivativeFitLanes(const float* in, float* out, int32_t* ok) {
+LODLINE_AVX2_CLONES void derivativeFitLanes(const float* const* in, float* out, int32_t* ok) {
   lanes::storeMask(ok, derivativeFit<lanes::FL, lanes::kWidth>(in, out));
 }
 
@@ -440,7 +525,8 @@ float sampledFeatureSize(const TriMesh& mesh, const MeshAdjacency& adj, float bo
   return computeFeatureSize(cache.k1().subspan(0, nsamp), cache.k2().subspan(0, nsamp), bounding_radius, params);
 }
 
-void ShapeCache::faceGeometry(const TriMesh& mesh, uint32_t f) {
+template <int W>
+void ShapeCache::storeFaceGeometry(uint32_t f, const float* out, int lane, bool ok) {
   FaceRecord& rec = faces_[f];
   rec.ok = 0;
   rec.corner = {0.0f, 0.0f, 0.0f};
@@ -448,28 +534,19 @@ void ShapeCache::faceGeometry(const TriMesh& mesh, uint32_t f) {
   rec.n = glm::vec3(0.0f);
   face_normals_[f] = face_t_[f] = face_b_[f] = glm::vec3(0.0f);
   corner_areas_[f] = {0.0f, 0.0f, 0.0f};
-  if (!adjacency_.face_valid[f]) return;
-  const auto& t = mesh.faces[f];
-  const glm::vec3& p0 = mesh.positions[t[0]];
-  const glm::vec3& p1 = mesh.positions[t[1]];
-  const glm::vec3& p2 = mesh.positions[t[2]];
-  const glm::vec3 e[3] = {p2 - p1, p0 - p2, p1 - p0};
-  const FaceNormal fn = faceNormalOf(p0, p1, p2);
-  const float len = fn.double_area;
-  if (!(len > 0.0f)) return;
-  const glm::vec3 n = fn.n;
-  const glm::vec3 tt = glm::normalize(e[0]);
-  const glm::vec3 b = glm::cross(n, tt);
-  if (!finite3(n) || !finite3(tt)) return;
+  if (!ok) return;
+  auto get = [&](int k) { return out[k * W + lane]; };
+  auto get3 = [&](int k) { return glm::vec3(get(k), get(k + 1), get(k + 2)); };
+  const glm::vec3 n = get3(fit::kGN);
   face_normals_[f] = n;
-  face_t_[f] = tt;
-  face_b_[f] = b;
-  cornerAreasOf(e, 0.5f * len, corner_areas_[f]);
+  face_t_[f] = get3(fit::kGT);
+  face_b_[f] = get3(fit::kGB);
+  corner_areas_[f] = {get(fit::kGCorner), get(fit::kGCorner + 1), get(fit::kGCorner + 2)};
   rec.corner = corner_areas_[f];
   rec.n = n;
   // Weight of this face's unit normal in each corner's vertex normal. Corner j sits between
   // the edges a = e[j-1] and b = −e[j+1], with |a × b| = len.
-  const float l2[3] = {glm::dot(e[0], e[0]), glm::dot(e[1], e[1]), glm::dot(e[2], e[2])};
+  const float len = get(fit::kGLen);
   for (int j = 0; j < 3; ++j) {
     const int jp = prevCorner(j), jn = nextCorner(j);
     switch (params_.normal_weighting) {
@@ -477,15 +554,41 @@ void ShapeCache::faceGeometry(const TriMesh& mesh, uint32_t f) {
         rec.normal_weight[j] = len;
         break;
       case NormalWeighting::kAngle:
-        rec.normal_weight[j] = std::atan2(len, -glm::dot(e[jp], e[jn]));
+        rec.normal_weight[j] = std::atan2(len, -get(fit::kGDot + j));
         break;
       case NormalWeighting::kMax:
-        rec.normal_weight[j] = len / (l2[jp] * l2[jn]);
+        rec.normal_weight[j] = len / (get(fit::kGL2 + jp) * get(fit::kGL2 + jn));
         break;
     }
     if (!std::isfinite(rec.normal_weight[j])) rec.normal_weight[j] = 0.0f;
   }
   rec.ok = kGeomOk;
+}
+
+void ShapeCache::faceGeometry(const TriMesh& mesh, uint32_t f) {
+  if (!adjacency_.face_valid[f]) return storeFaceGeometry<1>(f, nullptr, 0, false);
+  const auto& t = mesh.faces[f];
+  const float* in[fit::kGeomIn];
+  float out[fit::kGeomOut];
+  for (int j = 0; j < 3; ++j) in[fit::kGP + j] = &mesh.positions[t[j]].x;
+  const bool ok = fit::faceGeometry<float, 1>(in, out);
+  storeFaceGeometry<1>(f, out, 0, ok);
+}
+
+void ShapeCache::faceGeometryBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count) {
+  constexpr int W = lanes::kWidth;
+  const float* in[fit::kGeomIn * W];
+  std::fill(std::begin(in), std::end(in), kZeros);
+  alignas(32) float out[fit::kGeomOut * W];
+  alignas(32) int32_t ok[W];
+  for (uint32_t l = 0; l < count; ++l) {
+    if (!adjacency_.face_valid[faces[l]]) continue;
+    const auto& t = mesh.faces[faces[l]];
+    for (int j = 0; j < 3; ++j) in[(fit::kGP + j) * W + l] = &mesh.positions[t[j]].x;
+  }
+  fit::faceGeometryLanes(in, out, ok);
+  for (uint32_t l = 0; l < count; ++l)
+    storeFaceGeometry<W>(faces[l], out, static_cast<int>(l), ok[l] != 0 && adjacency_.face_valid[faces[l]]);
 }
 
 void ShapeCache::vertexNormal(uint32_t v) {
@@ -513,21 +616,16 @@ void ShapeCache::finishNormal(uint32_t v, glm::vec3 n, float area) {
 }
 
 template <int W>
-void ShapeCache::gatherCurvatureFit(const TriMesh& mesh, uint32_t f, float* in, int lane) const {
-  auto put = [&](int k, const glm::vec3& x) {
-    for (int i = 0; i < 3; ++i) in[(k + i) * W + lane] = x[i];
-  };
+void ShapeCache::gatherCurvatureFit(const TriMesh& mesh, uint32_t f, const float** src, int lane) const {
+  static_assert(sizeof(VertexFrame) == 9 * sizeof(float));
   const auto& t = mesh.faces[f];
   for (int j = 0; j < 3; ++j) {
-    const VertexFrame& fr = frames_[t[j]];
-    put(fit::kP + 3 * j, mesh.positions[t[j]]);
-    put(fit::kN + 3 * j, fr.n);
-    put(fit::kU + 3 * j, fr.u);
-    put(fit::kW + 3 * j, fr.w);
+    src[(fit::kP + j) * W + lane] = &mesh.positions[t[j]].x;
+    src[(fit::kFrame + j) * W + lane] = reinterpret_cast<const float*>(&frames_[t[j]]);
   }
-  put(fit::kFt, face_t_[f]);
-  put(fit::kFb, face_b_[f]);
-  put(fit::kFn, face_normals_[f]);
+  src[fit::kFt * W + lane] = &face_t_[f].x;
+  src[fit::kFb * W + lane] = &face_b_[f].x;
+  src[fit::kFn * W + lane] = &face_normals_[f].x;
 }
 
 template <int W>
@@ -546,7 +644,8 @@ void ShapeCache::storeCurvatureFit(uint32_t f, const float* out, int lane, bool 
 
 void ShapeCache::faceCurvatureFit(const TriMesh& mesh, uint32_t f) {
   if (!(faces_[f].ok & kGeomOk)) return storeCurvatureFit<1>(f, nullptr, 0, false);
-  float in[fit::kCurvIn], out[fit::kCurvOut];
+  const float* in[fit::kCurvIn];
+  float out[fit::kCurvOut];
   gatherCurvatureFit<1>(mesh, f, in, 0);
   const bool ok = fit::curvatureFit<float, 1>(in, out);
   storeCurvatureFit<1>(f, out, 0, ok);
@@ -555,7 +654,8 @@ void ShapeCache::faceCurvatureFit(const TriMesh& mesh, uint32_t f) {
 void ShapeCache::curvatureFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count,
                                    float* out) {
   constexpr int W = lanes::kWidth;
-  alignas(32) float in[fit::kCurvIn * W] = {};
+  const float* in[fit::kCurvIn * W];
+  std::fill(std::begin(in), std::end(in), kZeros);
   alignas(32) int32_t ok[W];
   for (uint32_t l = 0; l < count; ++l)
     if (faces_[faces[l]].ok & kGeomOk) gatherCurvatureFit<W>(mesh, faces[l], in, static_cast<int>(l));
@@ -619,20 +719,15 @@ void ShapeCache::finishCurvature(uint32_t v, glm::vec3 k, float wsum) {
 }
 
 template <int W>
-void ShapeCache::gatherDerivativeFit(const TriMesh& mesh, uint32_t f, float* in, int lane) const {
-  auto put = [&](int k, const auto& x, int n) {
-    for (int i = 0; i < n; ++i) in[(k + i) * W + lane] = x[i];
-  };
+void ShapeCache::gatherDerivativeFit(const TriMesh& mesh, uint32_t f, const float** src, int lane) const {
   const auto& t = mesh.faces[f];
-  const FaceRecord& rec = faces_[f];
   for (int j = 0; j < 3; ++j) {
-    put(fit::kDP + 3 * j, mesh.positions[t[j]], 3);
-    put(fit::kDRel + 4 * j, rec.rel[j], 4);
-    // Principal axes in face coordinates; transposed: face axes in principal coordinates.
-    put(fit::kDKab + 4 * j, vertex_kab_[t[j]], 4);
+    src[(fit::kDP + j) * W + lane] = &mesh.positions[t[j]].x;
+    src[(fit::kDKab + j) * W + lane] = &vertex_kab_[t[j]].x;
   }
-  put(fit::kDFt, face_t_[f], 3);
-  put(fit::kDFb, face_b_[f], 3);
+  src[fit::kDRel * W + lane] = &faces_[f].rel[0].x;  // the three corners' relations, 12 floats
+  src[fit::kDFt * W + lane] = &face_t_[f].x;
+  src[fit::kDFb * W + lane] = &face_b_[f].x;
 }
 
 template <int W>
@@ -647,7 +742,8 @@ void ShapeCache::storeDerivativeFit(uint32_t f, const float* out, int lane, bool
 
 void ShapeCache::faceDerivativeFit(const TriMesh& mesh, uint32_t f) {
   if (!(faces_[f].ok & kGeomOk)) return storeDerivativeFit<1>(f, nullptr, 0, false);
-  float in[fit::kDerivIn], out[fit::kDerivOut];
+  const float* in[fit::kDerivIn];
+  float out[fit::kDerivOut];
   gatherDerivativeFit<1>(mesh, f, in, 0);
   const bool ok = fit::derivativeFit<float, 1>(in, out);
   storeDerivativeFit<1>(f, out, 0, ok);
@@ -656,7 +752,8 @@ void ShapeCache::faceDerivativeFit(const TriMesh& mesh, uint32_t f) {
 void ShapeCache::derivativeFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count,
                                     float* out) {
   constexpr int W = lanes::kWidth;
-  alignas(32) float in[fit::kDerivIn * W] = {};
+  const float* in[fit::kDerivIn * W];
+  std::fill(std::begin(in), std::end(in), kZeros);
   alignas(32) int32_t ok[W];
   for (uint32_t l = 0; l < count; ++l)
     if (faces_[faces[l]].ok & kGeomOk) gatherDerivativeFit<W>(mesh, faces[l], in, static_cast<int>(l));
@@ -702,22 +799,27 @@ void ShapeCache::computeScattered(const TriMesh& mesh, bool eager_derivatives) {
   const uint8_t* valid = adjacency_.face_valid.data();
   sum_.assign(nv, glm::vec4(0.0f));
   sum_w_.assign(nv, 0.0f);
+  constexpr uint32_t W = lanes::kWidth;
   // Normals and point areas: every face of a ring (a valid face) adds to its corners.
-  for (uint32_t f = 0; f < nf; ++f) {
-    faceGeometry(mesh, f);
-    if (!valid[f]) continue;
-    const FaceRecord& rec = faces_[f];
-    for (int j = 0; j < 3; ++j) {
-      const uint32_t v = mesh.faces[f][j];
-      sum_w_[v] += rec.corner[j];
-      sum_[v] += glm::vec4(rec.normal_weight[j] * rec.n, 0.0f);
+  for (uint32_t f0 = 0; f0 < nf; f0 += W) {
+    const uint32_t count = std::min<uint32_t>(W, nf - f0);
+    uint32_t block[W];
+    for (uint32_t l = 0; l < count; ++l) block[l] = f0 + l;
+    faceGeometryBlock(mesh, block, count);
+    for (uint32_t f = f0; f < f0 + count; ++f) {
+      if (!valid[f]) continue;
+      const FaceRecord& rec = faces_[f];
+      for (int j = 0; j < 3; ++j) {
+        const uint32_t v = mesh.faces[f][j];
+        sum_w_[v] += rec.corner[j];
+        sum_[v] += glm::vec4(rec.normal_weight[j] * rec.n, 0.0f);
+      }
     }
   }
   for (uint32_t v = 0; v < nv; ++v) finishNormal(v, glm::vec3(sum_[v]), sum_w_[v]);
   // Curvature, then derivatives. The fits run lanes::kWidth faces at a time (fit_lanes.h); then each
   // of those faces with a fit (`ok_bit`) adds its corners' terms, computed with the fit as
   // vertexCurvature() and vertexDerivative() compute them, where the corner weight is positive.
-  constexpr uint32_t W = lanes::kWidth;
   alignas(32) float out[std::max(fit::kCurvOut, fit::kDerivOut) * W];
   auto scatter = [&](auto fit_block, uint8_t ok_bit, int term_row, int term_size) {
     std::fill(sum_.begin(), sum_.end(), glm::vec4(0.0f));
@@ -798,12 +900,28 @@ void ShapeCache::compute(const TriMesh& mesh) {
   } else {
     // Each phase reads only what the previous phases finished and writes only its own face
     // or vertex, so the loops split over threads without changing a bit of the result.
-    parallelFor(nf, [&](uint32_t f) { faceGeometry(mesh, f); });
+    // The face kernels run lanes::kWidth faces at a time, as on one thread.
+    constexpr uint32_t W = lanes::kWidth;
+    auto blocks = [&](auto block_fn) {
+      parallelFor((nf + W - 1) / W, [&](uint32_t b) {
+        uint32_t faces[W];
+        const uint32_t count = std::min<uint32_t>(W, nf - b * W);
+        for (uint32_t l = 0; l < count; ++l) faces[l] = b * W + l;
+        block_fn(faces, count);
+      });
+    };
+    blocks([&](const uint32_t* faces, uint32_t count) { faceGeometryBlock(mesh, faces, count); });
     parallelFor(nv, [&](uint32_t v) { vertexNormal(v); });
-    parallelFor(nf, [&](uint32_t f) { faceCurvatureFit(mesh, f); });
+    blocks([&](const uint32_t* faces, uint32_t count) {
+      alignas(32) float out[fit::kCurvOut * W];
+      curvatureFitBlock(mesh, faces, count, out);
+    });
     parallelFor(nv, [&](uint32_t v) { vertexCurvature(v); });
     if (eager) {
-      parallelFor(nf, [&](uint32_t f) { faceDerivativeFit(mesh, f); });
+      blocks([&](const uint32_t* faces, uint32_t count) {
+        alignas(32) float out[fit::kDerivOut * W];
+        derivativeFitBlock(mesh, faces, count, out);
+      });
       parallelFor(nv, [&](uint32_t v) { vertexDerivative(v); });
     }
   }

@@ -211,19 +211,24 @@ class ShapeCache {
   void vertexCurvature(uint32_t v);
   void faceDerivativeFit(const TriMesh& mesh, uint32_t f);
   void vertexDerivative(uint32_t v);
+  // faceGeometry for up to lanes::kWidth faces at once, and one face's results back.
+  void faceGeometryBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count);
+  template <int W>
+  void storeFaceGeometry(uint32_t f, const float* out, int lane, bool ok);
   // The two fits for up to lanes::kWidth faces at once, `faces[0 .. count)`: the same bits
   // as the one-face kernels above (shape/fit_lanes.h).
   // `out` receives the fits' rows, kWidth floats wide, with each corner's term for its
   // vertex's sum (computeScattered()).
   void curvatureFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count, float* out);
   void derivativeFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count, float* out);
-  // A fit's inputs for face f into lane `lane` of rows W wide, and its results back.
+  // Where a fit finds face f's inputs (lane `lane` of the kernel's sources, fit_lanes.h), and
+  // its results back.
   template <int W>
-  void gatherCurvatureFit(const TriMesh& mesh, uint32_t f, float* in, int lane) const;
+  void gatherCurvatureFit(const TriMesh& mesh, uint32_t f, const float** src, int lane) const;
   template <int W>
   void storeCurvatureFit(uint32_t f, const float* out, int lane, bool ok);
   template <int W>
-  void gatherDerivativeFit(const TriMesh& mesh, uint32_t f, float* in, int lane) const;
+  void gatherDerivativeFit(const TriMesh& mesh, uint32_t f, const float** src, int lane) const;
   template <int W>
   void storeDerivativeFit(uint32_t f, const float* out, int lane, bool ok);
   // The vertex kernels' last step, from the ring's sums (shared by gather and scatter).
