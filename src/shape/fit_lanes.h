@@ -1,11 +1,12 @@
-// Lane types for the per-face fits of shape_cache.cpp: the same source computes one face
-// (float, double, bool masks) or kWidth faces at once (GCC vector extensions: floats,
-// doubles, and their comparison masks). Every operation is an IEEE operation applied
-// lane by lane, in the order written, and the build fuses no multiply-adds
-// (-ffp-contract=off, CMakeLists.txt), so each lane of the several-face form computes the bits
-// the one-face form computes for that face: the full compute (kWidth at a time) and the
-// incremental updates (one face at a time) agree bit for bit (docs/design.md, convention 18).
-// Branches become selects: both sides are computed and the mask picks one.
+// Lane types for the per-face kernels of shape_cache.cpp (face geometry, curvature fit,
+// derivative fit): kWidth faces at once, with GCC vector extensions (floats, doubles and
+// their comparison masks; clang accepts them too). Every operation is an IEEE operation
+// applied lane by lane, in the order written, and the build fuses no multiply-adds
+// (-ffp-contract=off, CMakeLists.txt), so a face's results do not depend on its lane, on the
+// other faces of its block or on the clone (AVX2 or baseline) the machine picks: the full
+// compute (every face, in order) and the incremental updates (the changed faces, in any
+// grouping) agree bit for bit. Branches become selects: both sides are computed and the mask
+// picks one.
 #pragma once
 
 #include <cstdint>
@@ -24,27 +25,18 @@ using DL = double __attribute__((vector_size(8 * kWidth)));
 using MFL = int32_t __attribute__((vector_size(4 * kWidth)));  // mask of a float comparison
 using MDL = int64_t __attribute__((vector_size(8 * kWidth)));  // mask of a double comparison
 
-inline double toDouble(float x) { return static_cast<double>(x); }
 inline DL toDouble(FL x) { return __builtin_convertvector(x, DL); }
-inline float toFloat(double x) { return static_cast<float>(x); }
 inline FL toFloat(DL x) { return __builtin_convertvector(x, FL); }
-inline bool toDoubleMask(bool m) { return m; }
-inline MDL toDoubleMask(MFL m) { return __builtin_convertvector(m, MDL); }
-inline bool toFloatMask(bool m) { return m; }
 inline MFL toFloatMask(MDL m) { return __builtin_convertvector(m, MFL); }
 
-inline bool both(bool a, bool b) { return a && b; }
 inline MFL both(MFL a, MFL b) { return a & b; }
 inline MDL both(MDL a, MDL b) { return a & b; }
 
 /// m ? a : b, lane by lane.
-inline float select(bool m, float a, float b) { return m ? a : b; }
-inline double select(bool m, double a, double b) { return m ? a : b; }
 inline FL select(MFL m, FL a, FL b) { return m ? a : b; }
 inline DL select(MDL m, DL a, DL b) { return m ? a : b; }
 
 /// Square root, lane by lane (exact IEEE, as std::sqrt).
-inline float sqrtLanes(float x) { return __builtin_sqrtf(x); }
 inline FL sqrtLanes(FL x) {
   FL r;
   for (int i = 0; i < kWidth; ++i) r[i] = __builtin_sqrtf(x[i]);
@@ -86,41 +78,16 @@ inline T dot(const Vec3L<T>& a, const Vec3L<T>& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 
-}  // namespace lodline::lanes
 
-namespace lodline::lanes {
-
-/// W consecutive floats from p as one value of F (W = 1 for float, 8 for FL).
-template <class F>
-inline F load(const float* p);
-template <>
-inline float load<float>(const float* p) {
-  return *p;
-}
-template <>
-inline FL load<FL>(const float* p) {
-  FL v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
-}
-/// Float k of each lane's source: src[lane][k] for lane 0 .. W − 1, one value of F. Built
-/// from scalar loads: staging the lanes through memory and loading them as one vector would
-/// stall on store forwarding.
-template <class F>
-inline F gather(const float* const* src, int k);
-template <>
-inline float gather<float>(const float* const* src, int k) {
-  return src[0][k];
-}
-template <>
-inline FL gather<FL>(const float* const* src, int k) {
+/// Float k of each lane's source, src[lane][k], as one vector. Built from scalar loads:
+/// staging the lanes through memory and loading them as one vector would stall on store
+/// forwarding.
+inline FL gather(const float* const* src, int k) {
   static_assert(kWidth == 4);
   return FL{src[0][k], src[1][k], src[2][k], src[3][k]};
 }
 
-inline void store(float* p, float v) { *p = v; }
 inline void store(float* p, FL v) { __builtin_memcpy(p, &v, sizeof v); }
-inline void storeMask(int32_t* p, bool m) { *p = m ? -1 : 0; }
 inline void storeMask(int32_t* p, MFL m) { __builtin_memcpy(p, &m, sizeof m); }
 
 }  // namespace lodline::lanes

@@ -63,36 +63,6 @@ inline void cornerAreasOf(const glm::vec3 e[3], float area, std::array<float, 3>
   for (int j = 0; j < 3; ++j) out[j] = scale * (ew[nextCorner(j)] + ew[prevCorner(j)]);
 }
 
-// Rotates the frame (old_u, old_v) of normal old_n about old_n × new_n so that it becomes
-// perpendicular to new_n (Rusinkiewicz 2004 §3, "rotating the coordinate system").
-inline void rotateFrame(const glm::vec3& old_u, const glm::vec3& old_v, const glm::vec3& old_n,
-                        const glm::vec3& new_n, glm::vec3& new_u, glm::vec3& new_v) {
-  new_u = old_u;
-  new_v = old_v;
-  const float ndot = glm::dot(old_n, new_n);
-  if (ndot <= -1.0f) {
-    new_u = -new_u;
-    new_v = -new_v;
-    return;
-  }
-  const glm::vec3 perp_old = new_n - ndot * old_n;
-  const glm::vec3 dperp = (1.0f / (1.0f + ndot)) * (old_n + new_n);
-  new_u -= dperp * glm::dot(new_u, perp_old);
-  new_v -= dperp * glm::dot(new_v, perp_old);
-}
-
-// The relation between two tangent frames at a corner, after rotating one into the
-// other's plane (Rusinkiewicz 2004 §3): m = (u1, v1, u2, v2) where (u1, v1) and (u2, v2) are
-// the coordinates of the new frame's first and second axis in the old frame.
-inline glm::vec4 frameRelation(const glm::vec3& old_u, const glm::vec3& old_v,
-                               const glm::vec3& old_n, const glm::vec3& new_u,
-                               const glm::vec3& new_v, const glm::vec3& new_n) {
-  glm::vec3 r_u, r_v;
-  rotateFrame(new_u, new_v, new_n, old_n, r_u, r_v);
-  return {glm::dot(r_u, old_u), glm::dot(r_u, old_v), glm::dot(r_v, old_u),
-          glm::dot(r_v, old_v)};
-}
-
 // Re-expresses the second fundamental form k = (ku, kuv, kv) of the old frame in the new
 // frame whose axes have old-frame coordinates m = (u1, v1, u2, v2).
 inline glm::vec3 projectCurvature(const glm::vec3& k, const glm::vec4& m) {
@@ -132,7 +102,7 @@ inline glm::vec4 principalInFace(const glm::vec4& m, const glm::vec2& ab) {
 // One division in all, where LDLᵀ divides N + N − 1 times in a dependent chain. The mask is
 // false (x then holds garbage) when a pivot θ_(k+1)/θ_k of that LDLᵀ is not clearly positive
 // (a degenerate face), tested without dividing as θ_(k+1) > 1e-10·scale·θ_k, or when the
-// solution is not finite. D is double, or lanes of doubles (fit_lanes.h).
+// solution is not finite. D is lanes::DL (fit_lanes.h).
 template <int N, class D>
 [[gnu::always_inline]] inline auto solveSymTridiagonal(const D (&d)[N], const D (&o)[N - 1], D (&x)[N]) {
   using lanes::both;
@@ -174,10 +144,13 @@ template <int N, class D>
   return ok;
 }
 
-// The per-face fits of Rusinkiewicz 2004 §3–§4, written once for one face (F = float) and
-// for lanes::kWidth faces at a time (F = lanes::FL; fit_lanes.h). Their inputs and outputs travel as
-// rows of W floats, one per lane: `in[k * W + lane]`.
+// The per-face kernels (face geometry; the fits of Rusinkiewicz 2004 §3–§4), for
+// lanes::kWidth faces at a time (fit_lanes.h). Their outputs travel as rows of W floats, one
+// per lane: `out[k * W + lane]`.
 namespace fit {
+
+using F = lanes::FL;
+constexpr int W = lanes::kWidth;
 
 // The kernels read their inputs through `src[group * W + lane]`: per group of inputs, a
 // pointer to the floats of that group for each lane (lanes::gather).
@@ -194,32 +167,33 @@ constexpr int kDP = 0, kDFt = 3, kDFb = 4, kDRel = 5, kDKab = 6, kDerivIn = 9;
 constexpr int kDcurv = 0, kDcurvTerm = 4, kDerivOut = 16;
 
 // Three consecutive floats from offset k of input group g.
-template <class F, int W>
 inline lanes::Vec3L<F> load3(const float* const* src, int g, int k = 0) {
-  return {lanes::gather<F>(src + g * W, k), lanes::gather<F>(src + g * W, k + 1),
-          lanes::gather<F>(src + g * W, k + 2)};
+  return {lanes::gather(src + g * W, k), lanes::gather(src + g * W, k + 1),
+          lanes::gather(src + g * W, k + 2)};
 }
 
-// The face frame relative to each corner's vertex frame (rotateFrame/frameRelation, here
-// with selects for the antipodal case), then the least-squares fit of the second fundamental
-// form to the normal differences along the three edges. Returns the fit's mask.
-template <class F, int W>
+// The face frame relative to each corner's vertex frame (Rusinkiewicz 2004 §3, "rotating the
+// coordinate system": the vertex frame is turned about n_v × n_f into the face's plane, and
+// the relation is its axes' coordinates in the face frame; an antipodal normal flips it),
+// then the least-squares fit of the second fundamental form to the normal differences along
+// the three edges. Returns the fit's mask.
 [[gnu::always_inline]] inline auto curvatureFit(const float* const* in, float* out) {
   using lanes::dot;
   using lanes::select;
   using lanes::toDouble;
   using V = lanes::Vec3L<F>;
-  using D = decltype(toDouble(F{}));
+  using D = lanes::DL;
   V p[3], n[3], u[3], w[3];
   for (int j = 0; j < 3; ++j) {
-    p[j] = load3<F, W>(in, kP + j);
-    n[j] = load3<F, W>(in, kFrame + j, 0);
-    u[j] = load3<F, W>(in, kFrame + j, 3);
-    w[j] = load3<F, W>(in, kFrame + j, 6);
+    p[j] = load3(in, kP + j);
+    n[j] = load3(in, kFrame + j, 0);
+    u[j] = load3(in, kFrame + j, 3);
+    w[j] = load3(in, kFrame + j, 6);
   }
-  const V ft = load3<F, W>(in, kFt), fb = load3<F, W>(in, kFb), fn = load3<F, W>(in, kFn);
+  const V ft = load3(in, kFt), fb = load3(in, kFb), fn = load3(in, kFn);
+  F rel[3][4];
   for (int j = 0; j < 3; ++j) {
-    // rotateFrame(u_j, w_j, n_j, fn): the vertex frame turned into the face's plane.
+    // The vertex frame (u_j, w_j) of normal n_j turned into the plane of fn.
     const F ndot = dot(n[j], fn);
     const V perp_old = fn - ndot * n[j];
     const V dperp = (1.0f / (1.0f + ndot)) * (n[j] + fn);
@@ -228,10 +202,11 @@ template <class F, int W>
     const auto flip = ndot <= -1.0f;
     const V fu{select(flip, -u[j].x, ru.x), select(flip, -u[j].y, ru.y), select(flip, -u[j].z, ru.z)};
     const V fv{select(flip, -w[j].x, rv.x), select(flip, -w[j].y, rv.y), select(flip, -w[j].z, rv.z)};
-    lanes::store(out + (kRel + 4 * j) * W, dot(fu, ft));
-    lanes::store(out + (kRel + 4 * j + 1) * W, dot(fu, fb));
-    lanes::store(out + (kRel + 4 * j + 2) * W, dot(fv, ft));
-    lanes::store(out + (kRel + 4 * j + 3) * W, dot(fv, fb));
+    rel[j][0] = dot(fu, ft);
+    rel[j][1] = dot(fu, fb);
+    rel[j][2] = dot(fv, ft);
+    rel[j][3] = dot(fv, fb);
+    for (int i = 0; i < 4; ++i) lanes::store(out + (kRel + 4 * j + i) * W, rel[j][i]);
   }
   D a{}, b{}, c{}, m[3] = {D{}, D{}, D{}};
   for (int j = 0; j < 3; ++j) {
@@ -256,8 +231,7 @@ template <class F, int W>
   for (int i = 0; i < 3; ++i) lanes::store(out + (kCurv + i) * W, k[i]);
   // projectCurvature(k, rel[j]) for each corner.
   for (int j = 0; j < 3; ++j) {
-    const F u1 = lanes::load<F>(out + (kRel + 4 * j) * W), v1 = lanes::load<F>(out + (kRel + 4 * j + 1) * W);
-    const F u2 = lanes::load<F>(out + (kRel + 4 * j + 2) * W), v2 = lanes::load<F>(out + (kRel + 4 * j + 3) * W);
+    const F u1 = rel[j][0], v1 = rel[j][1], u2 = rel[j][2], v2 = rel[j][3];
     lanes::store(out + (kCurvTerm + 3 * j) * W, k[0] * u1 * u1 + k[1] * (2.0f * u1 * v1) + k[2] * v1 * v1);
     lanes::store(out + (kCurvTerm + 3 * j + 1) * W, k[0] * u1 * u2 + k[1] * (u1 * v2 + u2 * v1) + k[2] * v1 * v2);
     lanes::store(out + (kCurvTerm + 3 * j + 2) * W, k[0] * u2 * u2 + k[1] * (2.0f * u2 * v2) + k[2] * v2 * v2);
@@ -267,23 +241,22 @@ template <class F, int W>
 
 // Each corner's curvature re-expressed in the face frame, then the least-squares fit of the
 // derivative tensor C to its differences along the three edges (Rusinkiewicz 2004 §4).
-template <class F, int W>
 [[gnu::always_inline]] inline auto derivativeFit(const float* const* in, float* out) {
   using lanes::dot;
   using lanes::toDouble;
   using V = lanes::Vec3L<F>;
-  using D = decltype(toDouble(F{}));
+  using D = lanes::DL;
   V p[3], fcurv[3];
   F principal[3][4];  // principalInFace per corner
-  const V ft = load3<F, W>(in, kDFt), fb = load3<F, W>(in, kDFb);
+  const V ft = load3(in, kDFt), fb = load3(in, kDFb);
   for (int j = 0; j < 3; ++j) {
-    p[j] = load3<F, W>(in, kDP + j);
+    p[j] = load3(in, kDP + j);
     const float* const* rel = in + kDRel * W;
     const float* const* kab = in + (kDKab + j) * W;
-    const F m0 = lanes::gather<F>(rel, 4 * j), m1 = lanes::gather<F>(rel, 4 * j + 1);
-    const F m2 = lanes::gather<F>(rel, 4 * j + 2), m3 = lanes::gather<F>(rel, 4 * j + 3);
-    const F k0 = lanes::gather<F>(kab, 0), k2 = lanes::gather<F>(kab, 1);
-    const F pa = lanes::gather<F>(kab, 2), pb = lanes::gather<F>(kab, 3);
+    const F m0 = lanes::gather(rel, 4 * j), m1 = lanes::gather(rel, 4 * j + 1);
+    const F m2 = lanes::gather(rel, 4 * j + 2), m3 = lanes::gather(rel, 4 * j + 3);
+    const F k0 = lanes::gather(kab, 0), k2 = lanes::gather(kab, 1);
+    const F pa = lanes::gather(kab, 2), pb = lanes::gather(kab, 3);
     // principalInFace: the principal axes in face coordinates (u1, v1, u2, v2).
     const F q0 = pa * m0 + pb * m2, q1 = pa * m1 + pb * m3, q2 = -pb * m0 + pa * m2, q3 = -pb * m1 + pa * m3;
     // projectCurvature((k1, 0, k2), (q0, q2, q1, q3)): the face axes in principal coordinates.
@@ -346,14 +319,13 @@ template <class T>
 // faceNormalOf, glm::normalize and cornerAreasOf over lanes (the obtuse cases as selects,
 // the first obtuse corner winning as in cornerAreasOf's loop). Returns the mask of faces with
 // a finite normal, a positive area and a finite edge direction.
-template <class F, int W>
 [[gnu::always_inline]] inline auto faceGeometry(const float* const* in, float* out) {
   using lanes::both;
   using lanes::dot;
   using lanes::finite;
   using lanes::select;
   using V = lanes::Vec3L<F>;
-  const V p0 = load3<F, W>(in, kGP), p1 = load3<F, W>(in, kGP + 1), p2 = load3<F, W>(in, kGP + 2);
+  const V p0 = load3(in, kGP), p1 = load3(in, kGP + 1), p2 = load3(in, kGP + 2);
   const V e[3] = {p2 - p1, p0 - p2, p1 - p0};
   const V cr = cross(p2 - p1, p0 - p2);
   const F len = lanes::sqrtLanes(dot(cr, cr));
@@ -406,15 +378,15 @@ template <class F, int W>
 }
 
 LODLINE_AVX2_CLONES void faceGeometryLanes(const float* const* in, float* out, int32_t* ok) {
-  lanes::storeMask(ok, faceGeometry<lanes::FL, lanes::kWidth>(in, out));
+  lanes::storeMask(ok, faceGeometry(in, out));
 }
 
 // lanes::kWidth faces at once; built for AVX2 as well as the baseline, picked at load.
 LODLINE_AVX2_CLONES void curvatureFitLanes(const float* const* in, float* out, int32_t* ok) {
-  lanes::storeMask(ok, curvatureFit<lanes::FL, lanes::kWidth>(in, out));
+  lanes::storeMask(ok, curvatureFit(in, out));
 }
 LODLINE_AVX2_CLONES void derivativeFitLanes(const float* const* in, float* out, int32_t* ok) {
-  lanes::storeMask(ok, derivativeFit<lanes::FL, lanes::kWidth>(in, out));
+  lanes::storeMask(ok, derivativeFit(in, out));
 }
 
 }  // namespace fit
@@ -565,16 +537,6 @@ void ShapeCache::storeFaceGeometry(uint32_t f, const float* out, int lane, bool 
   rec.ok = kGeomOk;
 }
 
-void ShapeCache::faceGeometry(const TriMesh& mesh, uint32_t f) {
-  if (!adjacency_.face_valid[f]) return storeFaceGeometry<1>(f, nullptr, 0, false);
-  const auto& t = mesh.faces[f];
-  const float* in[fit::kGeomIn];
-  float out[fit::kGeomOut];
-  for (int j = 0; j < 3; ++j) in[fit::kGP + j] = &mesh.positions[t[j]].x;
-  const bool ok = fit::faceGeometry<float, 1>(in, out);
-  storeFaceGeometry<1>(f, out, 0, ok);
-}
-
 void ShapeCache::faceGeometryBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count) {
   constexpr int W = lanes::kWidth;
   const float* in[fit::kGeomIn * W];
@@ -640,15 +602,6 @@ void ShapeCache::storeCurvatureFit(uint32_t f, const float* out, int lane, bool 
   if (!ok) return;
   for (int i = 0; i < 3; ++i) rec.curv[i] = out[(fit::kCurv + i) * W + lane];
   rec.ok |= kCurvOk;
-}
-
-void ShapeCache::faceCurvatureFit(const TriMesh& mesh, uint32_t f) {
-  if (!(faces_[f].ok & kGeomOk)) return storeCurvatureFit<1>(f, nullptr, 0, false);
-  const float* in[fit::kCurvIn];
-  float out[fit::kCurvOut];
-  gatherCurvatureFit<1>(mesh, f, in, 0);
-  const bool ok = fit::curvatureFit<float, 1>(in, out);
-  storeCurvatureFit<1>(f, out, 0, ok);
 }
 
 void ShapeCache::curvatureFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count,
@@ -738,15 +691,6 @@ void ShapeCache::storeDerivativeFit(uint32_t f, const float* out, int lane, bool
   if (!(rec.ok & kGeomOk) || !ok) return;
   for (int i = 0; i < 4; ++i) rec.dcurv[i] = out[(fit::kDcurv + i) * W + lane];
   rec.ok |= kDcurvOk;
-}
-
-void ShapeCache::faceDerivativeFit(const TriMesh& mesh, uint32_t f) {
-  if (!(faces_[f].ok & kGeomOk)) return storeDerivativeFit<1>(f, nullptr, 0, false);
-  const float* in[fit::kDerivIn];
-  float out[fit::kDerivOut];
-  gatherDerivativeFit<1>(mesh, f, in, 0);
-  const bool ok = fit::derivativeFit<float, 1>(in, out);
-  storeDerivativeFit<1>(f, out, 0, ok);
 }
 
 void ShapeCache::derivativeFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count,
@@ -996,6 +940,25 @@ void ShapeCache::forEachMarked(bool faces, size_t count, uint8_t max_level, Fn&&
   }
 }
 
+template <class Fn>
+void ShapeCache::forEachBlock(const uint32_t* list, size_t n, Fn&& block_fn) {
+  constexpr size_t W = lanes::kWidth;
+  parallelFor((n + W - 1) / W, [&](uint32_t b) {
+    const size_t first = static_cast<size_t>(b) * W;
+    block_fn(list + first, static_cast<uint32_t>(std::min(W, n - first)));
+  });
+}
+
+template <class Fn>
+void ShapeCache::forEachMarkedFaceBlock(size_t count, uint8_t max_level, Fn&& block_fn) {
+  if (count * 16 < face_stamp_.size()) return forEachBlock(inc_faces_.data(), count, block_fn);
+  // Many: in memory order, as forEachMarked.
+  marked_faces_.clear();
+  for (uint32_t f = 0; f < face_stamp_.size(); ++f)
+    if (face_stamp_[f] == stamp_ && face_level_[f] <= max_level) marked_faces_.push_back(f);
+  forEachBlock(marked_faces_.data(), marked_faces_.size(), block_fn);
+}
+
 void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_vertices) {
   const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
   const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
@@ -1048,7 +1011,7 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
         for (uint32_t v : faces_copy_[f]) seed(v);
       if (f < nf) {
         for (uint32_t v : mesh.faces[f]) seed(v);
-        if (!adjacency_.face_valid[f]) faceGeometry(mesh, f);
+        if (!adjacency_.face_valid[f]) storeFaceGeometry<1>(f, nullptr, 0, false);
       }
     }
     for (uint32_t v = old_nv; v < nv; ++v) seed(v);
@@ -1091,13 +1054,21 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
     stats_.adjacency_in_place = in_place;
     return;
   }
-  forEachMarked(true, n1, 1, [&](uint32_t f) { faceGeometry(mesh, f); });
+  // The face kernels run lanes::kWidth faces at a time (fit_lanes.h), as in compute().
+  constexpr int W = lanes::kWidth;
+  forEachMarkedFaceBlock(n1, 1, [&](const uint32_t* faces, uint32_t count) { faceGeometryBlock(mesh, faces, count); });
   forEachMarked(false, m1, 1, [&](uint32_t v) { vertexNormal(v); });
-  forEachMarked(true, n2, 2, [&](uint32_t f) { faceCurvatureFit(mesh, f); });
+  forEachMarkedFaceBlock(n2, 2, [&](const uint32_t* faces, uint32_t count) {
+    alignas(32) float out[fit::kCurvOut * W];
+    curvatureFitBlock(mesh, faces, count, out);
+  });
   forEachMarked(false, m2, 2, [&](uint32_t v) { vertexCurvature(v); });
   const bool eager = params_.derivatives && !params_.lazy_derivatives;
   if (eager) {
-    forEachMarked(true, n3, 3, [&](uint32_t f) { faceDerivativeFit(mesh, f); });
+    forEachMarkedFaceBlock(n3, 3, [&](const uint32_t* faces, uint32_t count) {
+      alignas(32) float out[fit::kDerivOut * W];
+      derivativeFitBlock(mesh, faces, count, out);
+    });
     forEachMarked(false, m3, 3, [&](uint32_t v) { vertexDerivative(v); });
   } else if (params_.lazy_derivatives) {  // F3 and V3 hold stale fits and tensors now
     for (size_t k = 0; k < n3; ++k) face_dgen_[inc_faces_[k]] = 0;
@@ -1135,7 +1106,10 @@ void ShapeCache::ensureDerivatives(const TriMesh& mesh, std::span<const uint32_t
   // In memory order: the requests come in edge order, scattered over the arrays.
   std::sort(ens_faces_.begin(), ens_faces_.end());
   std::sort(ens_verts_.begin(), ens_verts_.end());
-  parallelFor(ens_faces_.size(), [&](uint32_t k) { faceDerivativeFit(mesh, ens_faces_[k]); });
+  forEachBlock(ens_faces_.data(), ens_faces_.size(), [&](const uint32_t* faces, uint32_t count) {
+    alignas(32) float out[fit::kDerivOut * lanes::kWidth];
+    derivativeFitBlock(mesh, faces, count, out);
+  });
   parallelFor(ens_verts_.size(), [&](uint32_t k) { vertexDerivative(ens_verts_[k]); });
   last_ensured_ = static_cast<uint32_t>(ens_verts_.size());
 }

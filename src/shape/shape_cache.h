@@ -205,11 +205,8 @@ class ShapeCache {
 
  private:
   void resize(uint32_t nv, uint32_t nf);
-  void faceGeometry(const TriMesh& mesh, uint32_t f);
   void vertexNormal(uint32_t v);
-  void faceCurvatureFit(const TriMesh& mesh, uint32_t f);
   void vertexCurvature(uint32_t v);
-  void faceDerivativeFit(const TriMesh& mesh, uint32_t f);
   void vertexDerivative(uint32_t v);
   // faceGeometry for up to lanes::kWidth faces at once, and one face's results back.
   void faceGeometryBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count);
@@ -246,6 +243,12 @@ class ShapeCache {
   // order when few, in index order when many.
   template <class Fn>
   void forEachMarked(bool faces, size_t count, uint8_t max_level, Fn&& fn);
+  // The same faces in blocks of up to lanes::kWidth: block_fn(faces, count).
+  template <class Fn>
+  void forEachMarkedFaceBlock(size_t count, uint8_t max_level, Fn&& block_fn);
+  // Calls block_fn on list[0, n) in blocks of up to lanes::kWidth, split over the threads.
+  template <class Fn>
+  void forEachBlock(const uint32_t* list, size_t n, Fn&& block_fn);
   // fn(i) for i in [0, n), split over the worker threads when n is large.
   template <class Fn>
   void parallelFor(size_t n, Fn&& fn);
@@ -292,6 +295,7 @@ class ShapeCache {
   std::vector<uint8_t> vertex_level_, face_level_;  // ring level at which an item was marked
   uint32_t stamp_ = 0;
   std::vector<uint32_t> inc_verts_, inc_faces_;
+  std::vector<uint32_t> marked_faces_;  // forEachMarkedFaceBlock(): the many, in index order
   std::vector<uint32_t> changed_faces_;  // face slots whose triple changed in this update
   // Lazy derivatives: a vertex's tensor / a face's fit is current iff its entry == dgen_.
   std::vector<uint32_t> vertex_dgen_, face_dgen_;
