@@ -64,33 +64,35 @@ inline void cornerAreasOf(const glm::vec3 e[3], float area, std::array<float, 3>
 }
 
 // Re-expresses the second fundamental form k = (ku, kuv, kv) of the old frame in the new
-// frame whose axes have old-frame coordinates m = (u1, v1, u2, v2).
-inline glm::vec3 projectCurvature(const glm::vec3& k, const glm::vec4& m) {
-  const float u1 = m[0], v1 = m[1], u2 = m[2], v2 = m[3];
-  return {k[0] * u1 * u1 + k[1] * (2.0f * u1 * v1) + k[2] * v1 * v1,
-          k[0] * u1 * u2 + k[1] * (u1 * v2 + u2 * v1) + k[2] * v1 * v2,
-          k[0] * u2 * u2 + k[1] * (2.0f * u2 * v2) + k[2] * v2 * v2};
+// frame whose axes have old-frame coordinates (u1, v1) and (u2, v2). T is float (the vertex
+// gathers) or lanes::FL (the face kernels): one expression, so both compute the same bits.
+template <class T>
+[[gnu::always_inline]] inline void projectCurvature(const T (&k)[3], T u1, T v1, T u2, T v2, T (&out)[3]) {
+  out[0] = k[0] * u1 * u1 + k[1] * (2.0f * u1 * v1) + k[2] * v1 * v1;
+  out[1] = k[0] * u1 * u2 + k[1] * (u1 * v2 + u2 * v1) + k[2] * v1 * v2;
+  out[2] = k[0] * u2 * u2 + k[1] * (2.0f * u2 * v2) + k[2] * v2 * v2;
 }
 
 // Same for the cubic derivative form c = (C_uuu, C_uuv, C_uvv, C_vvv).
-inline glm::vec4 projectDerivative(const glm::vec4& c, const glm::vec4& m) {
-  const float u1 = m[0], v1 = m[1], u2 = m[2], v2 = m[3];
-  return {c[0] * u1 * u1 * u1 + c[1] * 3.0f * u1 * u1 * v1 + c[2] * 3.0f * u1 * v1 * v1 +
-              c[3] * v1 * v1 * v1,
-          c[0] * u1 * u1 * u2 + c[1] * (u1 * u1 * v2 + 2.0f * u2 * u1 * v1) +
-              c[2] * (u2 * v1 * v1 + 2.0f * u1 * v1 * v2) + c[3] * v1 * v1 * v2,
-          c[0] * u1 * u2 * u2 + c[1] * (u2 * u2 * v1 + 2.0f * u1 * u2 * v2) +
-              c[2] * (u1 * v2 * v2 + 2.0f * u2 * v2 * v1) + c[3] * v1 * v2 * v2,
-          c[0] * u2 * u2 * u2 + c[1] * 3.0f * u2 * u2 * v2 + c[2] * 3.0f * u2 * v2 * v2 +
-              c[3] * v2 * v2 * v2};
+template <class T>
+[[gnu::always_inline]] inline void projectDerivative(const T (&c)[4], T u1, T v1, T u2, T v2, T (&out)[4]) {
+  out[0] = c[0] * u1 * u1 * u1 + c[1] * 3.0f * u1 * u1 * v1 + c[2] * 3.0f * u1 * v1 * v1 + c[3] * v1 * v1 * v1;
+  out[1] = c[0] * u1 * u1 * u2 + c[1] * (u1 * u1 * v2 + 2.0f * u2 * u1 * v1) +
+           c[2] * (u2 * v1 * v1 + 2.0f * u1 * v1 * v2) + c[3] * v1 * v1 * v2;
+  out[2] = c[0] * u1 * u2 * u2 + c[1] * (u2 * u2 * v1 + 2.0f * u1 * u2 * v2) +
+           c[2] * (u1 * v2 * v2 + 2.0f * u2 * v2 * v1) + c[3] * v1 * v2 * v2;
+  out[3] = c[0] * u2 * u2 * u2 + c[1] * 3.0f * u2 * u2 * v2 + c[2] * 3.0f * u2 * v2 * v2 + c[3] * v2 * v2 * v2;
 }
 
 // Principal frame of a vertex relative to a face: given the corner relation m (vertex frame
-// axes (u, w) in face coordinates) and pdir1 = a·u + b·w, pdir2 = −b·u + a·w, returns the
-// face-coordinates of pdir1 and pdir2 as (u1, v1, u2, v2).
-inline glm::vec4 principalInFace(const glm::vec4& m, const glm::vec2& ab) {
-  const float a = ab.x, b = ab.y;
-  return {a * m[0] + b * m[2], a * m[1] + b * m[3], -b * m[0] + a * m[2], -b * m[1] + a * m[3]};
+// axes (u, w) in face coordinates) and pdir1 = a·u + b·w, pdir2 = −b·u + a·w, the face
+// coordinates of pdir1 and pdir2 as q = (u1, v1, u2, v2).
+template <class T>
+[[gnu::always_inline]] inline void principalInFace(const T (&m)[4], T a, T b, T (&q)[4]) {
+  q[0] = a * m[0] + b * m[2];
+  q[1] = a * m[1] + b * m[3];
+  q[2] = -b * m[0] + a * m[2];
+  q[3] = -b * m[1] + a * m[3];
 }
 
 // Solves the symmetric tridiagonal system with diagonal d[0..N) and off-diagonal o[0..N-1)
@@ -229,12 +231,11 @@ inline lanes::Vec3L<F> load3(const float* const* src, int g, int k = 0) {
   const auto ok = solveSymTridiagonal<3>(d, o, m);
   const F k[3] = {lanes::toFloat(m[0]), lanes::toFloat(m[1]), lanes::toFloat(m[2])};
   for (int i = 0; i < 3; ++i) lanes::store(out + (kCurv + i) * W, k[i]);
-  // projectCurvature(k, rel[j]) for each corner.
+  // The face's (e, f, g) in each corner's vertex frame.
   for (int j = 0; j < 3; ++j) {
-    const F u1 = rel[j][0], v1 = rel[j][1], u2 = rel[j][2], v2 = rel[j][3];
-    lanes::store(out + (kCurvTerm + 3 * j) * W, k[0] * u1 * u1 + k[1] * (2.0f * u1 * v1) + k[2] * v1 * v1);
-    lanes::store(out + (kCurvTerm + 3 * j + 1) * W, k[0] * u1 * u2 + k[1] * (u1 * v2 + u2 * v1) + k[2] * v1 * v2);
-    lanes::store(out + (kCurvTerm + 3 * j + 2) * W, k[0] * u2 * u2 + k[1] * (2.0f * u2 * v2) + k[2] * v2 * v2);
+    F t[3];
+    projectCurvature(k, rel[j][0], rel[j][1], rel[j][2], rel[j][3], t);
+    for (int i = 0; i < 3; ++i) lanes::store(out + (kCurvTerm + 3 * j + i) * W, t[i]);
   }
   return lanes::toFloatMask(ok);
 }
@@ -247,25 +248,22 @@ inline lanes::Vec3L<F> load3(const float* const* src, int g, int k = 0) {
   using V = lanes::Vec3L<F>;
   using D = lanes::DL;
   V p[3], fcurv[3];
-  F principal[3][4];  // principalInFace per corner
+  F principal[3][4];  // per corner, the vertex's principal axes in face coordinates
   const V ft = load3(in, kDFt), fb = load3(in, kDFb);
   for (int j = 0; j < 3; ++j) {
     p[j] = load3(in, kDP + j);
     const float* const* rel = in + kDRel * W;
     const float* const* kab = in + (kDKab + j) * W;
-    const F m0 = lanes::gather(rel, 4 * j), m1 = lanes::gather(rel, 4 * j + 1);
-    const F m2 = lanes::gather(rel, 4 * j + 2), m3 = lanes::gather(rel, 4 * j + 3);
-    const F k0 = lanes::gather(kab, 0), k2 = lanes::gather(kab, 1);
-    const F pa = lanes::gather(kab, 2), pb = lanes::gather(kab, 3);
-    // principalInFace: the principal axes in face coordinates (u1, v1, u2, v2).
-    const F q0 = pa * m0 + pb * m2, q1 = pa * m1 + pb * m3, q2 = -pb * m0 + pa * m2, q3 = -pb * m1 + pa * m3;
-    // projectCurvature((k1, 0, k2), (q0, q2, q1, q3)): the face axes in principal coordinates.
-    principal[j][0] = q0, principal[j][1] = q1, principal[j][2] = q2, principal[j][3] = q3;
-    const F u1 = q0, v1 = q2, u2 = q1, v2 = q3;
-    const F k1{};
-    fcurv[j] = V{k0 * u1 * u1 + k1 * (2.0f * u1 * v1) + k2 * v1 * v1,
-                 k0 * u1 * u2 + k1 * (u1 * v2 + u2 * v1) + k2 * v1 * v2,
-                 k0 * u2 * u2 + k1 * (2.0f * u2 * v2) + k2 * v2 * v2};
+    const F m[4] = {lanes::gather(rel, 4 * j), lanes::gather(rel, 4 * j + 1), lanes::gather(rel, 4 * j + 2),
+                    lanes::gather(rel, 4 * j + 3)};
+    // The vertex's curvature diag(k1, k2) in face coordinates: the face axes in principal
+    // coordinates are the transpose of its principal axes in face coordinates.
+    const F kp[3] = {lanes::gather(kab, 0), F{}, lanes::gather(kab, 1)};
+    principalInFace(m, lanes::gather(kab, 2), lanes::gather(kab, 3), principal[j]);
+    const F(&q)[4] = principal[j];
+    F fc[3];
+    projectCurvature(kp, q[0], q[2], q[1], q[3], fc);
+    fcurv[j] = V{fc[0], fc[1], fc[2]};
   }
   D a{}, b{}, c{}, m[4] = {D{}, D{}, D{}, D{}};
   for (int j = 0; j < 3; ++j) {
@@ -289,17 +287,10 @@ inline lanes::Vec3L<F> load3(const float* const* src, int g, int k = 0) {
   const auto ok = solveSymTridiagonal<4>(d, o, m);
   const F cd[4] = {lanes::toFloat(m[0]), lanes::toFloat(m[1]), lanes::toFloat(m[2]), lanes::toFloat(m[3])};
   for (int i = 0; i < 4; ++i) lanes::store(out + (kDcurv + i) * W, cd[i]);
-  // projectDerivative(C, principalInFace(rel[j], ab_j)) for each corner.
+  // The tensor in each corner vertex's principal frame.
   for (int j = 0; j < 3; ++j) {
-    const F u1 = principal[j][0], v1 = principal[j][1], u2 = principal[j][2], v2 = principal[j][3];
-    const F t[4] = {cd[0] * u1 * u1 * u1 + cd[1] * 3.0f * u1 * u1 * v1 + cd[2] * 3.0f * u1 * v1 * v1 +
-                        cd[3] * v1 * v1 * v1,
-                    cd[0] * u1 * u1 * u2 + cd[1] * (u1 * u1 * v2 + 2.0f * u2 * u1 * v1) +
-                        cd[2] * (u2 * v1 * v1 + 2.0f * u1 * v1 * v2) + cd[3] * v1 * v1 * v2,
-                    cd[0] * u1 * u2 * u2 + cd[1] * (u2 * u2 * v1 + 2.0f * u1 * u2 * v2) +
-                        cd[2] * (u1 * v2 * v2 + 2.0f * u2 * v2 * v1) + cd[3] * v1 * v2 * v2,
-                    cd[0] * u2 * u2 * u2 + cd[1] * 3.0f * u2 * u2 * v2 + cd[2] * 3.0f * u2 * v2 * v2 +
-                        cd[3] * v2 * v2 * v2};
+    F t[4];
+    projectDerivative(cd, principal[j][0], principal[j][1], principal[j][2], principal[j][3], t);
     for (int i = 0; i < 4; ++i) lanes::store(out + (kDcurvTerm + 4 * j + i) * W, t[i]);
   }
   return lanes::toFloatMask(ok);
@@ -627,7 +618,10 @@ void ShapeCache::vertexCurvature(uint32_t v) {
     const int c = adj.vertex_face_corners[i];
     const float wt = rec.corner[c];
     if (!(wt > 0.0f)) continue;
-    k += wt * projectCurvature(rec.curv, rec.rel[c]);
+    const float kf[3] = {rec.curv[0], rec.curv[1], rec.curv[2]};
+    float t[3];
+    projectCurvature(kf, rec.rel[c][0], rec.rel[c][1], rec.rel[c][2], rec.rel[c][3], t);
+    k += wt * glm::vec3(t[0], t[1], t[2]);
     wsum += wt;
   }
   finishCurvature(v, k, wsum);
@@ -717,7 +711,12 @@ void ShapeCache::vertexDerivative(uint32_t v) {
     const int corner = adj.vertex_face_corners[i];
     const float wt = rec.corner[corner];
     if (!(wt > 0.0f)) continue;
-    c += wt * projectDerivative(rec.dcurv, principalInFace(rec.rel[corner], ab));
+    const float m[4] = {rec.rel[corner][0], rec.rel[corner][1], rec.rel[corner][2], rec.rel[corner][3]};
+    const float cd[4] = {rec.dcurv[0], rec.dcurv[1], rec.dcurv[2], rec.dcurv[3]};
+    float q[4], t[4];
+    principalInFace(m, ab.x, ab.y, q);
+    projectDerivative(cd, q[0], q[1], q[2], q[3], t);
+    c += wt * glm::vec4(t[0], t[1], t[2], t[3]);
     wsum += wt;
   }
   finishDerivative(v, c, wsum);

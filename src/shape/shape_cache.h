@@ -208,14 +208,15 @@ class ShapeCache {
   void vertexNormal(uint32_t v);
   void vertexCurvature(uint32_t v);
   void vertexDerivative(uint32_t v);
-  // faceGeometry for up to lanes::kWidth faces at once, and one face's results back.
+  // The face kernels (shape/fit_lanes.h), for faces[0 .. count), count ≤ lanes::kWidth: a
+  // face's results do not depend on the block it is in. Face geometry (normal, frame, corner
+  // areas, normal weights), and one face's results back (ok false: the record of a face
+  // without geometry).
   void faceGeometryBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count);
   template <int W>
   void storeFaceGeometry(uint32_t f, const float* out, int lane, bool ok);
-  // The two fits for up to lanes::kWidth faces at once, `faces[0 .. count)`: the same bits
-  // as the one-face kernels above (shape/fit_lanes.h).
-  // `out` receives the fits' rows, kWidth floats wide, with each corner's term for its
-  // vertex's sum (computeScattered()).
+  // The curvature and derivative fits. `out` receives the kernel's rows, kWidth floats wide,
+  // with each corner's term for its vertex's sum (read by computeScattered()).
   void curvatureFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count, float* out);
   void derivativeFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count, float* out);
   // Where a fit finds face f's inputs (lane `lane` of the kernel's sources, fit_lanes.h), and
