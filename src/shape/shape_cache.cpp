@@ -157,21 +157,37 @@ constexpr int W = lanes::kWidth;
 // The kernels read their inputs through `src[group * W + lane]`: per group of inputs, a
 // pointer to the floats of that group for each lane (lanes::gather).
 // Curvature fit inputs: the corners' positions, the vertex frames (n, u, w: 9 floats) at the
-// corners, the face frame (t, b, n).
-constexpr int kP = 0, kFrame = 3, kFt = 6, kFb = 7, kFn = 8, kCurvIn = 9;
+// corners, the face normal (the face frame's t and b follow from them: faceFrame()).
+constexpr int kP = 0, kFrame = 3, kFn = 6, kCurvIn = 7;
 // Outputs: the corner relations rel[j] (4 each), the face's (e, f, g), and (e, f, g) in each
 // corner's vertex frame, the term that corner's vertex sums (vertexCurvature()).
 constexpr int kRel = 0, kCurv = 12, kCurvTerm = 15, kCurvOut = 24;
-// Derivative fit inputs: positions, face t and b, the corner relations (12 floats), the
+// Derivative fit inputs: positions, the face normal, the corner relations (12 floats), the
 // vertices' (k1, k2, a, b). Outputs: the face's derivative tensor, and the tensor in each corner's
 // principal frame, the term that corner's vertex sums (vertexDerivative()).
-constexpr int kDP = 0, kDFt = 3, kDFb = 4, kDRel = 5, kDKab = 6, kDerivIn = 9;
+constexpr int kDP = 0, kDFn = 3, kDRel = 4, kDKab = 5, kDerivIn = 8;
 constexpr int kDcurv = 0, kDcurvTerm = 4, kDerivOut = 16;
 
 // Three consecutive floats from offset k of input group g.
 inline lanes::Vec3L<F> load3(const float* const* src, int g, int k = 0) {
   return {lanes::gather(src + g * W, k), lanes::gather(src + g * W, k + 1),
           lanes::gather(src + g * W, k + 2)};
+}
+
+[[gnu::always_inline]] inline lanes::Vec3L<F> cross(const lanes::Vec3L<F>& x, const lanes::Vec3L<F>& y) {
+  return {x.y * y.z - y.y * x.z, x.z * y.x - y.z * x.x, x.x * y.y - y.x * x.y};  // as glm::cross
+}
+
+// The face frame of corners p0, p1, p2 with unit normal n: t along the edge opposite corner 0
+// (as glm::normalize: e · 1/√(e·e)), b = n × t. Recomputed where needed rather than stored:
+// every kernel computes it with these operations, so it has the same bits in each.
+[[gnu::always_inline]] inline void faceFrame(const lanes::Vec3L<F>& p1, const lanes::Vec3L<F>& p2,
+                                             const lanes::Vec3L<F>& n, lanes::Vec3L<F>& t,
+                                             lanes::Vec3L<F>& b) {
+  const lanes::Vec3L<F> e0 = p2 - p1;
+  const F inv = 1.0f / lanes::sqrtLanes(lanes::dot(e0, e0));
+  t = {e0.x * inv, e0.y * inv, e0.z * inv};
+  b = cross(n, t);
 }
 
 // The face frame relative to each corner's vertex frame (Rusinkiewicz 2004 §3, "rotating the
@@ -192,7 +208,9 @@ inline lanes::Vec3L<F> load3(const float* const* src, int g, int k = 0) {
     u[j] = load3(in, kFrame + j, 3);
     w[j] = load3(in, kFrame + j, 6);
   }
-  const V ft = load3(in, kFt), fb = load3(in, kFb), fn = load3(in, kFn);
+  const V fn = load3(in, kFn);
+  V ft, fb;
+  faceFrame(p[1], p[2], fn, ft, fb);
   F rel[3][4];
   for (int j = 0; j < 3; ++j) {
     // The vertex frame (u_j, w_j) of normal n_j turned into the plane of fn.
@@ -249,7 +267,6 @@ inline lanes::Vec3L<F> load3(const float* const* src, int g, int k = 0) {
   using D = lanes::DL;
   V p[3], fcurv[3];
   F principal[3][4];  // per corner, the vertex's principal axes in face coordinates
-  const V ft = load3(in, kDFt), fb = load3(in, kDFb);
   for (int j = 0; j < 3; ++j) {
     p[j] = load3(in, kDP + j);
     const float* const* rel = in + kDRel * W;
@@ -265,6 +282,8 @@ inline lanes::Vec3L<F> load3(const float* const* src, int g, int k = 0) {
     projectCurvature(kp, q[0], q[2], q[1], q[3], fc);
     fcurv[j] = V{fc[0], fc[1], fc[2]};
   }
+  V ft, fb;
+  faceFrame(p[1], p[2], load3(in, kDFn), ft, fb);
   D a{}, b{}, c{}, m[4] = {D{}, D{}, D{}, D{}};
   for (int j = 0; j < 3; ++j) {
     const int jp = j == 0 ? 2 : j - 1, jn = j == 2 ? 0 : j + 1;
@@ -296,16 +315,11 @@ inline lanes::Vec3L<F> load3(const float* const* src, int g, int k = 0) {
   return lanes::toFloatMask(ok);
 }
 
-// Face geometry inputs: the corners' positions. Outputs: the unit normal, the face frame
-// (t along the edge opposite corner 0, b = n × t), the corner areas, twice the area, the
-// squared edge lengths and, per corner j, e[j−1]·e[j+1] (the normal weights' inputs).
+// Face geometry inputs: the corners' positions. Outputs: the unit normal, the corner areas,
+// twice the area, the squared edge lengths and, per corner j, e[j−1]·e[j+1] (the normal
+// weights' inputs).
 constexpr int kGP = 0, kGeomIn = 3;
-constexpr int kGN = 0, kGT = 3, kGB = 6, kGCorner = 9, kGLen = 12, kGL2 = 13, kGDot = 16, kGeomOut = 19;
-
-template <class T>
-[[gnu::always_inline]] inline lanes::Vec3L<T> cross(const lanes::Vec3L<T>& x, const lanes::Vec3L<T>& y) {
-  return {x.y * y.z - y.y * x.z, x.z * y.x - y.z * x.x, x.x * y.y - y.x * x.y};  // as glm::cross
-}
+constexpr int kGN = 0, kGCorner = 3, kGLen = 6, kGL2 = 7, kGDot = 10, kGeomOut = 13;
 
 // faceNormalOf, glm::normalize and cornerAreasOf over lanes (the obtuse cases as selects,
 // the first obtuse corner winning as in cornerAreasOf's loop). Returns the mask of faces with
@@ -321,9 +335,8 @@ template <class T>
   const V cr = cross(p2 - p1, p0 - p2);
   const F len = lanes::sqrtLanes(dot(cr, cr));
   const V n{cr.x / len, cr.y / len, cr.z / len};
-  const F inv = 1.0f / lanes::sqrtLanes(dot(e[0], e[0]));  // glm::normalize: v · inversesqrt(v·v)
-  const V t{e[0].x * inv, e[0].y * inv, e[0].z * inv};
-  const V b = cross(n, t);
+  V t, b;
+  faceFrame(p1, p2, n, t, b);  // only t's finiteness is asked here; the fits recompute both
   auto ok = both(len > 0.0f, finite(len));
   ok = both(ok, both(finite(n.x), both(finite(n.y), finite(n.z))));
   ok = both(ok, both(finite(t.x), both(finite(t.y), finite(t.z))));
@@ -356,8 +369,6 @@ template <class T>
     lanes::store(out + (k + 2) * W, v.z);
   };
   put(kGN, n);
-  put(kGT, t);
-  put(kGB, b);
   for (int j = 0; j < 3; ++j) {
     const int jn = j == 2 ? 0 : j + 1, jp = j == 0 ? 2 : j - 1;
     lanes::store(out + (kGCorner + j) * W, corner[j]);
@@ -495,17 +506,13 @@ void ShapeCache::storeFaceGeometry(uint32_t f, const float* out, int lane, bool 
   rec.corner = {0.0f, 0.0f, 0.0f};
   rec.normal_weight = {0.0f, 0.0f, 0.0f};
   rec.n = glm::vec3(0.0f);
-  face_normals_[f] = face_t_[f] = face_b_[f] = glm::vec3(0.0f);
-  corner_areas_[f] = {0.0f, 0.0f, 0.0f};
+  face_normals_[f] = glm::vec3(0.0f);
   if (!ok) return;
   auto get = [&](int k) { return out[k * W + lane]; };
   auto get3 = [&](int k) { return glm::vec3(get(k), get(k + 1), get(k + 2)); };
   const glm::vec3 n = get3(fit::kGN);
   face_normals_[f] = n;
-  face_t_[f] = get3(fit::kGT);
-  face_b_[f] = get3(fit::kGB);
-  corner_areas_[f] = {get(fit::kGCorner), get(fit::kGCorner + 1), get(fit::kGCorner + 2)};
-  rec.corner = corner_areas_[f];
+  rec.corner = {get(fit::kGCorner), get(fit::kGCorner + 1), get(fit::kGCorner + 2)};
   rec.n = n;
   // Weight of this face's unit normal in each corner's vertex normal. Corner j sits between
   // the edges a = e[j-1] and b = −e[j+1], with |a × b| = len.
@@ -576,8 +583,6 @@ void ShapeCache::gatherCurvatureFit(const TriMesh& mesh, uint32_t f, const float
     src[(fit::kP + j) * W + lane] = &mesh.positions[t[j]].x;
     src[(fit::kFrame + j) * W + lane] = reinterpret_cast<const float*>(&frames_[t[j]]);
   }
-  src[fit::kFt * W + lane] = &face_t_[f].x;
-  src[fit::kFb * W + lane] = &face_b_[f].x;
   src[fit::kFn * W + lane] = &face_normals_[f].x;
 }
 
@@ -673,8 +678,7 @@ void ShapeCache::gatherDerivativeFit(const TriMesh& mesh, uint32_t f, const floa
     src[(fit::kDKab + j) * W + lane] = &vertex_kab_[t[j]].x;
   }
   src[fit::kDRel * W + lane] = &faces_[f].rel[0].x;  // the three corners' relations, 12 floats
-  src[fit::kDFt * W + lane] = &face_t_[f].x;
-  src[fit::kDFb * W + lane] = &face_b_[f].x;
+  src[fit::kDFn * W + lane] = &face_normals_[f].x;
 }
 
 template <int W>
@@ -801,9 +805,6 @@ void ShapeCache::computeScattered(const TriMesh& mesh, bool eager_derivatives) {
 
 void ShapeCache::resize(uint32_t nv, uint32_t nf) {
   face_normals_.resize(nf);
-  face_t_.resize(nf);
-  face_b_.resize(nf);
-  corner_areas_.resize(nf);
   faces_.resize(nf);
   normals_.resize(nv);
   frames_.resize(nv);

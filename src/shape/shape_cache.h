@@ -198,7 +198,6 @@ class ShapeCache {
 
   // Per-face arrays (faceCount entries).
   std::span<const glm::vec3> faceNormals() const { return face_normals_; }  ///< unit or 0
-  std::span<const std::array<float, 3>> cornerAreas() const { return corner_areas_; }
 
   /// The per-vertex fields together with `mesh.positions` (the mesh last computed).
   SurfaceFields fields(const TriMesh& mesh) const;
@@ -264,15 +263,14 @@ class ShapeCache {
   ShapeUpdateStats stats_;
 
   // Per face.
-  std::vector<glm::vec3> face_normals_, face_t_, face_b_;
-  std::vector<std::array<float, 3>> corner_areas_;
+  std::vector<glm::vec3> face_normals_;
   // Everything a vertex gather reads about one face, in one record (one or two cache
   // lines instead of one per array: the gathers are memory-latency bound).
   struct FaceRecord {
     glm::vec4 rel[3];  // per corner: the vertex frame's axes in face coordinates (u1,v1,u2,v2)
     glm::vec4 dcurv;   // derivative tensor C in (t, b)
     glm::vec3 curv;    // (e, f, g) in (t, b)
-    std::array<float, 3> corner;  // corner areas (copy of corner_areas_[f])
+    std::array<float, 3> corner;  // corner areas (Meyer et al. 2002 §3.3)
     glm::vec3 n;                  // unit face normal (0 if degenerate)
     std::array<float, 3> normal_weight;  // weight of n in each corner's vertex normal
     uint8_t ok = 0;    // bit 0: geometry ok, bit 1: curvature fit, bit 2: dcurv fit
