@@ -20,6 +20,22 @@ namespace {
 constexpr uint8_t kGeomOk = 1, kCurvOk = 2, kDcurvOk = 4;
 // What the lane kernels read for lanes without a face (a short block, an invalid face).
 alignas(16) constexpr float kZeros[12] = {};
+
+// Runs a lane kernel (fit_lanes.h) on faces[0 .. count), count ≤ lanes::kWidth: each lane's
+// input pointers from gather(face, in, lane) where has_input(face) (kZeros otherwise, and for
+// the lanes past count), then store(face, out, lane, ok) for each face.
+template <int kInputs, class Has, class Gather, class Kernel, class Store>
+void runFaceKernel(const uint32_t* faces, uint32_t count, float* out, Has has_input, Gather gather,
+                   Kernel kernel, Store store) {
+  constexpr int W = lanes::kWidth;
+  const float* in[kInputs * W];
+  std::fill(std::begin(in), std::end(in), kZeros);
+  alignas(32) int32_t ok[W];
+  for (uint32_t l = 0; l < count; ++l)
+    if (has_input(faces[l])) gather(faces[l], in, static_cast<int>(l));
+  kernel(in, out, ok);
+  for (uint32_t l = 0; l < count; ++l) store(faces[l], out, static_cast<int>(l), ok[l] != 0);
+}
 const glm::vec3 kFallbackNormal{0.0f, 0.0f, 1.0f};
 
 inline int nextCorner(int j) { return j == 2 ? 0 : j + 1; }
@@ -537,18 +553,15 @@ void ShapeCache::storeFaceGeometry(uint32_t f, const float* out, int lane, bool 
 
 void ShapeCache::faceGeometryBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count) {
   constexpr int W = lanes::kWidth;
-  const float* in[fit::kGeomIn * W];
-  std::fill(std::begin(in), std::end(in), kZeros);
   alignas(32) float out[fit::kGeomOut * W];
-  alignas(32) int32_t ok[W];
-  for (uint32_t l = 0; l < count; ++l) {
-    if (!adjacency_.face_valid[faces[l]]) continue;
-    const auto& t = mesh.faces[faces[l]];
-    for (int j = 0; j < 3; ++j) in[(fit::kGP + j) * W + l] = &mesh.positions[t[j]].x;
-  }
-  fit::faceGeometryLanes(in, out, ok);
-  for (uint32_t l = 0; l < count; ++l)
-    storeFaceGeometry<W>(faces[l], out, static_cast<int>(l), ok[l] != 0 && adjacency_.face_valid[faces[l]]);
+  const auto valid = [&](uint32_t f) { return adjacency_.face_valid[f] != 0; };
+  runFaceKernel<fit::kGeomIn>(
+      faces, count, out, valid,
+      [&](uint32_t f, const float** in, int lane) {
+        for (int j = 0; j < 3; ++j) in[(fit::kGP + j) * W + lane] = &mesh.positions[mesh.faces[f][j]].x;
+      },
+      fit::faceGeometryLanes,
+      [&](uint32_t f, const float* o, int lane, bool ok) { storeFaceGeometry<W>(f, o, lane, ok && valid(f)); });
 }
 
 void ShapeCache::vertexNormal(uint32_t v) {
@@ -602,14 +615,11 @@ void ShapeCache::storeCurvatureFit(uint32_t f, const float* out, int lane, bool 
 
 void ShapeCache::curvatureFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count,
                                    float* out) {
-  constexpr int W = lanes::kWidth;
-  const float* in[fit::kCurvIn * W];
-  std::fill(std::begin(in), std::end(in), kZeros);
-  alignas(32) int32_t ok[W];
-  for (uint32_t l = 0; l < count; ++l)
-    if (faces_[faces[l]].ok & kGeomOk) gatherCurvatureFit<W>(mesh, faces[l], in, static_cast<int>(l));
-  fit::curvatureFitLanes(in, out, ok);
-  for (uint32_t l = 0; l < count; ++l) storeCurvatureFit<W>(faces[l], out, static_cast<int>(l), ok[l] != 0);
+  runFaceKernel<fit::kCurvIn>(
+      faces, count, out, [&](uint32_t f) { return (faces_[f].ok & kGeomOk) != 0; },
+      [&](uint32_t f, const float** in, int lane) { gatherCurvatureFit<lanes::kWidth>(mesh, f, in, lane); },
+      fit::curvatureFitLanes,
+      [&](uint32_t f, const float* o, int lane, bool ok) { storeCurvatureFit<lanes::kWidth>(f, o, lane, ok); });
 }
 
 void ShapeCache::vertexCurvature(uint32_t v) {
@@ -693,14 +703,11 @@ void ShapeCache::storeDerivativeFit(uint32_t f, const float* out, int lane, bool
 
 void ShapeCache::derivativeFitBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count,
                                     float* out) {
-  constexpr int W = lanes::kWidth;
-  const float* in[fit::kDerivIn * W];
-  std::fill(std::begin(in), std::end(in), kZeros);
-  alignas(32) int32_t ok[W];
-  for (uint32_t l = 0; l < count; ++l)
-    if (faces_[faces[l]].ok & kGeomOk) gatherDerivativeFit<W>(mesh, faces[l], in, static_cast<int>(l));
-  fit::derivativeFitLanes(in, out, ok);
-  for (uint32_t l = 0; l < count; ++l) storeDerivativeFit<W>(faces[l], out, static_cast<int>(l), ok[l] != 0);
+  runFaceKernel<fit::kDerivIn>(
+      faces, count, out, [&](uint32_t f) { return (faces_[f].ok & kGeomOk) != 0; },
+      [&](uint32_t f, const float** in, int lane) { gatherDerivativeFit<lanes::kWidth>(mesh, f, in, lane); },
+      fit::derivativeFitLanes,
+      [&](uint32_t f, const float* o, int lane, bool ok) { storeDerivativeFit<lanes::kWidth>(f, o, lane, ok); });
 }
 
 void ShapeCache::vertexDerivative(uint32_t v) {
@@ -747,11 +754,18 @@ void ShapeCache::computeScattered(const TriMesh& mesh, bool eager_derivatives) {
   sum_.assign(nv, glm::vec4(0.0f));
   sum_w_.assign(nv, 0.0f);
   constexpr uint32_t W = lanes::kWidth;
+  // The blocks run in face order, so each vertex receives its terms in increasing face order,
+  // as a gather over its ring adds them. (Written out rather than through forEachFaceBlock():
+  // behind its lambda the scatter loops ran a third slower.)
+  uint32_t block[W];
+  auto next_block = [&](uint32_t f0) {
+    const uint32_t count = std::min<uint32_t>(W, nf - f0);
+    for (uint32_t l = 0; l < count; ++l) block[l] = f0 + l;
+    return count;
+  };
   // Normals and point areas: every face of a ring (a valid face) adds to its corners.
   for (uint32_t f0 = 0; f0 < nf; f0 += W) {
-    const uint32_t count = std::min<uint32_t>(W, nf - f0);
-    uint32_t block[W];
-    for (uint32_t l = 0; l < count; ++l) block[l] = f0 + l;
+    const uint32_t count = next_block(f0);
     faceGeometryBlock(mesh, block, count);
     for (uint32_t f = f0; f < f0 + count; ++f) {
       if (!valid[f]) continue;
@@ -772,9 +786,7 @@ void ShapeCache::computeScattered(const TriMesh& mesh, bool eager_derivatives) {
     std::fill(sum_.begin(), sum_.end(), glm::vec4(0.0f));
     std::fill(sum_w_.begin(), sum_w_.end(), 0.0f);
     for (uint32_t f0 = 0; f0 < nf; f0 += W) {
-      const uint32_t count = std::min<uint32_t>(W, nf - f0);
-      uint32_t block[W];
-      for (uint32_t l = 0; l < count; ++l) block[l] = f0 + l;
+      const uint32_t count = next_block(f0);
       fit_block(block, count, out);
       for (uint32_t l = 0; l < count; ++l) {
         const uint32_t f = f0 + l;
@@ -846,23 +858,15 @@ void ShapeCache::compute(const TriMesh& mesh) {
     // or vertex, so the loops split over threads without changing a bit of the result.
     // The face kernels run lanes::kWidth faces at a time, as on one thread.
     constexpr uint32_t W = lanes::kWidth;
-    auto blocks = [&](auto block_fn) {
-      parallelFor((nf + W - 1) / W, [&](uint32_t b) {
-        uint32_t faces[W];
-        const uint32_t count = std::min<uint32_t>(W, nf - b * W);
-        for (uint32_t l = 0; l < count; ++l) faces[l] = b * W + l;
-        block_fn(faces, count);
-      });
-    };
-    blocks([&](const uint32_t* faces, uint32_t count) { faceGeometryBlock(mesh, faces, count); });
+    forEachFaceBlock(nf, [&](const uint32_t* faces, uint32_t count) { faceGeometryBlock(mesh, faces, count); });
     parallelFor(nv, [&](uint32_t v) { vertexNormal(v); });
-    blocks([&](const uint32_t* faces, uint32_t count) {
+    forEachFaceBlock(nf, [&](const uint32_t* faces, uint32_t count) {
       alignas(32) float out[fit::kCurvOut * W];
       curvatureFitBlock(mesh, faces, count, out);
     });
     parallelFor(nv, [&](uint32_t v) { vertexCurvature(v); });
     if (eager) {
-      blocks([&](const uint32_t* faces, uint32_t count) {
+      forEachFaceBlock(nf, [&](const uint32_t* faces, uint32_t count) {
         alignas(32) float out[fit::kDerivOut * W];
         derivativeFitBlock(mesh, faces, count, out);
       });
@@ -938,6 +942,17 @@ void ShapeCache::forEachMarked(bool faces, size_t count, uint8_t max_level, Fn&&
       if (stamps[i] == stamp_ && levels[i] <= max_level) fn(i);
     });
   }
+}
+
+template <class Fn>
+void ShapeCache::forEachFaceBlock(uint32_t nf, Fn&& block_fn) {
+  constexpr uint32_t W = lanes::kWidth;
+  parallelFor((nf + W - 1) / W, [&](uint32_t b) {
+    uint32_t faces[W];
+    const uint32_t count = std::min<uint32_t>(W, nf - b * W);
+    for (uint32_t l = 0; l < count; ++l) faces[l] = b * W + l;
+    block_fn(faces, count);
+  });
 }
 
 template <class Fn>

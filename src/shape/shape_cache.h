@@ -246,6 +246,10 @@ class ShapeCache {
   // The same faces in blocks of up to lanes::kWidth: block_fn(faces, count).
   template <class Fn>
   void forEachMarkedFaceBlock(size_t count, uint8_t max_level, Fn&& block_fn);
+  // Calls block_fn on the faces 0 .. nf − 1 in blocks of up to lanes::kWidth (parallelFor:
+  // in face order on one thread).
+  template <class Fn>
+  void forEachFaceBlock(uint32_t nf, Fn&& block_fn);
   // Calls block_fn on list[0, n) in blocks of up to lanes::kWidth, split over the threads.
   template <class Fn>
   void forEachBlock(const uint32_t* list, size_t n, Fn&& block_fn);
