@@ -52,25 +52,13 @@ bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn) {
   if (before <= kLocalSpread) return false;
   const Bounds b = computeBounds(mesh.positions);
   const glm::vec3 extent = glm::max(b.max - b.min, glm::vec3(1e-30f));
-  auto cell = [](float t) {  // t in [0, 1] → 0..1023
-    return t >= 0.0f ? static_cast<uint32_t>(std::min(t, 1.0f) * 1023.0f) : 0u;
-  };
-  // Vertices by Morton code, stably (ties keep the stored order): a least-significant-digit
-  // radix sort of the 30-bit codes, 10 bits a pass.
-  std::vector<uint32_t> code(nv), by_code(nv), tmp(nv);
+  // Vertices by Morton code, stably (ties keep the stored order).
+  std::vector<uint32_t> code(nv), by_code(nv), tmp;
   for (uint32_t i = 0; i < nv; ++i) {
-    const glm::vec3 t = (mesh.positions[i] - b.min) / extent;
-    code[i] = spreadBits(cell(t.x)) | (spreadBits(cell(t.y)) << 1) | (spreadBits(cell(t.z)) << 2);
+    code[i] = mortonCode((mesh.positions[i] - b.min) / extent);
     by_code[i] = i;
   }
-  std::vector<uint32_t> count(1025);
-  for (int shift = 0; shift < 30; shift += 10) {
-    std::fill(count.begin(), count.end(), 0u);
-    for (uint32_t i : by_code) ++count[((code[i] >> shift) & 1023u) + 1];
-    for (size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
-    for (uint32_t i : by_code) tmp[count[(code[i] >> shift) & 1023u]++] = i;
-    by_code.swap(tmp);
-  }
+  sortByCode(code, by_code, tmp);
   std::vector<uint32_t> remap(nv);
   for (uint32_t i = 0; i < nv; ++i) remap[by_code[i]] = i;
   // Only where it helps: the median spread of the faces' corners after against before.
@@ -87,14 +75,9 @@ bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn) {
     for (auto& v : f) v = remap[v];
   for (auto& e : mesh.marked_edges)
     for (auto& v : e) v = v < nv ? remap[v] : v;  // an index out of range stays so
-  // Faces by their lowest corner, stably: a counting sort over the vertices.
-  std::vector<uint32_t> start(nv + 1, 0), order(nf);
-  for (const auto& f : mesh.faces) ++start[std::min({f[0], f[1], f[2]}) + 1];
-  for (size_t v = 1; v <= nv; ++v) start[v] += start[v - 1];
-  for (uint32_t f = 0; f < nf; ++f) {
-    const auto& c = mesh.faces[f];
-    order[start[std::min({c[0], c[1], c[2]})]++] = f;
-  }
+  // Faces by their lowest corner, stably.
+  std::vector<uint32_t> order, start;
+  orderByLowestCorner(mesh.faces, static_cast<uint32_t>(nv), order, start);
   std::vector<std::array<uint32_t, 3>> faces(nf);
   for (size_t k = 0; k < nf; ++k) faces[k] = mesh.faces[order[k]];
   mesh.faces = std::move(faces);
@@ -105,6 +88,37 @@ bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn) {
   }
   if (stored_to_drawn) *stored_to_drawn = std::move(remap);
   return true;
+}
+
+uint32_t mortonCode(const glm::vec3& t) {
+  auto cell = [](float x) {  // x in [0, 1] → 0..1023 (NaN → 0)
+    return x >= 0.0f ? static_cast<uint32_t>(std::min(x, 1.0f) * 1023.0f) : 0u;
+  };
+  return spreadBits(cell(t.x)) | (spreadBits(cell(t.y)) << 1) | (spreadBits(cell(t.z)) << 2);
+}
+
+void sortByCode(std::span<const uint32_t> code, std::vector<uint32_t>& items, std::vector<uint32_t>& tmp) {
+  std::array<uint32_t, 1025> count;
+  tmp.resize(items.size());
+  for (int shift = 0; shift < 30; shift += 10) {
+    count.fill(0u);
+    for (uint32_t i : items) ++count[((code[i] >> shift) & 1023u) + 1];
+    for (size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
+    for (uint32_t i : items) tmp[count[(code[i] >> shift) & 1023u]++] = i;
+    items.swap(tmp);
+  }
+}
+
+void orderByLowestCorner(std::span<const std::array<uint32_t, 3>> faces, uint32_t vertex_count,
+                         std::vector<uint32_t>& order, std::vector<uint32_t>& start) {
+  start.assign(static_cast<size_t>(vertex_count) + 1, 0u);
+  for (const auto& f : faces) ++start[std::min({f[0], f[1], f[2]}) + 1];
+  for (size_t v = 1; v <= vertex_count; ++v) start[v] += start[v - 1];
+  order.resize(faces.size());
+  for (uint32_t f = 0; f < faces.size(); ++f) {
+    const auto& c = faces[f];
+    order[start[std::min({c[0], c[1], c[2]})]++] = f;
+  }
 }
 
 uint32_t medianCornerSpread(const TriMesh& mesh) {

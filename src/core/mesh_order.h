@@ -7,8 +7,12 @@
 // lowest corner puts neighbours near each other in every array.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "core/mesh.h"
 
@@ -25,6 +29,19 @@ namespace lodline {
 /// `stored_to_drawn`, if given, receives the new index of each vertex as stored (else it is
 /// emptied). Linear in the size plus sorts.
 bool orderForLocality(TriMesh& mesh, std::vector<uint32_t>* stored_to_drawn = nullptr);
+
+/// The 30-bit Morton code of a point of the unit cube `t` (10 bits an axis; each coordinate
+/// clamped to [0, 1], NaN to 0).
+uint32_t mortonCode(const glm::vec3& t);
+
+/// Sorts `items` stably by `code[item]` (codes below 2^30): a least-significant-digit radix
+/// sort, 10 bits a pass. `tmp` is scratch.
+void sortByCode(std::span<const uint32_t> code, std::vector<uint32_t>& items, std::vector<uint32_t>& tmp);
+
+/// `order` receives the indices of `faces` sorted stably by their lowest corner (a counting
+/// sort over `vertex_count` vertices; every corner must be below it). `start` is scratch.
+void orderByLowestCorner(std::span<const std::array<uint32_t, 3>> faces, uint32_t vertex_count,
+                         std::vector<uint32_t>& order, std::vector<uint32_t>& start);
 
 /// The median, over faces, of the largest minus the smallest corner index: how far apart in
 /// the vertex arrays a face's corners lie (0 for an empty mesh).
