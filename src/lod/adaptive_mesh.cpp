@@ -20,13 +20,18 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
+#include <numeric>
 #include <string>
+#include <type_traits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-namespace lodline {
+#include "core/mesh_order.h"
 
+namespace lodline {
 namespace {
 
 constexpr uint32_t kNone = kPmNone;
@@ -55,6 +60,28 @@ constexpr size_t kPrefetchAhead = 8;
 /// A collapse found illegal is not re-checked for this many frames unless vt's or vu's slot
 /// changes (is marked dirty) first.
 constexpr uint32_t kIllegalFrames = 16;
+/// A vertex whose forced split was undone because the chain left its own split not due (see
+/// forceSplit) is tried again before this many frames only if its ring mean, scaled as that
+/// chain scaled it, would now be above t_s·T.
+constexpr uint32_t kUndoneRecheckFrames = 32;
+/// Consecutive refusals of a vertex's forced split (fold-overs) double its wait, at most
+/// this many times (8 frames, then 16, 32, 64).
+constexpr uint32_t kMaxRefusalShift = 3;
+/// orderForLocality() runs once more than 1/kOrderFreshShare of the active vertices have taken
+/// new slots since it last ran, on meshes of at least kOrderMinVertices active vertices
+/// (smaller ones fit in the caches whatever their order).
+constexpr uint32_t kOrderFreshShare = 4;
+constexpr uint32_t kOrderMinVertices = 4096;
+
+/// v[0, new_to_old.size()) = v[new_to_old[i]], through `scratch` (bytes).
+template <class T>
+void gatherInPlace(std::vector<T>& v, std::span<const uint32_t> new_to_old, std::vector<unsigned char>& scratch) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const size_t n = new_to_old.size();
+  if (scratch.size() < n * sizeof(T)) scratch.resize(n * sizeof(T));
+  for (size_t i = 0; i < n; ++i) std::memcpy(scratch.data() + i * sizeof(T), &v[new_to_old[i]], sizeof(T));
+  if (n) std::memcpy(v.data(), scratch.data(), n * sizeof(T));
+}
 
 inline uint32_t next3(uint32_t i) { return i == 2 ? 0 : i + 1; }
 inline uint32_t prev3(uint32_t i) { return i == 0 ? 2 : i - 1; }
@@ -69,6 +96,11 @@ AdaptiveMesh::AdaptiveMesh(const ProgressiveMesh& pm) : pm_(pm) {
   const uint32_t n = pm.vertexCount();
   node_pos_.resize(n_nodes_);
   for (uint32_t v = 0; v < n_nodes_; ++v) node_pos_[v] = pm.positions[pm.origin[v]];
+  if (!pm.positions.empty()) {
+    const Bounds box = computeBounds(pm.positions);
+    order_min_ = box.min;
+    order_extent_ = glm::max(box.max - box.min, glm::vec3(1e-30f));
+  }
 
   // Reference normals, leaf bounding spheres (1-ring reach) and leaf normal cones.
   ref_normal_.resize(n_faces_);
@@ -152,6 +184,8 @@ AdaptiveMesh::AdaptiveMesh(const ProgressiveMesh& pm) : pm_(pm) {
   morph_pos_.assign(cap, kNone);
   slot_locked_.assign(cap, 0);
   illegal_frame_.assign(cap, 0);
+  undone_ratio_.assign(cap, 0.0f);
+  refusals_.assign(cap, 0);
   pre_node_.assign(cap, kNone);
   pre_visible_.assign(cap, 0);
   pre_target_.assign(cap, 0.0f);
@@ -217,9 +251,12 @@ uint32_t AdaptiveMesh::allocSlot(uint32_t node) {
   morph_pos_[slot] = kNone;
   slot_locked_[slot] = 0;
   illegal_frame_[slot] = 0;
+  undone_ratio_[slot] = 0.0f;
+  refusals_[slot] = 0;
   ring_sum_[slot] = 0.0;
   ring_cnt_[slot] = 0;
   ++active_vertices_;
+  ++fresh_slots_;
   return slot;
 }
 
@@ -253,7 +290,11 @@ void AdaptiveMesh::deactivateFace(uint32_t f) {
 }
 
 void AdaptiveMesh::markDirty(uint32_t slot) {
-  if (slot == kNone || dirty_stamp_[slot] == frame_) return;
+  if (slot == kNone) return;
+  // Its ring changed: the undone chain's scale no longer applies, a refused one may pass now.
+  undone_ratio_[slot] = 0.0f;
+  refusals_[slot] = 0;
+  if (dirty_stamp_[slot] == frame_) return;
   dirty_stamp_[slot] = frame_;
   changes_.dirty.push_back(slot);
 }
@@ -402,8 +443,9 @@ bool AdaptiveMesh::visible(const NodeBounds& nb) const {
   return !(glm::dot(nb.axis, dir) > sin_ab);  // entirely back-facing → invisible
 }
 
-float AdaptiveMesh::ringMean(uint32_t v) const {
-  const uint32_t slot = node_slot_[v];
+float AdaptiveMesh::ringMean(uint32_t v) const { return ringMeanAt(node_slot_[v]); }
+
+float AdaptiveMesh::ringMeanAt(uint32_t slot) const {
   return ring_cnt_[slot] ? static_cast<float>(ring_sum_[slot] / ring_cnt_[slot]) : 0.0f;
 }
 
@@ -688,6 +730,10 @@ bool AdaptiveMesh::forceSplit(uint32_t v, bool check, bool morph, float split_ab
   chain_.clear();
   size_t iterations = 0;
   bool ok = true;
+  const float mean_before = split_above > 0.0f ? ringMean(v) : 0.0f;
+  // Refusals in a row so far (the chain and its undo mark v's slot dirty, which resets them).
+  const uint32_t refusals = node_slot_[v] != kNone ? refusals_[node_slot_[v]] : 0u;
+  float undone_ratio = 0.0f;  // v's ring mean after the chain / before, when it undoes the chain
   while (!stack_.empty()) {
     if (stack_.size() > kMaxStack || ++iterations > 4 * kMaxStack) { ok = false; break; }
     const uint32_t x = stack_.back();
@@ -716,7 +762,11 @@ bool AdaptiveMesh::forceSplit(uint32_t v, bool check, bool morph, float split_ab
     // its own split, the chain is not worth keeping: its vertices are often back-facing, are
     // coarsened again next frame, and v wanted the split again — a cycle of 3 frames at a
     // fixed view (docs/temporal-coherence.md, "Limit cycles at a fixed view").
-    if (x == v && split_above > 0.0f && !chain_.empty() && !(ringMean(v) > split_above)) { ok = false; break; }
+    if (x == v && split_above > 0.0f && !chain_.empty() && !(ringMean(v) > split_above)) {
+      ok = false;
+      if (mean_before > 0.0f) undone_ratio = ringMean(v) / mean_before;
+      break;
+    }
     if (!doSplit(x, check, morph)) { ok = false; break; }
     chain_.push_back(x);
     stack_.pop_back();
@@ -735,6 +785,16 @@ bool AdaptiveMesh::forceSplit(uint32_t v, bool check, bool morph, float split_ab
     if (it != changes_.split.rend()) changes_.split.erase(std::next(it).base());
   }
   retry_frame_[v] = frame_ + kRetryFrames;
+  if (const uint32_t slot = node_slot_[v]; slot != kNone) {
+    undone_ratio_[slot] = undone_ratio;
+    // A chain refused for a fold-over is refused again while v's ring stays as it is (a
+    // change marks it dirty, which resets the count): each refusal in a row doubles the
+    // wait, up to kRetryFrames << kMaxRefusalShift.
+    if (undone_ratio == 0.0f) {
+      retry_frame_[v] = frame_ + (kRetryFrames << refusals);
+      refusals_[slot] = static_cast<uint8_t>(std::min(refusals + 1u, kMaxRefusalShift));
+    }
+  }
   return false;
 }
 
@@ -904,8 +964,14 @@ void AdaptiveMesh::evaluatePass() {
     }
     if (vis && !pm_.isLeaf(v)) {
       const float target = known ? pre_target_[slot] : targetAt(nb.pos);
-      const float mean = ringMean(v);
+      const float mean = ringMeanAt(slot);  // (not ringMean(v): a node-indexed read misses)
       if (mean > t_s * target) {
+        // The last forced split of v was undone because the chain brought v's mean below
+        // t_s·T: try again early only if the same chain would now leave it above.
+        const float undone = undone_ratio_[slot];
+        if (undone > 0.0f && !(mean * undone > t_s * target) &&
+            frame_ < retry_frame_[v] - kRetryFrames + kUndoneRecheckFrames)
+          continue;
         split_speedup_ = clampf(mean / (t_s * target), 1.0f, params_.max_morph_speedup);
         // A morph that would end within this frame is not worth showing.
         const bool show = morph && params_.morph_time / split_speedup_ > frame_dt_;
@@ -997,6 +1063,7 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   ++frame_;
   if (frame_ == 0) {  // stamp wrap-around
     std::fill(retry_frame_.begin(), retry_frame_.end(), 0u);
+    std::fill(undone_ratio_.begin(), undone_ratio_.end(), 0.0f);  // its recheck window counts from retry_frame_
     std::fill(dirty_stamp_.begin(), dirty_stamp_.end(), 0u);
     std::fill(moved_stamp_.begin(), moved_stamp_.end(), 0u);
     std::fill(illegal_frame_.begin(), illegal_frame_.end(), 0u);
@@ -1008,11 +1075,16 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   changes_.dirty.clear();
   changes_.everything = false;
   stats_.splits = stats_.collapses = 0;
+  stats_.slots_ordered = false;
   ops_ = 0;
   adapt_clock_.lap();
   budget_spent_ = false;
   if (!have_view_) return;
   stats_.target_area = t0_;
+  if (active_vertices_ >= kOrderMinVertices && fresh_slots_ > active_vertices_ / kOrderFreshShare) {
+    orderForLocality();
+    stats_.slots_ordered = true;
+  }
 
   // 1. Image areas of all active faces (and the band statistics of the incoming mesh): per
   // face in parallel, then summed into the rings in face order (the same sums as serially).
@@ -1086,6 +1158,77 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   stats_.pending_collapses = static_cast<uint32_t>(pending_.size());
 }
 
+// Splits take slots from the free list or the end, and faces join the active list at its end
+// or in the place of a removed one, so after a while a face's corners and a vertex's faces lie
+// far apart in memory: the stages downstream (shape, lines), which run over the slot-indexed
+// mesh, then miss the cache on most reads (1.4-1.6x slower shape computes on a 1.1M knot at
+// T = 7 px², docs/performance.md). Renumbering the slots along a Morton curve and sorting the
+// faces by their lowest corner, as core/mesh_order.h does for input meshes, restores it. The
+// consumers follow the vertices through the nodes their slots hold (every slot is marked
+// dirty), as they do across splits and collapses. The order of evaluation follows the slots,
+// so this changes which of two competing operations comes first, as any slot order does.
+void AdaptiveMesh::orderForLocality() {
+  fresh_slots_ = 0;
+  const uint32_t old_count = slot_count_;
+  order_code_.resize(old_count);
+  order_items_.clear();
+  for (uint32_t s = 0; s < old_count; ++s) {
+    if (slot_node_[s] == kNone) continue;
+    order_code_[s] = mortonCode((slot_bounds_[s].pos - order_min_) / order_extent_);
+    order_items_.push_back(s);
+  }
+  sortByCode(order_code_, order_items_, order_tmp_);  // new slot → old slot
+  const std::span<const uint32_t> new_to_old = order_items_;
+  const uint32_t n = static_cast<uint32_t>(new_to_old.size());
+  order_map_.assign(old_count, kNone);  // old slot → new slot
+  for (uint32_t i = 0; i < n; ++i) order_map_[new_to_old[i]] = i;
+
+  gatherInPlace(slot_node_, new_to_old, order_scratch_);
+  gatherInPlace(slot_face_, new_to_old, order_scratch_);
+  gatherInPlace(disp_, new_to_old, order_scratch_);
+  gatherInPlace(morph_from_, new_to_old, order_scratch_);
+  gatherInPlace(morph_to_, new_to_old, order_scratch_);
+  gatherInPlace(morph_t_, new_to_old, order_scratch_);
+  gatherInPlace(morph_rate_, new_to_old, order_scratch_);
+  gatherInPlace(morph_pos_, new_to_old, order_scratch_);
+  gatherInPlace(slot_locked_, new_to_old, order_scratch_);
+  gatherInPlace(illegal_frame_, new_to_old, order_scratch_);
+  gatherInPlace(undone_ratio_, new_to_old, order_scratch_);
+  gatherInPlace(refusals_, new_to_old, order_scratch_);
+  gatherInPlace(slot_bounds_, new_to_old, order_scratch_);
+  gatherInPlace(ring_sum_, new_to_old, order_scratch_);
+  gatherInPlace(ring_cnt_, new_to_old, order_scratch_);
+  gatherInPlace(moved_stamp_, new_to_old, order_scratch_);
+  // pre_node_/pre_visible_/pre_target_ are refilled by each pass.
+  std::fill(slot_node_.begin() + n, slot_node_.begin() + old_count, kNone);
+  std::fill(slot_face_.begin() + n, slot_face_.begin() + old_count, kNone);
+  std::fill(morph_pos_.begin() + n, morph_pos_.begin() + old_count, kNone);
+  for (uint32_t i = 0; i < n; ++i) node_slot_[slot_node_[i]] = i;
+  for (uint32_t& s : morphing_) s = order_map_[s];
+  slot_count_ = n;
+  free_slots_.clear();
+  resume_slot_ = resume_slot_ < old_count && order_map_[resume_slot_] != kNone ? order_map_[resume_slot_] : 0;
+
+  // Faces by their lowest corner in the new numbering.
+  for (auto& c : active_fs_)
+    for (uint32_t& s : c) s = order_map_[s];
+  orderByLowestCorner(active_fs_, n, order_tmp_, order_code_);  // new position → old position
+  const std::span<const uint32_t> face_order = order_tmp_;
+  gatherInPlace(active_faces_, face_order, order_scratch_);
+  gatherInPlace(active_fs_, face_order, order_scratch_);
+  gatherInPlace(active_area_, face_order, order_scratch_);
+  for (uint32_t k = 0; k < active_faces_.size(); ++k) face_pos_[active_faces_[k]] = k;
+
+  // The change lists in the new numbering: every slot dirty, the moved ones still moved.
+  changes_.dirty.resize(n);
+  std::iota(changes_.dirty.begin(), changes_.dirty.end(), 0u);
+  std::fill(dirty_stamp_.begin(), dirty_stamp_.begin() + n, frame_);
+  size_t kept = 0;
+  for (uint32_t s : changes_.moved)
+    if (s < old_count && order_map_[s] != kNone) changes_.moved[kept++] = order_map_[s];
+  changes_.moved.resize(kept);
+}
+
 bool AdaptiveMesh::collapseGeometryOk(uint32_t p) const {
   const VertexSplit& vs = pm_.split(p);
   if (!collectFan(vs.vu, vs.fn[1], vs.fn[2], fan_u_)) return false;
@@ -1102,6 +1245,7 @@ bool AdaptiveMesh::collapseGeometryOk(uint32_t p) const {
 void AdaptiveMesh::fullyRefine() {
   clearAllMorphs();
   std::fill(retry_frame_.begin(), retry_frame_.end(), 0u);
+  std::fill(undone_ratio_.begin(), undone_ratio_.end(), 0.0f);  // its recheck window counts from retry_frame_
   for (;;) {  // work_ holds slots; splits append their children's slots
     work_.clear();
     for (uint32_t slot = 0; slot < slot_count_; ++slot) {

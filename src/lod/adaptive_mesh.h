@@ -105,6 +105,7 @@ struct LodStats {
   /// mesh drawn last frame) under the current view; see measureBand() for the current one.
   float band_fraction = 0.0f;
   float target_area = 0.0f;    ///< T·object_factor used this frame, px²
+  bool slots_ordered = false;  ///< this frame renumbered the slots (orderForLocality())
 };
 
 /// What changed in the last adapt() call, for incremental downstream stages. Slot indices
@@ -143,6 +144,15 @@ class AdaptiveMesh {
   /// Refines to the input mesh / coarsens to the base mesh (no geomorphs).
   void fullyRefine();
   void fullyCoarsen();
+
+  /// Renumbers the active vertices' slots along a Morton curve through the model's bounds and
+  /// sorts the active faces by their lowest corner slot, so that neighbours lie near each
+  /// other in the slot-indexed arrays; adds every slot to changes().dirty (what follows a
+  /// vertex over frames follows its node, as across splits and collapses). The mesh, its
+  /// displayed positions and its geomorphs are unchanged: only the numbering. adapt() runs
+  /// it before its evaluation once a quarter of at least 4096 active vertices have taken new
+  /// slots since the last time (docs/design.md §4).
+  void orderForLocality();
 
   // ---- output (slot-indexed; a slot keeps its index while its vertex stays active) ----
   /// Displayed (morphed) position per slot, size slotCount(); free slots hold stale values.
@@ -204,6 +214,7 @@ class AdaptiveMesh {
   bool visible(const NodeBounds& nb) const;
   /// Mean image area of the faces around active vertex v (0 if none).
   float ringMean(uint32_t v) const;
+  float ringMeanAt(uint32_t slot) const;  ///< the same for the vertex in `slot`
   /// Mean image area around p if p's children were collapsed now (children active).
   float predictedMean(uint32_t p) const;
   /// Mean image area of the faces in the children's 1-rings (the collapse criterion), from
@@ -285,6 +296,10 @@ class AdaptiveMesh {
   std::vector<uint32_t> morph_pos_;
   std::vector<uint8_t> slot_locked_;     // copy of kLocked of the slot's node (read per frame)
   std::vector<uint32_t> illegal_frame_;  // frame whose check found the slot's collapse illegal
+  // Per slot: the ring mean after / before the last forced split of its vertex that was undone
+  // because the chain left its own split not due (0: none since the slot took its vertex).
+  std::vector<float> undone_ratio_;
+  std::vector<uint8_t> refusals_;
   // evaluatePass(): node, visibility and target T of each slot, computed up front.
   std::vector<uint32_t> pre_node_;
   std::vector<uint8_t> pre_visible_;
@@ -304,6 +319,12 @@ class AdaptiveMesh {
   mutable std::vector<uint32_t> fan_u_, fan_t_;
   std::vector<uint32_t> done_pending_;
   mutable std::vector<uint32_t> compact_index_;  // exportCompact's slot → vertex map
+  // orderForLocality(): slots allocated since it last ran, the box its Morton codes span
+  // (all nodes' positions), and its scratch.
+  uint32_t fresh_slots_ = 0;
+  glm::vec3 order_min_{0.0f}, order_extent_{1.0f};
+  std::vector<uint32_t> order_code_, order_items_, order_tmp_, order_map_;
+  std::vector<unsigned char> order_scratch_;
 
   // View.
   bool have_view_ = false;
@@ -330,7 +351,7 @@ class AdaptiveMesh {
   uint32_t ops_ = 0;
   uint32_t resume_slot_ = 0;   // where the next evaluation starts (a budget cut the last one)
   bool budget_spent_ = false;  // this adapt() call stopped at a budget
-  Stopwatch adapt_clock_;      // started by adapt(), for max_adapt_ms
+  Stopwatch adapt_clock_;
   LodStats stats_;
   LodChanges changes_;
 };

@@ -2,6 +2,7 @@
 // convergence without oscillation, the image-area band, detail modifiers, geomorphs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/mesh_order.h"
 #include "lod/adaptive_mesh.h"
 #include "pm/pm_file.h"
 #include "pm/pm_test_meshes.h"
@@ -660,6 +662,118 @@ TEST(AdaptiveMesh, FastZoomOutKeepsTheBand) {
   std::printf("band lowest while zooming %.3f, 10 frames after %.3f\n", lowest, after);
   EXPECT_GE(lowest, 0.8f);
   EXPECT_GE(after, 0.9f);
+}
+
+}  // namespace
+}  // namespace lodline
+
+namespace lodline {
+namespace {
+
+// What a renumbering must keep: each active node's displayed position, the faces as node
+// triples (corners in order), the morphs in flight.
+struct NodeView {
+  std::map<uint32_t, glm::vec3> positions;
+  std::vector<std::array<uint32_t, 3>> faces;  // rotated to start at the smallest node, sorted
+};
+NodeView nodeView(const AdaptiveMesh& lod) {
+  NodeView v;
+  const auto nodes = lod.slotVertices();
+  for (uint32_t s = 0; s < lod.slotCount(); ++s)
+    if (nodes[s] != kPmNone) v.positions[nodes[s]] = lod.positions()[s];
+  std::vector<std::array<uint32_t, 3>> faces;
+  lod.exportFaces(faces);
+  for (auto f : faces) {
+    for (uint32_t& c : f) c = nodes[c];
+    while (f[0] > f[1] || f[0] > f[2]) f = {f[1], f[2], f[0]};
+    v.faces.push_back(f);
+  }
+  std::sort(v.faces.begin(), v.faces.end());
+  return v;
+}
+
+uint32_t medianSpread(const AdaptiveMesh& lod) {
+  TriMesh t;
+  t.positions.assign(lod.positions().begin(), lod.positions().end());
+  lod.exportFaces(t.faces);
+  return medianCornerSpread(t);
+}
+
+// orderForLocality() changes the numbering only: the same nodes at the same displayed
+// positions, the same faces, the morphs still running; slots without gaps, faces sorted by
+// their lowest corner, every slot in the change list, and a far smaller corner spread.
+TEST(AdaptiveMesh, OrderingSlotsKeepsTheMesh) {
+  const Model& m = model("fine_torus");
+  ASSERT_FALSE(m.mesh.faces.empty());
+  AdaptiveMesh lod(m.pm);
+  DetailParams d;
+  d.target_area = 6.0f;
+  // A zoom from far to close: slots are taken in the order of the splits.
+  for (int k = 0; k < 40; ++k) {
+    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 2.0f * k, 30.0f, 8.0f - 0.15f * k), kW, kH, d).ok());
+    lod.adapt(1.0f / 30.0f);
+  }
+  ASSERT_GT(lod.stats().morphing, 0u);
+  ASSERT_GT(lod.activeVertexCount(), 4096u);
+  const NodeView before = nodeView(lod);
+  const uint32_t spread_before = medianSpread(lod);
+  const uint32_t morphing = lod.stats().morphing;
+  lod.orderForLocality();
+  ASSERT_EQ(lod.checkInvariants(), "");
+  const NodeView after = nodeView(lod);
+  EXPECT_EQ(after.positions, before.positions);
+  EXPECT_EQ(after.faces, before.faces);
+  EXPECT_EQ(lod.slotCount(), lod.activeVertexCount());
+  std::vector<uint32_t> dirty = lod.changes().dirty;
+  std::sort(dirty.begin(), dirty.end());
+  ASSERT_EQ(dirty.size(), lod.slotCount());
+  for (uint32_t s = 0; s < dirty.size(); ++s) ASSERT_EQ(dirty[s], s);
+  std::vector<std::array<uint32_t, 3>> faces;
+  lod.exportFaces(faces);
+  for (size_t k = 1; k < faces.size(); ++k)
+    ASSERT_LE(*std::min_element(faces[k - 1].begin(), faces[k - 1].end()),
+              *std::min_element(faces[k].begin(), faces[k].end()));
+  // (adapt() ordered the slots already during the zoom, so the spread before is small too.)
+  const uint32_t spread_after = medianSpread(lod);
+  EXPECT_LE(spread_after, spread_before);
+  EXPECT_LT(spread_after * 100, lod.slotCount()) << spread_after << " of " << lod.slotCount();
+
+  // The morphs go on from where they were and end; the mesh stays valid.
+  for (int k = 0; k < 30; ++k) {
+    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 80.0f, 30.0f, 2.0f), kW, kH, d).ok());
+    lod.adapt(1.0f / 30.0f);
+    if (k == 0) EXPECT_GT(lod.stats().morphing + lod.stats().splits + lod.stats().collapses, 0u) << morphing;
+  }
+  EXPECT_EQ(lod.checkInvariants(), "");
+}
+
+// adapt() orders the slots by itself as the mesh changes; the mesh stays valid and converges
+// into the band at rest.
+TEST(AdaptiveMesh, AdaptOrdersSlotsAsTheMeshChanges) {
+  const Model& m = model("fine_torus");
+  ASSERT_FALSE(m.mesh.faces.empty());
+  AdaptiveMesh lod(m.pm);
+  DetailParams d;
+  d.target_area = 16.0f;
+  int ordered = 0;
+  for (int k = 0; k < 150; ++k) {
+    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 3.0f * k, 30.0f, 3.0f + 3.0f * std::abs(std::sin(0.04f * k))), kW,
+                            kH, d).ok());
+    lod.adapt(1.0f / 30.0f);
+    if (lod.stats().slots_ordered) {
+      ++ordered;
+      ASSERT_EQ(lod.checkInvariants(), "") << k;
+    }
+  }
+  EXPECT_GE(ordered, 2);
+  EXPECT_EQ(lod.checkInvariants(), "");
+  // At rest it converges into the band.
+  for (int k = 0; k < 40; ++k) lod.adapt(1.0f / 30.0f);
+  float band = 0.0f;
+  uint32_t visible = 0;
+  lod.measureBand(band, visible);
+  EXPECT_GT(band, 0.9f) << lod.activeFaceCount() << " of " << m.mesh.faceCount();
+  EXPECT_EQ(lod.checkInvariants(), "");
 }
 
 }  // namespace
