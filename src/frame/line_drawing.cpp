@@ -315,7 +315,8 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   timings_.chain = sw.lap();
   // The mesh's own silhouette (present/ completes the outline with it).
   if (p.contours && p.complete_outline) {
-    extractMeshSilhouette(mesh_, shape_.adjacency(), shape_.faceNormals(), ViewSpec::fromCamera(camera), silhouette_);
+    extractMeshSilhouette(mesh_, shape_.adjacency(), shape_.faceNormals(), ViewSpec::fromCamera(camera), scratch_,
+                          silhouette_);
     chainStrokes(silhouette_, silhouette_strokes_, chain_scratch_);
   } else {
     silhouette_.clear();

@@ -455,12 +455,16 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
 }
 
 void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adj, std::span<const glm::vec3> face_normals,
-                           const ViewSpec& view, LineSet& out) {
+                           const ViewSpec& view, LineScratch& scratch, LineSet& out) {
   out.clear();
-  auto facing = [&](uint32_t f) { return faceFacing(mesh, face_normals, view, f); };
+  // Each face's facing once, in face order; the edges then read two bytes each.
+  auto& facing = scratch.face_facing;
+  facing.resize(mesh.faces.size());
+  for (uint32_t f = 0; f < mesh.faces.size(); ++f)
+    facing[f] = static_cast<int8_t>(faceFacing(mesh, face_normals, view, f));
   for (size_t e = 0; e < adj.edges.size(); ++e) {
     if (adj.edge_face_count[e] != 2) continue;
-    const int a = facing(adj.edge_faces[e][0]), b = facing(adj.edge_faces[e][1]);
+    const int a = facing[adj.edge_faces[e][0]], b = facing[adj.edge_faces[e][1]];
     if (a == 0 || b == 0 || a == b) continue;
     const uint32_t v0 = adj.edges[e][0], v1 = adj.edges[e][1];
     pushSegment(out, LineKind::kContour, static_cast<uint32_t>(e), mesh.positions[v0], v0, 1.0f, mesh.positions[v1],

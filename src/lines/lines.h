@@ -197,6 +197,7 @@ struct LineScratch {
   std::vector<uint32_t> silhouette_creases;  // their edges
   std::vector<uint8_t> vertex_ends;          // contour ends per vertex (spurs along creases)
   std::vector<uint8_t> crease_vertex;        // vertices on a crease edge (suggestive_off_creases)
+  std::vector<int8_t> face_facing;           // per face: 1 front, -1 back, 0 degenerate
   uint32_t next_interior_id = 0;
   /// Optional threads (not owned) for the per-edge and per-face passes; the output is the
   /// same.
@@ -241,9 +242,11 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adjacency,
 /// kContour with the vertex indices as point ids, so chainStrokes() joins them. On a coarse
 /// mesh this polygonal outline is where the faces as drawn end, while the interpolated
 /// contour (n·v = 0 on vertex normals) may run inside it (docs/visibility.md).
-/// `face_normals` holds faceCount unit normals (zero: degenerate, skipped).
+/// `face_normals` holds faceCount unit normals (zero: degenerate, skipped). `scratch` holds
+/// each face's facing between the pass over the faces and the one over the edges.
 void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adjacency,
-                           std::span<const glm::vec3> face_normals, const ViewSpec& view, LineSet& out);
+                           std::span<const glm::vec3> face_normals, const ViewSpec& view, LineScratch& scratch,
+                           LineSet& out);
 
 /// Clears `out` and extracts every enabled line type from precomputed view quantities.
 /// `feature_size` (model units, > 0) scales the suggestive thresholds by 1/fs².
