@@ -26,10 +26,16 @@
 // The `line_kind/` cases time each line kind's share of the lines stage (docs/lines.md; the
 // `-fit` cases: ridges and valleys from fitted jets):
 //   ./build/tests/bench/detail_frame_bench --benchmark_filter=line_kind --benchmark_counters_tabular=true
+// The `stages/` cases run the CPU stages alone, no drawing, 30 frames of the same orbit (the
+// environment variable STAGE_ITERS sets another count): the cases to profile the stages with,
+//   STAGE_ITERS=300 perf record ./build/tests/bench/detail_frame_bench --benchmark_filter=stages/knot1m/T:7
+// silhouette_ms is the mesh's own silhouette for the outline, part of the frame's CPU work
+// but not of lines_ms (which the issue-21 figures have always been).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -307,6 +313,48 @@ void pipelinedFrame(benchmark::State& state, const std::string& name, float targ
   state.counters["overlapped_stages_ms"] = bench::median(overlapped_stages);
 }
 
+// The CPU stages alone (adapt, shape, lines), no drawing: the case to profile them with
+// (`perf record ... --benchmark_filter=stages/knot1m/T:7`). Same orbit and convergence as
+// detailFrame; one thread per core as in a frame.
+void stagesFrame(benchmark::State& state, const std::string& name, float target_area) {
+  const std::shared_ptr<Model> model = loadModel(name);
+  if (!model) {
+    state.SkipWithError(("cannot load " + name + " (run scripts/setup.sh)").c_str());
+    return;
+  }
+  FrameParams frame;
+  SceneDrawing scene = sceneOf(std::make_unique<LodDrawing>(model->mesh, model->pm), name);
+  DetailParams detail;
+  detail.target_area = target_area;
+  const float aspect = frame.aspect();
+  (void)scene.converge(orbitCamera(scene.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width, frame.height,
+                       detail, 1.0f / 30.0f, 300);
+  std::vector<double> adapt, shape, lines, faces, silhouette;
+  double full = 0.0, ordered = 0.0;
+  float az = 0.0f;
+  for (auto _ : state) {
+    const Camera cam = orbitCamera(scene.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
+    az += 1.0f;
+    (void)scene.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
+    const Stages st = stagesOf(scene);
+    full += st.full;
+    silhouette.push_back(scene.objects()[0].drawing->drawing().timings().silhouette);
+    if (const AdaptiveMesh* lod = scene.objects()[0].drawing->lod()) ordered += lod->stats().slots_ordered;
+    adapt.push_back(st.adapt);
+    shape.push_back(st.shape);
+    lines.push_back(st.lines);
+    faces.push_back(st.faces);
+  }
+  state.counters["active_faces"] = bench::median(faces);
+  state.counters["adapt_ms"] = bench::median(adapt);
+  state.counters["shape_ms"] = bench::median(shape);
+  state.counters["lines_ms"] = bench::median(lines);
+  state.counters["cpu_ms"] = bench::median(adapt) + bench::median(shape) + bench::median(lines);
+  state.counters["silhouette_ms"] = bench::median(silhouette);  // the outline's input, not in lines_ms
+  state.counters["full_shape_frames"] = full;   // frames whose shape update recomputed everything
+  state.counters["ordered_frames"] = ordered;   // frames that renumbered the adapted mesh's slots
+}
+
 // Resident and peak resident memory of this process, bytes (/proc/self/status).
 std::pair<double, double> residentBytes() {
   std::ifstream in("/proc/self/status");
@@ -569,6 +617,12 @@ int main(int argc, char** argv) {
           ->Iterations(30)
           ->Unit(benchmark::kMillisecond);
     }
+  for (const auto& [name, t] : cases) {
+    const std::string label = std::string("stages/") + name + "/T:" + std::to_string(static_cast<int>(t));
+    benchmark::RegisterBenchmark(label.c_str(), [name, t](benchmark::State& s) { lodline::stagesFrame(s, name, t); })
+        ->Iterations(std::getenv("STAGE_ITERS") ? std::atoi(std::getenv("STAGE_ITERS")) : 30)
+        ->Unit(benchmark::kMillisecond);
+  }
   for (const double faces : {1e5, 3e5, 1e6, 3e6, 1e7}) {
     const std::string label = "scale/knot_" + std::to_string(static_cast<int>(faces / 1e5)) + "00k/T:16";
     benchmark::RegisterBenchmark(label.c_str(), [faces](benchmark::State& s) { lodline::scaleFrame(s, faces, 16.0f); })
