@@ -192,6 +192,7 @@ AdaptiveMesh::AdaptiveMesh(const ProgressiveMesh& pm) : pm_(pm) {
   dirty_stamp_.assign(cap, 0);
   ring_sum_.assign(cap, 0.0);
   slot_bounds_.assign(cap, NodeBounds{});
+  slot_pos_.assign(cap, glm::vec3(0.0f));
 
   ring_cnt_.assign(cap, 0);
   moved_stamp_.assign(cap, 0);
@@ -248,6 +249,7 @@ uint32_t AdaptiveMesh::allocSlot(uint32_t node) {
   slot_face_[slot] = kNone;
   disp_[slot] = node_pos_[node];
   slot_bounds_[slot] = bounds_[node];
+  slot_pos_[slot] = node_pos_[node];
   morph_pos_[slot] = kNone;
   slot_locked_[slot] = 0;
   illegal_frame_[slot] = 0;
@@ -399,8 +401,7 @@ float AdaptiveMesh::targetAt(const glm::vec3& p) const {
 
 float AdaptiveMesh::faceImageArea(uint32_t f) const {
   const auto& c = active_fs_[face_pos_[f]];
-  const glm::vec3 &a = slot_bounds_[c[0]].pos, &b = slot_bounds_[c[1]].pos,
-                  &d = slot_bounds_[c[2]].pos;
+  const glm::vec3 &a = slot_pos_[c[0]], &b = slot_pos_[c[1]], &d = slot_pos_[c[2]];
   const float area = 0.5f * glm::length(glm::cross(b - a, d - a));
   if (camera_.orthographic) return k_ * area;
   const glm::vec3 m = (a + b + d) * (1.0f / 3.0f) - eye_;
@@ -614,6 +615,7 @@ bool AdaptiveMesh::doSplit(uint32_t s, bool check, bool morph) {
   slot_node_[st] = vs.vt;
   node_slot_[vs.vt] = st;
   slot_bounds_[st] = bounds_[vs.vt];  // same position: vt keeps the parent's
+  slot_pos_[st] = node_pos_[vs.vt];
   const uint32_t su = allocSlot(vs.vu);
   for (uint32_t f : fan_u_) {
     const uint32_t i = cornerOf(f, s);
@@ -705,6 +707,7 @@ bool AdaptiveMesh::doCollapse(uint32_t p, bool check) {
   slot_node_[st] = p;
   node_slot_[p] = st;
   slot_bounds_[st] = bounds_[p];
+  slot_pos_[st] = node_pos_[p];
   slot_face_[st] = fn_tl;
   const uint32_t sl = node_slot_[l], sr = node_slot_[r];
   if (slot_face_[sl] == vs.fl) slot_face_[sl] = fn_tl;
@@ -1094,8 +1097,7 @@ void AdaptiveMesh::adapt(float dt_seconds) {
     uint32_t vis = 0, band = 0;
     for (size_t k = begin; k < end; ++k) {
       const auto& c = active_fs_[k];
-      const glm::vec3 &a = slot_bounds_[c[0]].pos, &b = slot_bounds_[c[1]].pos,
-                      &d = slot_bounds_[c[2]].pos;
+      const glm::vec3 &a = slot_pos_[c[0]], &b = slot_pos_[c[1]], &d = slot_pos_[c[2]];
       const glm::vec3 n = glm::cross(b - a, d - a);
       const float area = 0.5f * glm::length(n);
       const glm::vec3 centre = (a + b + d) * (1.0f / 3.0f);
@@ -1196,6 +1198,7 @@ void AdaptiveMesh::orderForLocality() {
   gatherInPlace(undone_ratio_, new_to_old, order_scratch_);
   gatherInPlace(refusals_, new_to_old, order_scratch_);
   gatherInPlace(slot_bounds_, new_to_old, order_scratch_);
+  gatherInPlace(slot_pos_, new_to_old, order_scratch_);
   gatherInPlace(ring_sum_, new_to_old, order_scratch_);
   gatherInPlace(ring_cnt_, new_to_old, order_scratch_);
   gatherInPlace(moved_stamp_, new_to_old, order_scratch_);
@@ -1379,6 +1382,8 @@ std::string AdaptiveMesh::checkInvariants() const {
     }
     ++used;
     if (node_slot_[v] != s) return "slot " + str(s) + " and node " + str(v) + " disagree";
+    if (slot_pos_[s] != node_pos_[v] || slot_bounds_[s].pos != node_pos_[v])
+      return "slot " + str(s) + " does not hold node " + str(v) + "'s position";
     const uint32_t f = slot_face_[s];
     if (incident[v] == 0) {
       if (f != kNone) return "isolated vertex " + str(v) + " has a face";

@@ -306,6 +306,7 @@ class AdaptiveMesh {
   std::vector<float> pre_target_;
   std::vector<uint32_t> dirty_stamp_, moved_stamp_;
   std::vector<NodeBounds> slot_bounds_;  // copy of bounds_ of the slot's node
+  std::vector<glm::vec3> slot_pos_;      // its position alone (the per-face pass reads 3 per face)
   std::vector<double> ring_sum_;   // per slot: sum of the image areas of the incident faces
   std::vector<int32_t> ring_cnt_;  // per slot: number of incident active faces
   std::vector<uint32_t> free_slots_;
