@@ -25,10 +25,11 @@ uint64_t unmatched(const LineMask& a, const LineMask& b, int r) {
   return n;
 }
 
-// A line pixel of one frame moved into the other, with its opacity (0–255).
+// A line pixel of one frame moved into the other, with its opacity (0–255) and where it was.
 struct MovedPixel {
   int x, y;
   uint8_t opacity;
+  int from_x, from_y;
 };
 
 // Moves every line pixel of `from` (frame A) to frame B by its surface point's image motion;
@@ -91,15 +92,18 @@ uint64_t moveLinePixels(const LineMask& from, const SurfaceImage& surf_a, const 
         ++dropped;
         continue;
       }
-      out.push_back({mx, my, from.on[static_cast<size_t>(y) * w + x]});
+      out.push_back({mx, my, from.on[static_cast<size_t>(y) * w + x], x, y});
     }
   return dropped;
 }
 
 // Moved pixels with no pixel of `target` within Chebyshev distance r (the count), and the sum
 // of how much more opaque each moved pixel is than the most opaque one of `target` within r.
+// With `zones`, the unmatched pixels in each zone are added to near_ops / near_morphs, each
+// looked up where it was (`at_source`: a pixel of the zones' frame) or where it moved to.
 void unmatchedMoved(const std::vector<MovedPixel>& moved, const LineMask& target, int r, uint64_t& count,
-                    double& weight) {
+                    double& weight, const ChangeZones* zones, bool at_source, uint64_t& near_ops,
+                    uint64_t& near_morphs) {
   count = 0;
   uint64_t excess = 0;
   for (const MovedPixel& p : moved) {
@@ -109,11 +113,31 @@ void unmatchedMoved(const std::vector<MovedPixel>& moved, const LineMask& target
         best = std::max(best, target.on[static_cast<size_t>(yy) * target.width + xx]);
     count += best == 0;
     excess += p.opacity > best ? p.opacity - best : 0;
+    if (zones && best == 0) {
+      const uint8_t z = at_source ? zones->at(p.from_x, p.from_y) : zones->at(p.x, p.y);
+      near_ops += (z & ChangeZones::kNearOps) != 0;
+      near_morphs += (z & ChangeZones::kNearMorph) != 0;
+    }
   }
   weight = static_cast<double>(excess) / 255.0;
 }
 
 }  // namespace
+
+void ChangeZones::reset(int w, int h) {
+  width = std::max(w, 0);
+  height = std::max(h, 0);
+  bits.assign(static_cast<size_t>(width) * height, 0);
+}
+
+void ChangeZones::mark(glm::vec2 px, int radius, uint8_t bit) {
+  if (!(std::isfinite(px.x) && std::isfinite(px.y))) return;
+  const int cx = static_cast<int>(std::floor(std::clamp(px.x, -1e6f, 1e6f)));
+  const int cy = static_cast<int>(std::floor(std::clamp(px.y, -1e6f, 1e6f)));
+  for (int y = std::max(0, cy - radius); y <= std::min(height - 1, cy + radius); ++y)
+    for (int x = std::max(0, cx - radius); x <= std::min(width - 1, cx + radius); ++x)
+      bits[static_cast<size_t>(y) * width + x] |= bit;
+}
 
 uint64_t LineMask::count() const {
   uint64_t n = 0;
@@ -143,13 +167,25 @@ CompensatedChange compareMasksCompensated(const LineMask& previous, const Surfac
     return c;
   }
   const PixelProjector prev_proj(previous_camera, w, h), cur_proj(current_camera, w, h);
+  const ChangeZones* zones = params.zones && same(params.zones->width, params.zones->height) &&
+                                     params.zones->bits.size() == static_cast<size_t>(w) * h
+                                 ? params.zones
+                                 : nullptr;
   std::vector<MovedPixel> moved;
   // Forward: does each previous line pixel still have a line where its point went?
   c.dropped += moveLinePixels(previous, previous_surface, prev_proj, current_surface, cur_proj, params, moved);
-  unmatchedMoved(moved, current, params.tolerance, c.vanished, c.vanished_weight);
+  unmatchedMoved(moved, current, params.tolerance, c.vanished, c.vanished_weight, zones, false, c.popped_near_ops,
+                 c.popped_near_morphs);
   // Backward: was there a line where each current line pixel's point was before?
   c.dropped += moveLinePixels(current, current_surface, cur_proj, previous_surface, prev_proj, params, moved);
-  unmatchedMoved(moved, previous, params.tolerance, c.appeared, c.appeared_weight);
+  unmatchedMoved(moved, previous, params.tolerance, c.appeared, c.appeared_weight, zones, true, c.popped_near_ops,
+                 c.popped_near_morphs);
+  if (zones)
+    for (size_t i = 0; i < current.on.size(); ++i) {
+      if (!current.on[i]) continue;
+      c.lines_near_ops += (zones->bits[i] & ChangeZones::kNearOps) != 0;
+      c.lines_near_morphs += (zones->bits[i] & ChangeZones::kNearMorph) != 0;
+    }
   return c;
 }
 

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "core/camera.h"
@@ -55,6 +56,23 @@ struct MaskChange {
 /// Compares two masks of the same size with a Chebyshev tolerance of `tolerance` pixels.
 MaskChange compareMasks(const LineMask& previous, const LineMask& current, int tolerance = 1);
 
+/// Where the level of detail changed the mesh in a frame, one byte per pixel (row 0 = top):
+/// bit kNearOps within a radius of where a vertex was split or collapsed in that frame, bit
+/// kNearMorph within it of a vertex that a geomorph moved. Built by the caller from the level of
+/// detail's change lists (present/capture.cpp); compareMasksCompensated() attributes the popped
+/// pixels to them (docs/temporal-coherence.md, "Where the popped pixels are").
+struct ChangeZones {
+  static constexpr uint8_t kNearOps = 1, kNearMorph = 2;
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> bits;
+  /// Sizes the image and clears every bit.
+  void reset(int w, int h);
+  /// Sets `bit` on the pixels within Chebyshev distance `radius` of pixel position `px`.
+  void mark(glm::vec2 px, int radius, uint8_t bit);
+  uint8_t at(int x, int y) const { return bits[static_cast<size_t>(y) * width + x]; }
+};
+
 struct CompensationParams {
   /// Chebyshev tolerance of the comparison after moving, pixels (as compareMasks). Default 1.
   int tolerance = 1;
@@ -65,6 +83,9 @@ struct CompensationParams {
   /// position is nearer than it by more than this fraction of its depth (background next to
   /// it: visible). Default 0.01.
   float depth_tolerance = 0.01f;
+  /// Where the mesh changed in the current frame (optional; used only when its size is the
+  /// masks'): the popped and line pixels in it are counted (CompensatedChange::*_near_*).
+  const ChangeZones* zones = nullptr;
 };
 
 struct CompensatedChange {
@@ -92,6 +113,14 @@ struct CompensatedChange {
   /// (appeared_weight + vanished_weight) / line_weight: the churn lodline reports (fading is
   /// no way to hide popping from it: a half-faded pop counts half).
   double churn() const { return line_weight > 0.0 ? (appeared_weight + vanished_weight) / line_weight : 0.0; }
+  /// With CompensationParams::zones (binary counts; a pixel may be in both zones): the popped
+  /// pixels, appeared and vanished, that lie near a split or collapse and near a morphing
+  /// vertex of the current frame (an appeared pixel where it is, a vanished one where its
+  /// surface point is now), and the current line pixels that do, for comparison.
+  uint64_t popped_near_ops = 0;
+  uint64_t popped_near_morphs = 0;
+  uint64_t lines_near_ops = 0;
+  uint64_t lines_near_morphs = 0;
 };
 
 /// The motion-compensated comparison of two frames: `previous`/`current` line masks, the

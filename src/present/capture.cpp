@@ -13,8 +13,10 @@
 #include "core/timer.h"
 #include "export/coherence.h"
 #include "export/video_writer.h"
+#include "frame/lod_drawing.h"
 #include "io/atomic_file.h"
 #include "io/image.h"
+#include "lod/adaptive_mesh.h"
 #include "present/frame_report.h"
 #include "present/presenter.h"
 #include "present/stroke_ids.h"
@@ -46,6 +48,36 @@ double mean(const std::vector<double>& v) {
   double s = 0.0;
   for (double x : v) s += x;
   return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+// Around how many pixels of a changed vertex a popped pixel is attributed to it: about one
+// edge of a face at the default T = 16 px² (an equilateral triangle of 16 px² has 6.1-px edges),
+// so a line across any face around the vertex is near it.
+constexpr int kChangeZoneRadius = 6;
+
+// The pixels near where the scene's level of detail split or collapsed a vertex in the last
+// frame (at the parent's position, where both happen), and near the vertices a geomorph moved
+// (where they are drawn now). Occlusion is not tested: a change behind a surface marks the
+// pixels in front of it too.
+void changeZones(const SceneDrawing& scene, const Camera& camera, int width, int height, ChangeZones& zones) {
+  zones.reset(width, height);
+  const PixelProjector proj(camera, width, height);
+  auto mark = [&](const glm::vec3& p, uint8_t bit) {
+    glm::vec2 px;
+    float depth = 0.0f;
+    if (proj.project(p, px, depth)) zones.mark(px, kChangeZoneRadius, bit);
+  };
+  for (const SceneDrawing::Object& o : scene.objects()) {
+    const AdaptiveMesh* lod = o.drawing->lod();
+    if (!lod) continue;
+    const LodChanges& ch = lod->changes();
+    const ProgressiveMesh& pm = lod->pm();
+    for (const std::vector<uint32_t>* nodes : {&ch.split, &ch.collapsed})
+      for (uint32_t p : *nodes) mark(pm.positions[pm.origin[p]], ChangeZones::kNearOps);
+    const auto positions = lod->positions();
+    for (uint32_t s : ch.moved)
+      if (s < positions.size()) mark(positions[s], ChangeZones::kNearMorph);
+  }
 }
 
 Status writeText(const std::filesystem::path& path, const std::string& text) {
@@ -139,7 +171,10 @@ Result<CapturedFrame> CaptureRun::next() {
   if (measure_) {
     const FrameReport report = reportFrame(scene, presenter_, &mask_);
     if (Status s = presenter_.readSurface(surface_); !s) return s.error();
-    f.coherence = meter_.measure(mask_, surface_, f.camera);
+    changeZones(scene, f.camera, loaded_.view.frame.width, loaded_.view.frame.height, zones_);
+    CompensationParams cp;
+    cp.zones = &zones_;
+    f.coherence = meter_.measure(mask_, surface_, f.camera, cp);
     std::ostringstream row;
     writeMetricsRow(row, f.index, report, f.coherence, frame_clock.elapsed());
     f.metrics_row = row.str();

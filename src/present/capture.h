@@ -115,6 +115,7 @@ class CaptureRun {
   CoherenceMeter meter_;
   LineMask mask_;
   SurfaceImage surface_;
+  ChangeZones zones_;  // where this frame's level of detail changed the mesh (measured frames)
 };
 
 /// Runs the capture; every output is finished (a valid video, complete PNGs, the CSV and

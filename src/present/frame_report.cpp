@@ -198,7 +198,8 @@ nlohmann::json frameStatsJson(const FrameReport& report) {
 
 std::string metricsCsvHeader() {
   return "frame,line_pixels,appeared,vanished,churn,dropped,appeared_raw,vanished_raw,churn_raw,strokes,specks,"
-         "active_faces,splits,collapses,ms_total,texture_drift,churn_binary,band_fraction\n";
+         "active_faces,splits,collapses,ms_total,texture_drift,churn_binary,band_fraction,popped_near_ops,"
+         "popped_near_morphs,lines_near_ops,lines_near_morphs\n";
 }
 
 void writeMetricsRow(std::ostream& out, int64_t frame, const FrameReport& report, const FrameCoherence& c,
@@ -209,7 +210,9 @@ void writeMetricsRow(std::ostream& out, int64_t frame, const FrameReport& report
       << ',' << c.compensated.churn() << ',' << c.compensated.dropped << ',' << c.raw.appeared << ','
       << c.raw.vanished << ',' << c.raw.churn() << ',' << t.strokes << ',' << t.specks << ',' << t.active_faces << ','
       << splits << ',' << collapses << ',' << ms_total << ',' << report.texture_drift << ','
-      << c.compensated.churnBinary() << ',' << (t.lod ? t.lod->band_fraction : 1.0) << '\n';
+      << c.compensated.churnBinary() << ',' << (t.lod ? t.lod->band_fraction : 1.0) << ','
+      << c.compensated.popped_near_ops << ',' << c.compensated.popped_near_morphs << ','
+      << c.compensated.lines_near_ops << ',' << c.compensated.lines_near_morphs << '\n';
 }
 
 }  // namespace lodline

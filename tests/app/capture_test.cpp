@@ -187,13 +187,25 @@ TEST_F(Capture, MetricsCsvHasHeaderAndOneRowPerFrame) {
   std::getline(in, line);
   EXPECT_EQ(line,
             "frame,line_pixels,appeared,vanished,churn,dropped,appeared_raw,vanished_raw,churn_raw,strokes,specks,"
-            "active_faces,splits,collapses,ms_total,texture_drift,churn_binary,band_fraction");
+            "active_faces,splits,collapses,ms_total,texture_drift,churn_binary,band_fraction,popped_near_ops,"
+            "popped_near_morphs,lines_near_ops,lines_near_morphs");
   int rows = 0;
   while (std::getline(in, line)) {
     ++rows;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 17) << line;
-    const double band = std::stod(line.substr(line.rfind(',') + 1));
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 21) << line;
+    std::vector<std::string> fields;
+    std::stringstream ls(line);
+    for (std::string v; std::getline(ls, v, ',');) fields.push_back(v);
+    ASSERT_EQ(fields.size(), 22u) << line;
+    const double band = std::stod(fields[17]);
     EXPECT_TRUE(band > 0.0 && band <= 1.0) << line;
+    // The popped pixels near changes are some of the popped ones, the line pixels near
+    // changes some of the line pixels.
+    const double appeared = std::stod(fields[2]), vanished = std::stod(fields[3]), lines = std::stod(fields[1]);
+    EXPECT_LE(std::stod(fields[18]), appeared + vanished) << line;
+    EXPECT_LE(std::stod(fields[19]), appeared + vanished) << line;
+    EXPECT_LE(std::stod(fields[20]), lines) << line;
+    EXPECT_LE(std::stod(fields[21]), lines) << line;
   }
   EXPECT_EQ(rows, 6);
 }

@@ -175,6 +175,36 @@ TEST(CompensatedCoherence, ALineRemovedInOneFrameCountsOnce) {
 
 // The meter keeps the previous frame: the first frame compares with nothing, the next ones
 // with the frame before, and the caller gets buffers back to refill.
+// Popped pixels are attributed to the zones where the mesh changed: a line removed next to a
+// split counts near it, with its own line pixels; one removed far from every change does not.
+TEST(CompensatedCoherence, PoppedPixelsAreAttributedToTheZonesOfChanges) {
+  const Camera cam = lookAt({0, 0, 8}, {0, 0, 0});
+  const SurfaceImage s = raycastSphere(cam, {0, 0, 0}, 1.5f);
+  LineMask with = rim(s), without = rim(s);
+  hline(with, kH / 2, kW / 2 - 20, kW / 2 + 20);  // 40 px, from x = kW/2 - 20 to kW/2 + 19
+  ChangeZones zones;
+  zones.reset(kW, kH);
+  zones.mark({kW / 2 - 10.5f, kH / 2 + 0.5f}, 6, ChangeZones::kNearOps);   // covers 13 of its pixels
+  zones.mark({kW / 2 + 30.5f, kH / 2 + 0.5f}, 6, ChangeZones::kNearMorph);  // beyond its end
+  CompensationParams cp;
+  cp.zones = &zones;
+  const CompensatedChange gone = compareMasksCompensated(with, s, cam, without, s, cam, cp);
+  EXPECT_EQ(gone.vanished, 40u);
+  EXPECT_EQ(gone.popped_near_ops, 13u);
+  EXPECT_EQ(gone.popped_near_morphs, 0u);
+  const CompensatedChange back = compareMasksCompensated(without, s, cam, with, s, cam, cp);
+  EXPECT_EQ(back.appeared, 40u);
+  EXPECT_EQ(back.popped_near_ops, 13u);
+  EXPECT_EQ(back.lines_near_ops, 13u);  // the current frame's line pixels in the zone
+  // Zones of another size are ignored.
+  ChangeZones small;
+  small.reset(kW / 2, kH / 2);
+  cp.zones = &small;
+  const CompensatedChange none = compareMasksCompensated(with, s, cam, without, s, cam, cp);
+  EXPECT_EQ(none.vanished, 40u);
+  EXPECT_EQ(none.popped_near_ops + none.popped_near_morphs + none.lines_near_ops, 0u);
+}
+
 TEST(CompensatedCoherence, TheMeterComparesEachFrameWithThePreviousOne) {
   const Camera cam = lookAt({0, 0, 8}, {0, 0, 0});
   const SurfaceImage s = raycastSphere(cam, {0, 0, 0}, 1.5f);

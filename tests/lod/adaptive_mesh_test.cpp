@@ -742,7 +742,9 @@ TEST(AdaptiveMesh, OrderingSlotsKeepsTheMesh) {
   for (int k = 0; k < 30; ++k) {
     ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 80.0f, 30.0f, 2.0f), kW, kH, d).ok());
     lod.adapt(1.0f / 30.0f);
-    if (k == 0) EXPECT_GT(lod.stats().morphing + lod.stats().splits + lod.stats().collapses, 0u) << morphing;
+    if (k == 0) {
+      EXPECT_GT(lod.stats().morphing, 0u) << "of " << morphing << " morphing before";
+    }
   }
   EXPECT_EQ(lod.checkInvariants(), "");
 }
