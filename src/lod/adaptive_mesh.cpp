@@ -197,6 +197,9 @@ AdaptiveMesh::AdaptiveMesh(const ProgressiveMesh& pm) : pm_(pm) {
   ring_cnt_.assign(cap, 0);
   moved_stamp_.assign(cap, 0);
   free_slots_.reserve(cap);
+  eval_slot_.assign(cap, kNone);
+  slot_eval_.assign(cap, kNone);
+  eval_free_.reserve(cap);
   morphing_.reserve(cap);
   pending_.reserve(cap / 2 + 1);
   work_.reserve(2 * static_cast<size_t>(cap) + 16);
@@ -217,9 +220,12 @@ void AdaptiveMesh::resetToBase() {
   active_area_.clear();
   std::fill(slot_node_.begin(), slot_node_.end(), kNone);
   std::fill(morph_pos_.begin(), morph_pos_.end(), kNone);
+  std::fill(eval_slot_.begin(), eval_slot_.begin() + eval_count_, kNone);
   slot_count_ = 0;
   active_vertices_ = 0;
   free_slots_.clear();
+  eval_count_ = 0;
+  eval_free_.clear();
   morphing_.clear();
   pending_.clear();
   for (uint32_t r : pm_.roots) allocSlot(r);
@@ -259,6 +265,16 @@ uint32_t AdaptiveMesh::allocSlot(uint32_t node) {
   ring_cnt_[slot] = 0;
   ++active_vertices_;
   ++fresh_slots_;
+  // Its place in the order of evaluation: taken as slots were before orderForLocality().
+  uint32_t e;
+  if (!eval_free_.empty()) {
+    e = eval_free_.back();
+    eval_free_.pop_back();
+  } else {
+    e = eval_count_++;
+  }
+  eval_slot_[e] = slot;
+  slot_eval_[slot] = e;
   return slot;
 }
 
@@ -268,6 +284,8 @@ void AdaptiveMesh::freeSlot(uint32_t slot) {
   slot_node_[slot] = kNone;
   slot_face_[slot] = kNone;
   free_slots_.push_back(slot);
+  eval_slot_[slot_eval_[slot]] = kNone;
+  eval_free_.push_back(slot_eval_[slot]);
   --active_vertices_;
 }
 
@@ -910,12 +928,14 @@ void AdaptiveMesh::clearAllMorphs() {
 void AdaptiveMesh::evaluatePass() {
   // The work list holds slots: the static data of an active vertex (position, bounds, parent)
   // is copied into its slot, so this loop mostly reads slot arrays in order.
-  // In slot order, from where a budget stopped the last evaluation (round robin).
+  // In the order of evaluation (as slots were numbered before orderForLocality(), so that
+  // renumbering the slots changes no decision), from where a budget stopped the last
+  // evaluation (round robin).
   work_.clear();
-  const uint32_t start = resume_slot_ < slot_count_ ? resume_slot_ : 0;
-  for (uint32_t k = 0; k < slot_count_; ++k) {
-    const uint32_t slot = start + k < slot_count_ ? start + k : start + k - slot_count_;
-    if (slot_node_[slot] != kNone) work_.push_back(slot);
+  const uint32_t start = resume_eval_ < eval_count_ ? resume_eval_ : 0;
+  for (uint32_t k = 0; k < eval_count_; ++k) {
+    const uint32_t slot = eval_slot_[start + k < eval_count_ ? start + k : start + k - eval_count_];
+    if (slot != kNone) work_.push_back(slot);
   }
   // Visibility and target of every listed vertex, in parallel: they depend only on the
   // slot's node (its bounds) and the view. Used while the slot still holds that node.
@@ -936,12 +956,12 @@ void AdaptiveMesh::evaluatePass() {
   }
   const float t_s = params_.t_s, t_c = params_.t_c;
   const bool morph = params_.geomorphs && params_.morph_time > 0.0f;
-  resume_slot_ = 0;
+  resume_eval_ = 0;
   for (size_t i = 0; i < work_.size(); ++i) {
     if ((params_.max_operations && ops_ >= params_.max_operations) ||
         (params_.max_adapt_ms > 0.0f && i % 32 == 0 && i >= std::max<size_t>(32, listed / kMinEvaluatedShare) &&
          adapt_clock_.elapsed() > params_.max_adapt_ms)) {
-      if (i < listed) resume_slot_ = work_[i];  // the next frame starts here
+      if (i < listed) resume_eval_ = slot_eval_[work_[i]];  // the next frame starts here
       budget_spent_ = true;
       break;
     }
@@ -1167,8 +1187,12 @@ void AdaptiveMesh::adapt(float dt_seconds) {
 // T = 7 px², docs/performance.md). Renumbering the slots along a Morton curve and sorting the
 // faces by their lowest corner, as core/mesh_order.h does for input meshes, restores it. The
 // consumers follow the vertices through the nodes their slots hold (every slot is marked
-// dirty), as they do across splits and collapses. The order of evaluation follows the slots,
-// so this changes which of two competing operations comes first, as any slot order does.
+// dirty), as they do across splits and collapses. The vertices are still evaluated in the
+// order their slots had without it (each slot keeps its place in that order, which is taken
+// and released as slots were), because which of two competing operations comes first
+// decides results: on a fast zoom-out of a torus, orders alone moved the band fraction at
+// rest between 0.24 and 0.84 (docs/detail-control.md §7). So the adapted mesh is the same
+// with or without renumbering, only numbered differently.
 void AdaptiveMesh::orderForLocality() {
   fresh_slots_ = 0;
   const uint32_t old_count = slot_count_;
@@ -1202,15 +1226,18 @@ void AdaptiveMesh::orderForLocality() {
   gatherInPlace(ring_sum_, new_to_old, order_scratch_);
   gatherInPlace(ring_cnt_, new_to_old, order_scratch_);
   gatherInPlace(moved_stamp_, new_to_old, order_scratch_);
+  gatherInPlace(slot_eval_, new_to_old, order_scratch_);
   // pre_node_/pre_visible_/pre_target_ are refilled by each pass.
   std::fill(slot_node_.begin() + n, slot_node_.begin() + old_count, kNone);
   std::fill(slot_face_.begin() + n, slot_face_.begin() + old_count, kNone);
   std::fill(morph_pos_.begin() + n, morph_pos_.begin() + old_count, kNone);
-  for (uint32_t i = 0; i < n; ++i) node_slot_[slot_node_[i]] = i;
+  for (uint32_t i = 0; i < n; ++i) {
+    node_slot_[slot_node_[i]] = i;
+    eval_slot_[slot_eval_[i]] = i;
+  }
   for (uint32_t& s : morphing_) s = order_map_[s];
   slot_count_ = n;
   free_slots_.clear();
-  resume_slot_ = resume_slot_ < old_count && order_map_[resume_slot_] != kNone ? order_map_[resume_slot_] : 0;
 
   // Faces by their lowest corner in the new numbering.
   for (auto& c : active_fs_)
@@ -1384,6 +1411,8 @@ std::string AdaptiveMesh::checkInvariants() const {
     if (node_slot_[v] != s) return "slot " + str(s) + " and node " + str(v) + " disagree";
     if (slot_pos_[s] != node_pos_[v] || slot_bounds_[s].pos != node_pos_[v])
       return "slot " + str(s) + " does not hold node " + str(v) + "'s position";
+    if (slot_eval_[s] >= eval_count_ || eval_slot_[slot_eval_[s]] != s)
+      return "slot " + str(s) + " has no place in the order of evaluation";
     const uint32_t f = slot_face_[s];
     if (incident[v] == 0) {
       if (f != kNone) return "isolated vertex " + str(v) + " has a face";
@@ -1397,6 +1426,10 @@ std::string AdaptiveMesh::checkInvariants() const {
       return "slot " + str(s) + " disagrees with node " + str(v) + " about its lock";
   }
   if (used != active_vertices_) return "active vertex count mismatch";
+  uint32_t placed = 0;
+  for (uint32_t e = 0; e < eval_count_; ++e) placed += eval_slot_[e] != kNone;
+  if (placed != active_vertices_ || placed + eval_free_.size() != eval_count_)
+    return "the order of evaluation does not hold the active vertices";
   for (uint32_t v = 0; v < n_nodes_; ++v)
     if (node_slot_[v] != kNone && (node_slot_[v] >= slot_count_ || slot_node_[node_slot_[v]] != v))
       return "node " + str(v) + " points to a wrong slot";

@@ -149,7 +149,9 @@ class AdaptiveMesh {
   /// sorts the active faces by their lowest corner slot, so that neighbours lie near each
   /// other in the slot-indexed arrays; adds every slot to changes().dirty (what follows a
   /// vertex over frames follows its node, as across splits and collapses). The mesh, its
-  /// displayed positions and its geomorphs are unchanged: only the numbering. adapt() runs
+  /// displayed positions and its geomorphs are unchanged: only the numbering, and later
+  /// frames adapt as they would have without it (the order of evaluation keeps each vertex's
+  /// place). adapt() runs
   /// it before its evaluation once a quarter of at least 4096 active vertices have taken new
   /// slots since the last time (docs/design.md §4).
   void orderForLocality();
@@ -310,6 +312,11 @@ class AdaptiveMesh {
   std::vector<double> ring_sum_;   // per slot: sum of the image areas of the incident faces
   std::vector<int32_t> ring_cnt_;  // per slot: number of incident active faces
   std::vector<uint32_t> free_slots_;
+  // The order of evaluation, apart from the slots' numbering (orderForLocality()): each slot's
+  // place in it, the slot at each place (kPmNone: free), the free places (reused last freed
+  // first, as slots were) and the places used so far.
+  std::vector<uint32_t> slot_eval_, eval_slot_, eval_free_;
+  uint32_t eval_count_ = 0;
   std::vector<uint32_t> morphing_;
   std::vector<uint32_t> pending_;
 
@@ -350,7 +357,7 @@ class AdaptiveMesh {
   float frame_dt_ = 0.0f;  // morph speed-up of the split being executed
   uint32_t frame_ = 1;
   uint32_t ops_ = 0;
-  uint32_t resume_slot_ = 0;   // where the next evaluation starts (a budget cut the last one)
+  uint32_t resume_eval_ = 0;   // where the next evaluation starts (a budget cut the last one)
   bool budget_spent_ = false;  // this adapt() call stopped at a budget
   Stopwatch adapt_clock_;
   LodStats stats_;

@@ -749,6 +749,37 @@ TEST(AdaptiveMesh, OrderingSlotsKeepsTheMesh) {
   EXPECT_EQ(lod.checkInvariants(), "");
 }
 
+// Renumbering changes no decision: a mesh whose slots are renumbered after every frame adapts
+// exactly as one renumbered only when adapt() decides to, through a zoom-out and an orbit
+// with geomorphs (the order of evaluation keeps each vertex's place).
+TEST(AdaptiveMesh, RenumberingChangesNoDecision) {
+  const Model& m = model("fine_torus");
+  ASSERT_FALSE(m.mesh.faces.empty());
+  AdaptiveMesh plain(m.pm), renumbered(m.pm);
+  DetailParams d;
+  d.max_adapt_ms = 0.0f;
+  uint32_t ops = 0;
+  for (int k = 0; k < 120; ++k) {
+    const float dist = k < 60 ? 2.0f * std::pow(8.0f, k / 60.0f) : 2.0f;  // a zoom-out, then close
+    const Camera cam = cameraAt(m.bounds, 4.0f * k, 30.0f, dist);
+    ASSERT_TRUE(plain.setView(cam, kW, kH, d).ok());
+    ASSERT_TRUE(renumbered.setView(cam, kW, kH, d).ok());
+    plain.adapt(1.0f / 30.0f);
+    renumbered.adapt(1.0f / 30.0f);
+    ASSERT_EQ(plain.stats().splits, renumbered.stats().splits) << k;
+    ASSERT_EQ(plain.stats().collapses, renumbered.stats().collapses) << k;
+    ASSERT_EQ(plain.stats().morphing, renumbered.stats().morphing) << k;
+    const NodeView a = nodeView(plain), b = nodeView(renumbered);
+    ASSERT_EQ(a.positions, b.positions) << k;
+    ASSERT_EQ(a.faces, b.faces) << k;
+    ops += plain.stats().splits + plain.stats().collapses;
+    renumbered.orderForLocality();
+  }
+  EXPECT_GT(ops, 5000u);
+  EXPECT_EQ(renumbered.checkInvariants(), "");
+  EXPECT_EQ(plain.checkInvariants(), "");
+}
+
 // adapt() orders the slots by itself as the mesh changes; the mesh stays valid and converges
 // into the band at rest.
 TEST(AdaptiveMesh, AdaptOrdersSlotsAsTheMeshChanges) {
