@@ -151,9 +151,8 @@ class AdaptiveMesh {
   /// vertex over frames follows its node, as across splits and collapses). The mesh, its
   /// displayed positions and its geomorphs are unchanged: only the numbering, and later
   /// frames adapt as they would have without it (the order of evaluation keeps each vertex's
-  /// place). adapt() runs
-  /// it before its evaluation once a quarter of at least 4096 active vertices have taken new
-  /// slots since the last time (docs/design.md §4).
+  /// place). adapt() runs it before its evaluation once a quarter of at least 4096 active
+  /// vertices have taken new slots since the last time (docs/design.md §4).
   void orderForLocality();
 
   // ---- output (slot-indexed; a slot keeps its index while its vertex stays active) ----
@@ -301,7 +300,7 @@ class AdaptiveMesh {
   // Per slot: the ring mean after / before the last forced split of its vertex that was undone
   // because the chain left its own split not due (0: none since the slot took its vertex).
   std::vector<float> undone_ratio_;
-  std::vector<uint8_t> refusals_;
+  std::vector<uint8_t> refusals_;  // per slot: its vertex's forced splits refused in a row
   // evaluatePass(): node, visibility and target T of each slot, computed up front.
   std::vector<uint32_t> pre_node_;
   std::vector<uint8_t> pre_visible_;
@@ -359,7 +358,7 @@ class AdaptiveMesh {
   uint32_t ops_ = 0;
   uint32_t resume_eval_ = 0;   // where the next evaluation starts (a budget cut the last one)
   bool budget_spent_ = false;  // this adapt() call stopped at a budget
-  Stopwatch adapt_clock_;
+  Stopwatch adapt_clock_;      // started by adapt(), for max_adapt_ms
   LodStats stats_;
   LodChanges changes_;
 };
