@@ -927,7 +927,7 @@ void AdaptiveMesh::clearAllMorphs() {
 
 void AdaptiveMesh::evaluatePass() {
   // The work list holds slots: the static data of an active vertex (position, bounds, parent)
-  // is copied into its slot, so this loop mostly reads slot arrays in order.
+  // is copied into its slot, so this loop reads slot arrays, not per-node ones.
   // In the order of evaluation (as slots were numbered before orderForLocality(), so that
   // renumbering the slots changes no decision), from where a budget stopped the last
   // evaluation (round robin).
