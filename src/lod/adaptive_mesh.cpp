@@ -73,6 +73,14 @@ constexpr uint32_t kMaxRefusalShift = 3;
 constexpr uint32_t kOrderFreshShare = 4;
 constexpr uint32_t kOrderMinVertices = 4096;
 
+/// An index from a free list, the last freed first, or else the next unused one (`count`).
+uint32_t takeIndex(std::vector<uint32_t>& free, uint32_t& count) {
+  if (free.empty()) return count++;
+  const uint32_t i = free.back();
+  free.pop_back();
+  return i;
+}
+
 /// v[0, new_to_old.size()) = v[new_to_old[i]], through `scratch` (bytes).
 template <class T>
 void gatherInPlace(std::vector<T>& v, std::span<const uint32_t> new_to_old, std::vector<unsigned char>& scratch) {
@@ -243,13 +251,7 @@ void AdaptiveMesh::resetToBase() {
 }
 
 uint32_t AdaptiveMesh::allocSlot(uint32_t node) {
-  uint32_t slot;
-  if (!free_slots_.empty()) {
-    slot = free_slots_.back();
-    free_slots_.pop_back();
-  } else {
-    slot = slot_count_++;
-  }
+  const uint32_t slot = takeIndex(free_slots_, slot_count_);
   slot_node_[slot] = node;
   node_slot_[node] = slot;
   slot_face_[slot] = kNone;
@@ -266,13 +268,7 @@ uint32_t AdaptiveMesh::allocSlot(uint32_t node) {
   ++active_vertices_;
   ++fresh_slots_;
   // Its place in the order of evaluation: taken as slots were before orderForLocality().
-  uint32_t e;
-  if (!eval_free_.empty()) {
-    e = eval_free_.back();
-    eval_free_.pop_back();
-  } else {
-    e = eval_count_++;
-  }
+  const uint32_t e = takeIndex(eval_free_, eval_count_);
   eval_slot_[e] = slot;
   slot_eval_[slot] = e;
   return slot;

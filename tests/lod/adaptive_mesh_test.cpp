@@ -560,6 +560,19 @@ TEST(AdaptiveMesh, ChangeListAndExports) {
 namespace lodline {
 namespace {
 
+/// One frame (1/30 s) of two meshes that must adapt alike: the same view for both, then the
+/// same splits and collapses.
+::testing::AssertionResult adaptAlike(AdaptiveMesh& a, AdaptiveMesh& b, const Camera& cam, const DetailParams& d) {
+  if (!a.setView(cam, kW, kH, d).ok() || !b.setView(cam, kW, kH, d).ok())
+    return ::testing::AssertionFailure() << "setView failed";
+  a.adapt(1.0f / 30.0f);
+  b.adapt(1.0f / 30.0f);
+  if (a.stats().splits != b.stats().splits || a.stats().collapses != b.stats().collapses)
+    return ::testing::AssertionFailure() << "splits " << a.stats().splits << " / " << b.stats().splits
+                                         << ", collapses " << a.stats().collapses << " / " << b.stats().collapses;
+  return ::testing::AssertionSuccess();
+}
+
 // The per-face pass split over worker threads leaves every decision unchanged: two meshes,
 // one adapting on three threads and one on the caller's, stay identical through a zooming
 // orbit with geomorphs.
@@ -574,12 +587,7 @@ TEST(AdaptiveMesh, WorkerThreadsDoNotChangeTheResult) {
   uint32_t ops = 0;
   for (int k = 0; k < 120; ++k) {
     const Camera cam = cameraAt(m.bounds, 3.0f * k, 30.0f, 2.0f + 4.0f * std::abs(std::sin(0.05f * k)));
-    ASSERT_TRUE(serial.setView(cam, kW, kH, detail).ok());
-    ASSERT_TRUE(threaded.setView(cam, kW, kH, detail).ok());
-    serial.adapt(1.0f / 30.0f);
-    threaded.adapt(1.0f / 30.0f);
-    ASSERT_EQ(serial.stats().splits, threaded.stats().splits) << k;
-    ASSERT_EQ(serial.stats().collapses, threaded.stats().collapses) << k;
+    ASSERT_TRUE(adaptAlike(serial, threaded, cam, detail)) << k;
     ASSERT_EQ(serial.stats().visible_faces, threaded.stats().visible_faces) << k;
     ASSERT_EQ(serial.stats().band_fraction, threaded.stats().band_fraction) << k;
     serial.exportFaces(a);
@@ -762,12 +770,7 @@ TEST(AdaptiveMesh, RenumberingChangesNoDecision) {
   for (int k = 0; k < 120; ++k) {
     const float dist = k < 60 ? 2.0f * std::pow(8.0f, k / 60.0f) : 2.0f;  // a zoom-out, then close
     const Camera cam = cameraAt(m.bounds, 4.0f * k, 30.0f, dist);
-    ASSERT_TRUE(plain.setView(cam, kW, kH, d).ok());
-    ASSERT_TRUE(renumbered.setView(cam, kW, kH, d).ok());
-    plain.adapt(1.0f / 30.0f);
-    renumbered.adapt(1.0f / 30.0f);
-    ASSERT_EQ(plain.stats().splits, renumbered.stats().splits) << k;
-    ASSERT_EQ(plain.stats().collapses, renumbered.stats().collapses) << k;
+    ASSERT_TRUE(adaptAlike(plain, renumbered, cam, d)) << k;
     ASSERT_EQ(plain.stats().morphing, renumbered.stats().morphing) << k;
     const NodeView a = nodeView(plain), b = nodeView(renumbered);
     ASSERT_EQ(a.positions, b.positions) << k;
