@@ -13,9 +13,11 @@ vertex, then contours where kr > 0 and suggestive contours, threshold 0.01/fs^2,
 
 lodline's counterparts, one thread, on each mesh as stored and as lodline orders a
 full-detail mesh when it loads it (core/mesh_order.h; the "ordered" rows):
-  curvature + derivatives, fresh   BM_ShapeFullWithAdjacency threads:1 (new cache: arrays,
-                                   adjacency, corner areas, normals, curvature, derivatives);
-                                   in the ordered rows plus the reorder (BM_OrderForLocality)
+  curvature + derivatives, fresh   BM_ShapeFresh threads:1 (new cache: arrays, corner areas,
+                                   normals, curvature, derivatives, as rtsc's driver); in the
+                                   ordered rows plus the reorder (BM_OrderForLocality)
+  the same and the adjacency       BM_ShapeFullWithAdjacency threads:1 (vertex rings and edges
+                                   too, which the line stages need: a drawing's first frame)
   curvature + derivatives, kept    BM_ShapeFull derivs:1 threads:1 (adjacency kept: what a
                                    frame pays when every vertex moved)
   contours + suggestive per view   BM_ContoursSuggestive
@@ -89,29 +91,31 @@ for run in range(args.runs):
     for m in meshes:
         p_curv, p_view = peer(m)
         s = shape_index[m]
-        fresh = bench("shape_bench", f"^BM_ShapeFullWithAdjacency/mesh:{s}/threads:1$")
+        fresh = bench("shape_bench", f"^BM_ShapeFresh/mesh:{s}/threads:1$")
+        with_adj = bench("shape_bench", f"^BM_ShapeFullWithAdjacency/mesh:{s}/threads:1$")
         kept = bench("shape_bench", f"^BM_ShapeFull/mesh:{s}/derivs:1/threads:1$")
         view = bench("lines_bench", f"^BM_ContoursSuggestive/mesh:{lines_index[m]}$")
-        rows[m].append((p_curv, fresh, kept, p_view, view))
+        rows[m].append((p_curv, fresh, with_adj, kept, p_view, view))
         o = shape_ordered[m]
         reorder = bench("shape_bench", f"^BM_OrderForLocality/mesh:{s}$")
-        o_fresh = bench("shape_bench", f"^BM_ShapeFullWithAdjacency/mesh:{o}/threads:1$") + reorder
+        o_fresh = bench("shape_bench", f"^BM_ShapeFresh/mesh:{o}/threads:1$") + reorder
+        o_adj = bench("shape_bench", f"^BM_ShapeFullWithAdjacency/mesh:{o}/threads:1$") + reorder
         o_kept = bench("shape_bench", f"^BM_ShapeFull/mesh:{o}/derivs:1/threads:1$")
         o_view = bench("lines_bench", f"^BM_ContoursSuggestive/mesh:{lines_ordered[m]}$")
-        ordered_rows[m].append((p_curv, o_fresh, o_kept, p_view, o_view))
-        print(f"run {run + 1} {m}: curvature peer {p_curv:.2f} ms, lodline fresh {fresh:.2f} / kept {kept:.2f} ms, "
-              f"ordered: fresh {o_fresh:.2f} (of it reorder {reorder:.2f}) / kept {o_kept:.2f} ms; "
+        ordered_rows[m].append((p_curv, o_fresh, o_adj, o_kept, p_view, o_view))
+        print(f"run {run + 1} {m}: curvature peer {p_curv:.2f} ms, lodline fresh {fresh:.2f} / with adjacency "
+              f"{with_adj:.2f} / kept {kept:.2f} ms, ordered: fresh {o_fresh:.2f} (of it reorder {reorder:.2f}) / "
+              f"with adjacency {o_adj:.2f} / kept {o_kept:.2f} ms; "
               f"per view peer {p_view:.3f} ms, lodline {view:.3f} ms, ordered {o_view:.3f} ms", file=sys.stderr)
 
-print("| mesh | curvature + derivatives: rtsc / lodline fresh / lodline kept (ms) | speed-up fresh, kept "
-      "| contours + suggestive per view: rtsc / lodline (ms) | speed-up |")
+print("| mesh | curvature + derivatives: rtsc / lodline fresh / with adjacency / kept (ms) "
+      "| speed-up fresh, with adjacency, kept | contours + suggestive per view: rtsc / lodline (ms) | speed-up |")
 print("|---|---|---|---|---|")
 for m, r in [(m, rows[m]) for m in meshes] + [(m + " (ordered)", ordered_rows[m]) for m in meshes]:
     med = lambda k: statistics.median(x[k] for x in r)
-    fresh_ratio = [x[0] / x[1] for x in r]
-    kept_ratio = [x[0] / x[2] for x in r]
-    view_ratio = [x[3] / x[4] for x in r]
+    ratio = lambda peer_k, k: [x[peer_k] / x[k] for x in r]
     runs = lambda v: ", ".join(f"{x:.2f}" for x in v)
-    print(f"| {m} | {med(0):.1f} / {med(1):.1f} / {med(2):.1f} | {statistics.median(fresh_ratio):.2f}× "
-          f"({runs(fresh_ratio)}), {statistics.median(kept_ratio):.2f}× ({runs(kept_ratio)}) "
-          f"| {med(3):.2f} / {med(4):.2f} | {statistics.median(view_ratio):.2f}× ({runs(view_ratio)}) |")
+    speed = lambda v: f"{statistics.median(v):.2f}× ({runs(v)})"
+    print(f"| {m} | {med(0):.1f} / {med(1):.1f} / {med(2):.1f} / {med(3):.1f} "
+          f"| {speed(ratio(0, 1))}, {speed(ratio(0, 2))}, {speed(ratio(0, 3))} "
+          f"| {med(4):.2f} / {med(5):.2f} | {speed(ratio(4, 5))} |")

@@ -14,9 +14,7 @@ namespace {
 // relocation.
 constexpr uint32_t kRingSlack = 2;
 
-inline bool validTriple(const std::array<uint32_t, 3>& t, uint32_t nv) {
-  return t[0] < nv && t[1] < nv && t[2] < nv && t[0] != t[1] && t[1] != t[2] && t[2] != t[0];
-}
+inline bool validTriple(const std::array<uint32_t, 3>& t, uint32_t nv) { return faceIsValid(t, nv) != 0; }
 
 inline EdgeKey edgeKey(uint32_t a, uint32_t b) { return {std::min(a, b), std::max(a, b)}; }
 
@@ -36,14 +34,17 @@ uint32_t MeshAdjacency::findEdge(uint32_t a, uint32_t b) const {
 }
 
 void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out) {
-  const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
-  const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
+  buildAdjacency(mesh.faces, static_cast<uint32_t>(mesh.positions.size()), out);
+}
+
+void buildAdjacency(std::span<const std::array<uint32_t, 3>> faces, uint32_t nv, MeshAdjacency& out) {
+  const uint32_t nf = static_cast<uint32_t>(faces.size());
   out.vertex_count = nv;
   out.face_count = nf;
 
   // Valid faces: three distinct, in-range indices.
   out.face_valid.resize(nf);
-  for (uint32_t f = 0; f < nf; ++f) out.face_valid[f] = validTriple(mesh.faces[f], nv);
+  for (uint32_t f = 0; f < nf; ++f) out.face_valid[f] = validTriple(faces[f], nv);
 
   // Vertex → faces: count, lay the rings out with slack, fill in increasing face order.
   out.vertex_face_begin.resize(nv);
@@ -51,7 +52,7 @@ void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out) {
   out.ring_limit.resize(nv);
   for (uint32_t f = 0; f < nf; ++f) {
     if (!out.face_valid[f]) continue;
-    for (uint32_t v : mesh.faces[f]) ++out.vertex_face_end[v];
+    for (uint32_t v : faces[f]) ++out.vertex_face_end[v];
   }
   uint32_t storage = 0, corner_total = 0;
   for (uint32_t v = 0; v < nv; ++v) {
@@ -66,7 +67,7 @@ void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out) {
   for (uint32_t f = 0; f < nf; ++f) {
     if (!out.face_valid[f]) continue;
     for (uint8_t c = 0; c < 3; ++c) {
-      const uint32_t slot = out.vertex_face_end[mesh.faces[f][c]]++;
+      const uint32_t slot = out.vertex_face_end[faces[f][c]]++;
       out.vertex_faces[slot] = f;
       out.vertex_face_corners[slot] = c;
     }
@@ -91,7 +92,7 @@ void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out) {
     const uint32_t stamp = v + 1;
     for (uint32_t i = out.vertex_face_begin[v]; i < out.vertex_face_end[v]; ++i) {
       const uint32_t f = vf[i];
-      const auto& t = mesh.faces[f];
+      const auto& t = faces[f];
       const uint8_t c = vc[i];
       const uint8_t c_next = c == 2 ? 0 : c + 1, c_prev = c == 0 ? 2 : c - 1;
       const uint32_t ends[2] = {t[c_next], t[c_prev]};

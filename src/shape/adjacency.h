@@ -70,6 +70,14 @@ struct MeshAdjacency {
 /// Builds all of `out` from mesh.faces (positions are not read; only their count).
 /// Reuses out's storage. O(F + V).
 void buildAdjacency(const TriMesh& mesh, MeshAdjacency& out);
+/// The same from the face triples over `vertex_count` vertices.
+void buildAdjacency(std::span<const std::array<uint32_t, 3>> faces, uint32_t vertex_count,
+                    MeshAdjacency& out);
+/// 1 for a face with three distinct indices below vertex_count ("valid", as above), else 0.
+inline uint8_t faceIsValid(const std::array<uint32_t, 3>& t, uint32_t vertex_count) {
+  return t[0] < vertex_count && t[1] < vertex_count && t[2] < vertex_count && t[0] != t[1] &&
+         t[1] != t[2] && t[2] != t[0];
+}
 
 /// Brings `adj`, built (or updated) for the faces `old_faces` over at most as many vertices
 /// as mesh has, up to date with mesh.faces. `changed` lists every face slot whose triple

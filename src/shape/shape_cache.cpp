@@ -554,7 +554,7 @@ void ShapeCache::storeFaceGeometry(uint32_t f, const float* out, int lane, bool 
 void ShapeCache::faceGeometryBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count) {
   constexpr int W = lanes::kWidth;
   alignas(32) float out[fit::kGeomOut * W];
-  const auto valid = [&](uint32_t f) { return adjacency_.face_valid[f] != 0; };
+  const auto valid = [&](uint32_t f) { return face_valid_[f] != 0; };
   runFaceKernel<fit::kGeomIn>(
       faces, count, out, valid,
       [&](uint32_t f, const float** in, int lane) {
@@ -750,7 +750,7 @@ void ShapeCache::finishDerivative(uint32_t v, glm::vec4 c, float wsum) {
 void ShapeCache::computeScattered(const TriMesh& mesh, bool eager_derivatives) {
   const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
   const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
-  const uint8_t* valid = adjacency_.face_valid.data();
+  const uint8_t* valid = face_valid_.data();
   sum_.assign(nv, glm::vec4(0.0f));
   sum_w_.assign(nv, 0.0f);
   constexpr uint32_t W = lanes::kWidth;
@@ -840,20 +840,24 @@ void ShapeCache::compute(const TriMesh& mesh) {
   const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
   const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
   const bool same_faces =
-      computed_ && adjacency_.vertex_count == nv && faces_copy_.size() == mesh.faces.size() &&
+      computed_ && vertex_count_ == nv && faces_copy_.size() == mesh.faces.size() &&
       (nf == 0 || std::memcmp(faces_copy_.data(), mesh.faces.data(),
                               nf * sizeof(mesh.faces[0])) == 0);
   stats_ = ShapeUpdateStats{};
   if (!same_faces) {
-    buildAdjacency(mesh, adjacency_);
     faces_copy_ = mesh.faces;
+    vertex_count_ = nv;
+    face_valid_.resize(nf);
+    for (uint32_t f = 0; f < nf; ++f) face_valid_[f] = faceIsValid(mesh.faces[f], nv);
+    adjacency_current_ = false;
     resize(nv, nf);
     stats_.connectivity_rebuilt = true;
   }
   const bool eager = params_.derivatives && !params_.lazy_derivatives;
   if (params_.threads == 1 && !external_pool_) {
-    computeScattered(mesh, eager);
+    computeScattered(mesh, eager);  // face loops only: the adjacency waits for whoever needs it
   } else {
+    ensureAdjacency();  // the threads gather over the vertices' rings
     // Each phase reads only what the previous phases finished and writes only its own face
     // or vertex, so the loops split over threads without changing a bit of the result.
     // The face kernels run lanes::kWidth faces at a time, as on one thread.
@@ -883,6 +887,17 @@ void ShapeCache::compute(const TriMesh& mesh) {
   stats_.full = true;
   stats_.normal_vertices = stats_.curvature_vertices = nv;
   stats_.derivative_vertices = eager ? nv : 0;
+}
+
+const MeshAdjacency& ShapeCache::adjacency() const {
+  ensureAdjacency();
+  return adjacency_;
+}
+
+void ShapeCache::ensureAdjacency() const {
+  if (adjacency_current_) return;
+  buildAdjacency(faces_copy_, vertex_count_, adjacency_);
+  adjacency_current_ = true;
 }
 
 void ShapeCache::growFaces(size_t begin, size_t end, uint8_t level) {
@@ -977,11 +992,12 @@ void ShapeCache::forEachMarkedFaceBlock(size_t count, uint8_t max_level, Fn&& bl
 void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_vertices) {
   const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
   const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
-  const uint32_t old_nv = adjacency_.vertex_count;
+  const uint32_t old_nv = vertex_count_;
   if (!computed_ || nv < old_nv) {  // vertices removed: indices may have moved, start over
     compute(mesh);
     return;
   }
+  ensureAdjacency();  // the rings say what depends on what
   const uint32_t old_nf = static_cast<uint32_t>(faces_copy_.size());
   const bool same_faces =
       old_nv == nv && old_nf == nf &&
@@ -1033,6 +1049,9 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
     faces_copy_.resize(nf);  // only the changed slots differ
     for (uint32_t f : changed_faces_)
       if (f < nf) faces_copy_[f] = mesh.faces[f];
+    // (Not only the changed slots: with more vertices, an unchanged face may become valid.)
+    face_valid_.assign(adjacency_.face_valid.begin(), adjacency_.face_valid.end());
+    vertex_count_ = nv;
   }
   // The nested support sets, as prefixes of inc_faces_ / inc_verts_ (level = ring):
   //   C = changed; F1 = faces of C (geometry, corner areas); V1 = their vertices (normals,
@@ -1103,7 +1122,8 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
 void ShapeCache::ensureDerivatives(const TriMesh& mesh, std::span<const uint32_t> vertices) {
   last_ensured_ = 0;
   if (!params_.derivatives || !params_.lazy_derivatives || !computed_) return;
-  const uint32_t nv = adjacency_.vertex_count;
+  ensureAdjacency();
+  const uint32_t nv = vertex_count_;
   ens_verts_.clear();
   ens_faces_.clear();
   // Marked current as they are scheduled (repeats drop out); all are computed below.

@@ -180,7 +180,11 @@ class ShapeCache {
   /// Runs the loops on `pool` (not owned; must outlive this cache) instead of starting its
   /// own threads. Null: back to its own.
   void setWorkerPool(WorkerPool* pool) { external_pool_ = pool; }
-  const MeshAdjacency& adjacency() const { return adjacency_; }
+  /// The adjacency of the mesh last computed. A one-thread compute() needs none (its loops
+  /// run over the faces, as rtsc's do), so after it changed the connectivity the adjacency is
+  /// built on the first call here; update(), ensureDerivatives() and the threaded compute()
+  /// build it themselves. Not to be first called from two threads at once.
+  const MeshAdjacency& adjacency() const;
   const ShapeUpdateStats& lastStats() const { return stats_; }
   /// Incremented by every compute()/update().
   uint64_t version() const { return version_; }
@@ -260,8 +264,14 @@ class ShapeCache {
   ShapeParams params_;
   std::unique_ptr<WorkerPool> pool_;  // started on the first loop long enough to share
   WorkerPool* external_pool_ = nullptr;
-  MeshAdjacency adjacency_;
+  // Brings adjacency_ up to date with faces_copy_ over vertex_count_ vertices.
+  void ensureAdjacency() const;
+
+  mutable MeshAdjacency adjacency_;
+  mutable bool adjacency_current_ = false;           // adjacency_ describes faces_copy_
   std::vector<std::array<uint32_t, 3>> faces_copy_;  // connectivity of the last compute
+  uint32_t vertex_count_ = 0;                        // vertices of the last compute
+  std::vector<uint8_t> face_valid_;                  // faceIsValid() of each face of faces_copy_
   bool computed_ = false;
   uint64_t version_ = 0;
   ShapeUpdateStats stats_;

@@ -71,10 +71,12 @@ BENCHMARK(BM_ShapeFull)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ShapeFull)->Args({1, 0, 1})->ArgNames({"mesh", "derivs", "threads"})->Unit(benchmark::kMillisecond);
 
-// From nothing: a new cache (arrays, adjacency, then everything), as the first frame pays
-// and as rtsc's need_curvatures + need_dcurv on a fresh mesh do (scripts/peer_side_by_side.py).
+// From nothing: a new cache (arrays, corner areas, normals, curvature, derivatives), as
+// rtsc's need_curvatures + need_dcurv on a fresh mesh do (scripts/peer_side_by_side.py). On
+// one thread the compute runs over the faces and builds no adjacency (the line stages build
+// it when they first ask); on several it gathers over the rings, so it builds it first.
 // range(1): worker threads as in BM_ShapeFull.
-void BM_ShapeFullWithAdjacency(benchmark::State& state) {
+void shapeFromNothing(benchmark::State& state, bool with_adjacency) {
   const TriMesh* mesh = benchMesh(kMeshes[state.range(0)]);
   if (!mesh) return state.SkipWithError("mesh not found (run scripts/setup.sh)");
   state.SetLabel(kMeshes[state.range(0)]);
@@ -84,9 +86,18 @@ void BM_ShapeFullWithAdjacency(benchmark::State& state) {
     ShapeCache shape(params);
     shape.compute(*mesh);
     benchmark::DoNotOptimize(shape.k1().data());
+    if (with_adjacency) benchmark::DoNotOptimize(shape.adjacency().edges.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh->vertexCount()));
 }
+void BM_ShapeFresh(benchmark::State& state) { shapeFromNothing(state, false); }
+BENCHMARK(BM_ShapeFresh)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7}, {1, 0}})
+    ->ArgNames({"mesh", "threads"})
+    ->Unit(benchmark::kMillisecond);
+
+// The same and the adjacency too (vertex rings, edges), as the first frame of a drawing pays.
+void BM_ShapeFullWithAdjacency(benchmark::State& state) { shapeFromNothing(state, true); }
 BENCHMARK(BM_ShapeFullWithAdjacency)
     ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7}, {1, 0}})
     ->ArgNames({"mesh", "threads"})

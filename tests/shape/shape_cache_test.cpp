@@ -468,6 +468,55 @@ TEST(ShapeCache, IncrementalConnectivityChangesAreBitIdentical) {
   expectBitIdentical(inc, full, "vertex removed");
 }
 
+// A one-thread compute() runs over the faces and leaves the adjacency to its first use
+// (adjacency(), update(), ensureDerivatives()). Whichever comes first, the adjacency and
+// every field must be what a cache that built it at once gives.
+TEST(ShapeCache, OneThreadComputeLeavesTheAdjacencyToItsFirstUse) {
+  TriMesh m = makeTorusKnot(3, 2, 1.0f, 0.25f, 200, 24, 0.15f);
+  const uint32_t nv = static_cast<uint32_t>(m.vertexCount());
+  m.faces.push_back({0, 1, nv});  // out of range until a vertex is added: invalid
+  ShapeParams one;
+  one.threads = 1;
+  {
+    ShapeCache shape(one);
+    shape.compute(m);
+    EXPECT_EQ(checkAdjacency(m, shape.adjacency()), "");
+    EXPECT_EQ(shape.adjacency().face_valid.back(), 0);
+  }
+  // update() first: a vertex is added (the last face becomes valid without its slot
+  // changing), one face split around it, and a vertex moved.
+  ShapeCache inc(one);
+  inc.compute(m);
+  const auto t = m.faces[500];
+  m.positions.push_back((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0f +
+                        glm::vec3(0.0f, 0.001f, 0.0f));
+  m.faces[500] = {t[0], t[1], nv};
+  m.faces.push_back({t[1], t[2], nv});
+  m.faces.push_back({t[2], t[0], nv});
+  const uint32_t moved[] = {m.faces[2000][0]};
+  m.positions[moved[0]] += glm::vec3(0.01f);
+  inc.update(m, moved);
+  EXPECT_TRUE(inc.lastStats().connectivity_rebuilt);
+  EXPECT_FALSE(inc.lastStats().full);
+  ShapeCache full;  // threaded: builds the adjacency in compute()
+  full.compute(m);
+  expectBitIdentical(inc, full, "update before any adjacency()");
+  EXPECT_EQ(checkAdjacency(m, inc.adjacency()), "");
+  EXPECT_EQ(inc.adjacency().face_valid[m.faceCount() - 3], 1);  // the face that became valid
+  // ensureDerivatives() first, with lazy derivatives.
+  ShapeParams lazy = one;
+  lazy.lazy_derivatives = true;
+  ShapeCache lz(lazy);
+  lz.compute(m);
+  std::vector<uint32_t> some;
+  for (uint32_t v = 0; v < m.vertexCount(); v += 7) some.push_back(v);
+  lz.ensureDerivatives(m, some);
+  for (uint32_t v : some) {
+    ASSERT_TRUE(lz.derivativeValid(v));
+    EXPECT_EQ(std::memcmp(&lz.dcurv()[v], &full.dcurv()[v], sizeof(glm::vec4)), 0) << "vertex " << v;
+  }
+}
+
 TEST(ShapeCache, IncrementalWithoutDerivatives) {
   TriMesh m = makeTorusKnot(3, 2, 1.0f, 0.25f, 100, 16, 0.1f);
   ShapeParams params;
