@@ -96,6 +96,19 @@ SceneDrawing sceneOf(std::unique_ptr<LodDrawing> drawing, const std::string& nam
   return scene;
 }
 
+// The frame cases' orbit: `azimuth` degrees around the scene (1° a frame), 20° up, at
+// `distance` (0: the default framing), 35° field of view.
+Camera orbitAt(const SceneDrawing& scene, float azimuth, float aspect, float distance = 0.0f) {
+  return orbitCamera(scene.bounds(), {azimuth, 20.0f, distance}, 35.0f, aspect);
+}
+
+// Converges the scene's detail at the orbit's first camera, as captures do.
+void convergeAtStart(SceneDrawing& scene, const FrameParams& frame, const DetailParams& detail,
+                     float distance = 0.0f) {
+  (void)scene.converge(orbitAt(scene, 0.0f, frame.aspect(), distance), frame.width, frame.height, detail,
+                       1.0f / 30.0f, 300);
+}
+
 // Per-stage milliseconds of the last frame of a scene: adapt, shape (where the mesh
 // changed), lines; and the progressive meshes' splits + collapses, curvature updates and
 // full recomputes.
@@ -215,14 +228,13 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   detail.target_area = target_area;
   const float aspect = frame.aspect();
   // Converge at the first camera, as captures do.
-  (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width,
-                            frame.height, detail, 1.0f / 30.0f, 300);
+  convergeAtStart(controlled, frame, detail);
   ControlledFrames frames;
   std::vector<double> static_draw, static_present, full_lines, full_draw;
   float az = 0.0f;
   bool first = true;
   for (auto _ : state) {
-    const Camera cam = orbitCamera(controlled.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
+    const Camera cam = orbitAt(controlled, az, aspect);
     az += 1.0f;
     frames.record(controlled, *controlled_presenter, cam, frame, detail, first);
     // The same adapted mesh drawn again: the static cost of what controlled detail draws
@@ -274,11 +286,8 @@ void pipelinedFrame(benchmark::State& state, const std::string& name, float targ
   detail.target_area = target_area;
   const float aspect = frame.aspect();
   const float dt = 1.0f / 30.0f;
-  auto camera = [&](int i) {
-    return orbitCamera(pipelined.bounds(), {static_cast<float>(i), 20.0f, 0.0f}, 35.0f, aspect);
-  };
-  for (SceneDrawing* s : {&pipelined, &sequential})
-    (void)s->converge(camera(0), frame.width, frame.height, detail, dt, 300);
+  auto camera = [&](int i) { return orbitAt(pipelined, static_cast<float>(i), aspect); };
+  for (SceneDrawing* s : {&pipelined, &sequential}) convergeAtStart(*s, frame, detail);
   (void)pipelined.frame(camera(0), frame.width, frame.height, detail, dt);  // frame 0's stages
   std::vector<double> pipe_ms, seq_ms, present_ms, overlapped_stages;
   double same = 0.0;
@@ -327,13 +336,12 @@ void stagesFrame(benchmark::State& state, const std::string& name, float target_
   DetailParams detail;
   detail.target_area = target_area;
   const float aspect = frame.aspect();
-  (void)scene.converge(orbitCamera(scene.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width, frame.height,
-                       detail, 1.0f / 30.0f, 300);
+  convergeAtStart(scene, frame, detail);
   std::vector<double> adapt, shape, lines, faces, silhouette;
   double full = 0.0, ordered = 0.0;
   float az = 0.0f;
   for (auto _ : state) {
-    const Camera cam = orbitCamera(scene.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
+    const Camera cam = orbitAt(scene, az, aspect);
     az += 1.0f;
     (void)scene.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
     const Stages st = stagesOf(scene);
@@ -407,13 +415,13 @@ void scaleFrame(benchmark::State& state, double faces, float target_area) {
   DetailParams detail;
   detail.target_area = target_area;
   const float aspect = frame.aspect();
-  (void)controlled.converge(orbitCamera(controlled.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width,
-                            frame.height, detail, SceneDrawing::kConvergeStepSeconds, 300);
+  (void)controlled.converge(orbitAt(controlled, 0.0f, aspect), frame.width, frame.height, detail,
+                            SceneDrawing::kConvergeStepSeconds, 300);
   ControlledFrames frames;
   float az = 0.0f;
   bool first = true;
   for (auto _ : state) {
-    const Camera cam = orbitCamera(controlled.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
+    const Camera cam = orbitAt(controlled, az, aspect);
     az += 1.0f;
     frames.record(controlled, **presenter, cam, frame, detail, first);
     first = false;
@@ -484,10 +492,8 @@ void sceneFrame(benchmark::State& state, float target_area) {
   DetailParams detail;
   detail.target_area = target_area;
   const float aspect = frame.aspect();
-  (void)scene.converge(orbitCamera(scene.bounds(), {0.0f, 20.0f, kSceneDistance}, 35.0f, aspect), frame.width,
-                       frame.height, detail, 1.0f / 30.0f, 300);
-  (void)single.converge(orbitCamera(single.bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width, frame.height,
-                        detail, 1.0f / 30.0f, 300);
+  convergeAtStart(scene, frame, detail, kSceneDistance);
+  convergeAtStart(single, frame, detail);
   std::vector<double> scene_ms, scene_cpu, knot_ms, knot_cpu, scene_faces, knot_faces;
   std::vector<double> scene_adapt, scene_shape, scene_lines, knot_adapt, knot_shape, knot_lines, scene_changes,
       knot_changes, scene_curv, knot_curv, scene_full, knot_full;
@@ -514,9 +520,9 @@ void sceneFrame(benchmark::State& state, float target_area) {
   bool first = true;
   for (auto _ : state) {
     az += 1.0f;
-    run(scene, **scene_presenter, orbitCamera(scene.bounds(), {az, 20.0f, kSceneDistance}, 35.0f, aspect), first,
+    run(scene, **scene_presenter, orbitAt(scene, az, aspect, kSceneDistance), first,
         scene_cpu, scene_ms, scene_faces, scene_adapt, scene_shape, scene_lines, scene_changes, scene_curv, scene_full);
-    run(single, **knot_presenter, orbitCamera(single.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect), first, knot_cpu,
+    run(single, **knot_presenter, orbitAt(single, az, aspect), first, knot_cpu,
         knot_ms, knot_faces, knot_adapt, knot_shape, knot_lines, knot_changes, knot_curv, knot_full);
     first = false;
   }
@@ -574,13 +580,11 @@ void lineKindFrame(benchmark::State& state, const std::string& name, float targe
   DetailParams detail;
   detail.target_area = target_area;
   const float aspect = frame.aspect();
-  for (SceneDrawing* s : {&base, &with})
-    (void)s->converge(orbitCamera(s->bounds(), {0.0f, 20.0f, 0.0f}, 35.0f, aspect), frame.width, frame.height, detail,
-                      1.0f / 30.0f, 300);
+  for (SceneDrawing* s : {&base, &with}) convergeAtStart(*s, frame, detail);
   std::vector<double> base_lines, with_lines, base_shape, with_shape, segments;
   float az = 0.0f;
   for (auto _ : state) {
-    const Camera cam = orbitCamera(base.bounds(), {az, 20.0f, 0.0f}, 35.0f, aspect);
+    const Camera cam = orbitAt(base, az, aspect);
     az += 1.0f;
     (void)base.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
     (void)with.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
