@@ -77,9 +77,14 @@ void buildAdjacency(std::span<const std::array<uint32_t, 3>> faces, uint32_t nv,
   // Edges: each edge is created by its smaller vertex, which also hands it to the face sides
   // it lies on (faces in increasing order). A stamp per neighbour (the current vertex + 1)
   // replaces searching the vertex's edges, so this is O(corners).
-  out.edges.resize(corner_total);
-  out.edge_faces.resize(corner_total);
-  out.edge_face_count.resize(corner_total);
+  // At most one edge per corner (half that on a closed mesh): reserved, not filled, so the
+  // pages past the last edge are never touched (a fresh build's time is mostly page faults).
+  out.edges.clear();
+  out.edge_faces.clear();
+  out.edge_face_count.clear();
+  out.edges.reserve(corner_total);
+  out.edge_faces.reserve(corner_total);
+  out.edge_face_count.reserve(corner_total);
   out.face_edges.assign(nf, {kNoIndex, kNoIndex, kNoIndex});
   std::vector<uint32_t>& seen = out.scratch_seen;     // v + 1 once edge (v, w) exists
   std::vector<uint32_t>& edge_to = out.scratch_edge;  // edge (v, w) for w > v, valid if seen
@@ -104,9 +109,9 @@ void buildAdjacency(std::span<const std::array<uint32_t, 3>> faces, uint32_t nv,
         if (seen[w] != stamp) {
           seen[w] = stamp;
           edge_to[w] = edge_count;
-          out.edges[edge_count] = {v, w};
-          out.edge_faces[edge_count] = {kNoIndex, kNoIndex};
-          out.edge_face_count[edge_count] = 0;
+          out.edges.push_back({v, w});
+          out.edge_faces.push_back({kNoIndex, kNoIndex});
+          out.edge_face_count.push_back(0);
           ++edge_count;
         }
         const uint32_t e = edge_to[w];
@@ -116,9 +121,6 @@ void buildAdjacency(std::span<const std::array<uint32_t, 3>> faces, uint32_t nv,
       }
     }
   }
-  out.edges.resize(edge_count);
-  out.edge_faces.resize(edge_count);
-  out.edge_face_count.resize(edge_count);
 
   out.vertex_on_boundary.assign(nv, 0);
   for (size_t e = 0; e < edge_count; ++e) {
