@@ -73,8 +73,8 @@ BENCHMARK(BM_ShapeFull)->Args({1, 0, 1})->ArgNames({"mesh", "derivs", "threads"}
 
 // From nothing: a new cache (arrays, corner areas, normals, curvature, derivatives), as
 // rtsc's need_curvatures + need_dcurv on a fresh mesh do (scripts/peer_side_by_side.py). On
-// one thread the compute runs over the faces and builds no adjacency (the line stages build
-// it when they first ask); on several it gathers over the rings, so it builds it first.
+// one thread the compute runs over the faces and builds no adjacency until it is asked for;
+// on several (as in every drawing) it gathers over the rings, so it builds it first.
 // range(1): worker threads as in BM_ShapeFull.
 void shapeFromNothing(benchmark::State& state, bool with_adjacency) {
   const TriMesh* mesh = benchMesh(kMeshes[state.range(0)]);
