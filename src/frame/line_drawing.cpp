@@ -1,5 +1,7 @@
 #include "frame/line_drawing.h"
 
+#include <cstring>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -87,6 +89,18 @@ void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
                              std::span<const uint32_t> changed, std::span<const uint32_t> face_ids) {
   const WorkerPool::Awake awake(pool_.get());
   Stopwatch sw;
+  // The shape quantities depend on the positions and the faces alone, and update() finds the
+  // face slots that changed by itself (and recomputes around their vertices, old and new).
+  // So of the changed vertices only those whose position changed need telling: a split that
+  // was undone, or a neighbour whose ring gained faces, keeps its position (docs/performance.md,
+  // "Where the shape stage's time goes").
+  moved_.clear();
+  const size_t old_count = mesh_.positions.size();
+  for (uint32_t v : changed) {
+    if (v >= positions.size()) continue;
+    if (v >= old_count || std::memcmp(&positions[v], &mesh_.positions[v], sizeof(glm::vec3)) != 0)
+      moved_.push_back(v);
+  }
   mesh_.positions.assign(positions.begin(), positions.end());
   mesh_.faces.swap(faces);
   mesh_.marked_edges.clear();  // marked edges refer to full-detail vertex ids
@@ -101,7 +115,7 @@ void LineDrawing::updateMesh(std::span<const glm::vec3> positions,
       mesh_.face_materials[i] = full_face_materials_[face_ids[i]];
     }
   }
-  shape_.update(mesh_, changed);
+  shape_.update(mesh_, moved_);
   timings_.shape = sw.lap();
 }
 

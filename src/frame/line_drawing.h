@@ -139,6 +139,7 @@ class LineDrawing {
   ViewQuantities view_;
   std::vector<uint32_t> full_face_materials_;  // of the full-detail mesh (empty: one material)
   std::vector<std::array<uint32_t, 3>> faces_in_;  // updateMesh(span): copy, then swap in
+  std::vector<uint32_t> moved_;      // updateMesh: the changed vertices whose position changed
   std::vector<uint32_t> needed_;     // vertices whose Dw kr this frame needs (lazy derivatives)
   std::vector<uint8_t> needed_mark_;
   std::vector<uint32_t> ridge_needed_;  // vertices whose tensor ridges read (lazy derivatives)

@@ -337,7 +337,7 @@ void stagesFrame(benchmark::State& state, const std::string& name, float target_
   detail.target_area = target_area;
   const float aspect = frame.aspect();
   convergeAtStart(scene, frame, detail);
-  std::vector<double> adapt, shape, lines, faces, silhouette;
+  std::vector<double> adapt, shape, lines, faces, silhouette, curvature;
   double full = 0.0, ordered = 0.0;
   float az = 0.0f;
   for (auto _ : state) {
@@ -346,6 +346,7 @@ void stagesFrame(benchmark::State& state, const std::string& name, float target_
     (void)scene.frame(cam, frame.width, frame.height, detail, 1.0f / 30.0f);
     const Stages st = stagesOf(scene);
     full += st.full;
+    curvature.push_back(st.curvature);
     silhouette.push_back(scene.objects()[0].drawing->drawing().timings().silhouette);
     if (const AdaptiveMesh* lod = scene.objects()[0].drawing->lod()) ordered += lod->stats().slots_ordered;
     adapt.push_back(st.adapt);
@@ -360,6 +361,7 @@ void stagesFrame(benchmark::State& state, const std::string& name, float target_
   state.counters["cpu_ms"] = bench::median(adapt) + bench::median(shape) + bench::median(lines);
   state.counters["silhouette_ms"] = bench::median(silhouette);  // the outline's input, not in lines_ms
   state.counters["full_shape_frames"] = full;   // frames whose shape update recomputed everything
+  state.counters["curvature_vertices"] = bench::median(curvature);  // per frame: the work the shape update did
   state.counters["ordered_frames"] = ordered;   // frames that renumbered the adapted mesh's slots
 }
 
