@@ -554,7 +554,8 @@ void ShapeCache::storeFaceGeometry(uint32_t f, const float* out, int lane, bool 
 void ShapeCache::faceGeometryBlock(const TriMesh& mesh, const uint32_t* faces, uint32_t count) {
   constexpr int W = lanes::kWidth;
   alignas(32) float out[fit::kGeomOut * W];
-  const auto valid = [&](uint32_t f) { return face_valid_[f] != 0; };
+  const uint8_t* const valid_faces = validFaces();
+  const auto valid = [&](uint32_t f) { return valid_faces[f] != 0; };
   runFaceKernel<fit::kGeomIn>(
       faces, count, out, valid,
       [&](uint32_t f, const float** in, int lane) {
@@ -750,7 +751,7 @@ void ShapeCache::finishDerivative(uint32_t v, glm::vec4 c, float wsum) {
 void ShapeCache::computeScattered(const TriMesh& mesh, bool eager_derivatives) {
   const uint32_t nv = static_cast<uint32_t>(mesh.positions.size());
   const uint32_t nf = static_cast<uint32_t>(mesh.faces.size());
-  const uint8_t* valid = face_valid_.data();
+  const uint8_t* valid = validFaces();
   sum_.assign(nv, glm::vec4(0.0f));
   sum_w_.assign(nv, 0.0f);
   constexpr uint32_t W = lanes::kWidth;
@@ -847,15 +848,19 @@ void ShapeCache::compute(const TriMesh& mesh) {
   if (!same_faces) {
     faces_copy_ = mesh.faces;
     vertex_count_ = nv;
-    face_valid_.resize(nf);
-    for (uint32_t f = 0; f < nf; ++f) face_valid_[f] = faceIsValid(mesh.faces[f], nv);
     adjacency_current_ = false;
     resize(nv, nf);
     stats_.connectivity_rebuilt = true;
   }
   const bool eager = params_.derivatives && !params_.lazy_derivatives;
   if (params_.threads == 1 && !external_pool_) {
-    computeScattered(mesh, eager);  // face loops only: the adjacency waits for whoever needs it
+    // Face loops only: the adjacency waits for whoever needs it; until then, which faces
+    // are valid is kept on its own.
+    if (!adjacency_current_) {
+      face_valid_.resize(nf);
+      for (uint32_t f = 0; f < nf; ++f) face_valid_[f] = faceIsValid(mesh.faces[f], nv);
+    }
+    computeScattered(mesh, eager);
   } else {
     ensureAdjacency();  // the threads gather over the vertices' rings
     // Each phase reads only what the previous phases finished and writes only its own face
@@ -1049,8 +1054,6 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
     faces_copy_.resize(nf);  // only the changed slots differ
     for (uint32_t f : changed_faces_)
       if (f < nf) faces_copy_[f] = mesh.faces[f];
-    // (Not only the changed slots: with more vertices, an unchanged face may become valid.)
-    face_valid_.assign(adjacency_.face_valid.begin(), adjacency_.face_valid.end());
     vertex_count_ = nv;
   }
   // The nested support sets, as prefixes of inc_faces_ / inc_verts_ (level = ring):

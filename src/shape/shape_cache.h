@@ -271,7 +271,11 @@ class ShapeCache {
   mutable bool adjacency_current_ = false;           // adjacency_ describes faces_copy_
   std::vector<std::array<uint32_t, 3>> faces_copy_;  // connectivity of the last compute
   uint32_t vertex_count_ = 0;                        // vertices of the last compute
-  std::vector<uint8_t> face_valid_;                  // faceIsValid() of each face of faces_copy_
+  std::vector<uint8_t> face_valid_;  // faceIsValid() of faces_copy_, while adjacency_ is not built
+  // Which faces are valid: the adjacency's flags when it is built, else face_valid_.
+  const uint8_t* validFaces() const {
+    return adjacency_current_ ? adjacency_.face_valid.data() : face_valid_.data();
+  }
   bool computed_ = false;
   uint64_t version_ = 0;
   ShapeUpdateStats stats_;

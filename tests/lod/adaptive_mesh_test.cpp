@@ -69,6 +69,13 @@ Camera cameraAt(const Bounds& b, float az, float el, float dist_radii) {
   return cam;
 }
 
+/// One frame (1/30 s) of `lod` seen from `cam`.
+::testing::AssertionResult stepTo(AdaptiveMesh& lod, const Camera& cam, const DetailParams& d) {
+  if (!lod.setView(cam, kW, kH, d).ok()) return ::testing::AssertionFailure() << "setView failed";
+  lod.adapt(1.0f / 30.0f);
+  return ::testing::AssertionSuccess();
+}
+
 void expectRefinesToInput(const Model& m) {
   AdaptiveMesh lod(m.pm);
   ASSERT_EQ(lod.checkInvariants(), "");
@@ -144,8 +151,7 @@ TEST(AdaptiveMesh, NonManifoldInputRefinesExactly) {
   m.bounds = computeBounds(m.mesh.positions);
   DetailParams d;
   for (int i = 0; i < 100; ++i) {
-    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 10.0f * i, 10.0f, 1.0f + 0.05f * i), kW, kH, d).ok());
-    lod.adapt(1.0f / 30);
+    ASSERT_TRUE(stepTo(lod, cameraAt(m.bounds, 10.0f * i, 10.0f, 1.0f + 0.05f * i), d));
   }
   EXPECT_EQ(lod.checkInvariants(), "");
 }
@@ -415,8 +421,7 @@ TEST(AdaptiveMesh, GeomorphsMorphOutAndCollapseAfterMorphing) {
   // morph could end.)
   uint32_t pending = 0;
   for (int f = 1; f <= 60; ++f) {
-    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 0.0f, 0.0f, 3.0f * std::pow(2.0f, f / 60.0f)), kW, kH, d).ok());
-    lod.adapt(1.0f / 30);
+    ASSERT_TRUE(stepTo(lod, cameraAt(m.bounds, 0.0f, 0.0f, 3.0f * std::pow(2.0f, f / 60.0f)), d));
     pending = std::max(pending, lod.stats().pending_collapses);
   }
   EXPECT_GT(pending, 0u);
@@ -527,8 +532,7 @@ TEST(AdaptiveMesh, ChangeListAndExports) {
   AdaptiveMesh lod(m.pm);
   DetailParams d;
   d.geomorphs = false;
-  ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 0.0f, 0.0f, 2.0f), kW, kH, d).ok());
-  lod.adapt(1.0f / 30);
+  ASSERT_TRUE(stepTo(lod, cameraAt(m.bounds, 0.0f, 0.0f, 2.0f), d));
   const auto& ch = lod.changes();
   ASSERT_FALSE(ch.split.empty());
   EXPECT_EQ(ch.split.size(), lod.stats().splits);
@@ -563,10 +567,8 @@ namespace {
 /// One frame (1/30 s) of two meshes that must adapt alike: the same view for both, then the
 /// same splits and collapses.
 ::testing::AssertionResult adaptAlike(AdaptiveMesh& a, AdaptiveMesh& b, const Camera& cam, const DetailParams& d) {
-  if (!a.setView(cam, kW, kH, d).ok() || !b.setView(cam, kW, kH, d).ok())
-    return ::testing::AssertionFailure() << "setView failed";
-  a.adapt(1.0f / 30.0f);
-  b.adapt(1.0f / 30.0f);
+  if (auto r = stepTo(a, cam, d); !r) return r;
+  if (auto r = stepTo(b, cam, d); !r) return r;
   if (a.stats().splits != b.stats().splits || a.stats().collapses != b.stats().collapses)
     return ::testing::AssertionFailure() << "splits " << a.stats().splits << " / " << b.stats().splits
                                          << ", collapses " << a.stats().collapses << " / " << b.stats().collapses;
@@ -647,8 +649,7 @@ TEST(AdaptiveMesh, DueCollapsesAreUnblockedAfterAZoomOut) {
     for (int i = 0; i < 100; ++i) lod.adapt(1.0f);
     for (int f = 1; f <= 40; ++f) {
       const float s = std::pow(16.0f, static_cast<float>(std::min(f, 20)) / 20.0f);
-      ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, start * s), kW, kH, d).ok());
-      lod.adapt(1.0f / 30);
+      ASSERT_TRUE(stepTo(lod, cameraAt(m.bounds, 35.0f, 20.0f, start * s), d));
     }
     float band = 0.0f;
     uint32_t visible = 0;
@@ -718,8 +719,7 @@ TEST(AdaptiveMesh, OrderingSlotsKeepsTheMesh) {
   d.target_area = 6.0f;
   // A zoom from far to close: slots are taken in the order of the splits.
   for (int k = 0; k < 40; ++k) {
-    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 2.0f * k, 30.0f, 8.0f - 0.15f * k), kW, kH, d).ok());
-    lod.adapt(1.0f / 30.0f);
+    ASSERT_TRUE(stepTo(lod, cameraAt(m.bounds, 2.0f * k, 30.0f, 8.0f - 0.15f * k), d));
   }
   ASSERT_GT(lod.stats().morphing, 0u);
   ASSERT_GT(lod.activeVertexCount(), 4096u);
@@ -748,8 +748,7 @@ TEST(AdaptiveMesh, OrderingSlotsKeepsTheMesh) {
 
   // The morphs go on from where they were and end; the mesh stays valid.
   for (int k = 0; k < 30; ++k) {
-    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 80.0f, 30.0f, 2.0f), kW, kH, d).ok());
-    lod.adapt(1.0f / 30.0f);
+    ASSERT_TRUE(stepTo(lod, cameraAt(m.bounds, 80.0f, 30.0f, 2.0f), d));
     if (k == 0) {
       EXPECT_GT(lod.stats().morphing, 0u) << "of " << morphing << " morphing before";
     }
@@ -793,9 +792,7 @@ TEST(AdaptiveMesh, AdaptOrdersSlotsAsTheMeshChanges) {
   d.target_area = 16.0f;
   int ordered = 0;
   for (int k = 0; k < 150; ++k) {
-    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 3.0f * k, 30.0f, 3.0f + 3.0f * std::abs(std::sin(0.04f * k))), kW,
-                            kH, d).ok());
-    lod.adapt(1.0f / 30.0f);
+    ASSERT_TRUE(stepTo(lod, cameraAt(m.bounds, 3.0f * k, 30.0f, 3.0f + 3.0f * std::abs(std::sin(0.04f * k))), d));
     if (lod.stats().slots_ordered) {
       ++ordered;
       ASSERT_EQ(lod.checkInvariants(), "") << k;
