@@ -197,6 +197,7 @@ AdaptiveMesh::AdaptiveMesh(const ProgressiveMesh& pm) : pm_(pm) {
   pre_node_.assign(cap, kNone);
   pre_visible_.assign(cap, 0);
   pre_target_.assign(cap, 0.0f);
+  eval_idle_.assign(cap, 0);
   dirty_stamp_.assign(cap, 0);
   ring_sum_.assign(cap, 0.0);
   slot_bounds_.assign(cap, NodeBounds{});
@@ -265,6 +266,7 @@ uint32_t AdaptiveMesh::allocSlot(uint32_t node) {
   refusals_[slot] = 0;
   ring_sum_[slot] = 0.0;
   ring_cnt_[slot] = 0;
+  eval_idle_[slot] = 0;
   ++active_vertices_;
   ++fresh_slots_;
   // Its place in the order of evaluation: taken as slots were before orderForLocality().
@@ -470,7 +472,16 @@ void AdaptiveMesh::accumulate(uint32_t f, float sign) {
   for (uint32_t slot : active_fs_[face_pos_[f]]) {
     ring_sum_[slot] += a;
     ring_cnt_[slot] += n;
+    touchSlot(slot);
   }
+}
+
+void AdaptiveMesh::touchSlot(uint32_t slot) {
+  eval_idle_[slot] = 0;
+  // A pair's collapse is evaluated from its vt child, reading vu's slot too.
+  const NodeBounds& nb = slot_bounds_[slot];
+  if (nb.sibling != kNone || nb.parent == kNone) return;  // a vt, or a root: nobody reads it
+  if (const uint32_t s = node_slot_[pm_.split(nb.parent).vt]; s != kNone) eval_idle_[s] = 0;
 }
 
 bool AdaptiveMesh::collectFan(uint32_t v, uint32_t from, uint32_t to,
@@ -854,6 +865,8 @@ void AdaptiveMesh::startCollapseMorph(uint32_t p, float speedup) {
   node_state_[vs.vt] |= kLocked;
   node_state_[vs.vu] |= kLocked;
   slot_locked_[node_slot_[vs.vt]] = slot_locked_[node_slot_[vs.vu]] = 1;
+  touchSlot(node_slot_[vs.vt]);
+  touchSlot(node_slot_[vs.vu]);
   pending_pos_[p] = static_cast<uint32_t>(pending_.size());
   pending_.push_back(p);
   const uint32_t su = node_slot_[vs.vu];
@@ -878,6 +891,8 @@ void AdaptiveMesh::cancelCollapse(uint32_t p) {
   node_state_[vs.vt] &= static_cast<uint8_t>(~kLocked);
   node_state_[vs.vu] &= static_cast<uint8_t>(~kLocked);
   slot_locked_[node_slot_[vs.vt]] = slot_locked_[node_slot_[vs.vu]] = 0;
+  touchSlot(node_slot_[vs.vt]);
+  touchSlot(node_slot_[vs.vu]);
   const uint32_t su = node_slot_[vs.vu];
   const float dur = params_.geomorphs ? params_.morph_time * params_.coarsen_time_factor : 0.0f;
   startMorph(su, disp_[su], node_pos_[vs.vu], dur);
@@ -921,6 +936,22 @@ void AdaptiveMesh::clearAllMorphs() {
 // ---------------------------------------------------------------------------------------
 // The frame
 
+// Whether evaluating the vertex `node` of `slot` would do nothing with the rings, locks and
+// slots as they are: the branches of evaluatePass()'s loop that end in `continue` without an
+// operation. Exactly those; anything that could change the answer clears the mark
+// (touchSlot()).
+bool AdaptiveMesh::idleAtStart(uint32_t slot, uint32_t node, bool vis, float target, float t_s,
+                               float t_c) const {
+  if (slot_locked_[slot]) return false;
+  if (vis && !pm_.isLeaf(node) && ringMeanAt(slot) > t_s * target) return false;
+  const NodeBounds& nb = slot_bounds_[slot];
+  if (nb.sibling == kNone) return true;
+  const uint32_t su = node_slot_[nb.sibling];
+  if (su == kNone || slot_locked_[su]) return true;
+  if (!vis && !visible(bounds_[nb.parent])) return false;
+  return !(ringsMean(slot, su) < t_c * target);
+}
+
 void AdaptiveMesh::evaluatePass() {
   // The work list holds slots: the static data of an active vertex (position, bounds, parent)
   // is copied into its slot, so this loop reads slot arrays, not per-node ones.
@@ -934,23 +965,36 @@ void AdaptiveMesh::evaluatePass() {
     if (slot != kNone) work_.push_back(slot);
   }
   // Visibility and target of every listed vertex, in parallel: they depend only on the
-  // slot's node (its bounds) and the view. Used while the slot still holds that node.
+  // slot's node (its bounds) and the view. Used while the slot still holds that node. And
+  // whether the vertex has anything to do (idleAtStart): at T = 7 px² on an orbit nine in ten
+  // have not, and the loop below skips them unless an operation touched their ring, lock or
+  // sibling since (touchSlot), which leaves every decision as it was
+  // (AdaptiveMesh.SkippingIdleVerticesChangesNoDecision). In slot order, not the order of
+  // evaluation, so the reads and writes stream (every listed slot holds a node).
   const size_t listed = work_.size();
+  const float t_s = params_.t_s, t_c = params_.t_c;
   auto classify = [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      const uint32_t slot = work_[i];
+    for (size_t slot = begin; slot < end; ++slot) {
+      // idleAtStart() reads the sibling's slot (a 1M-node array): fetch it ahead.
+      if (slot + kPrefetchAhead < end)
+        if (const uint32_t ahead = slot_bounds_[slot + kPrefetchAhead].sibling; ahead != kNone)
+          __builtin_prefetch(&node_slot_[ahead]);
+      const uint32_t node = slot_node_[slot];
+      pre_node_[slot] = node;
+      if (node == kNone) continue;
       const NodeBounds& nb = slot_bounds_[slot];
-      pre_node_[slot] = slot_node_[slot];
-      pre_visible_[slot] = visible(nb);
-      pre_target_[slot] = targetAt(nb.pos);
+      const bool vis = visible(nb);
+      const float target = targetAt(nb.pos);
+      pre_visible_[slot] = vis;
+      pre_target_[slot] = target;
+      eval_idle_[slot] = idleAtStart(static_cast<uint32_t>(slot), node, vis, target, t_s, t_c);
     }
   };
   if (pool_) {
-    pool_->forRange(listed, 4096, classify);
+    pool_->forRange(slot_count_, 4096, classify);
   } else {
-    classify(0, listed);
+    classify(0, slot_count_);
   }
-  const float t_s = params_.t_s, t_c = params_.t_c;
   const bool morph = params_.geomorphs && params_.morph_time > 0.0f;
   resume_eval_ = 0;
   for (size_t i = 0; i < work_.size(); ++i) {
@@ -961,13 +1005,16 @@ void AdaptiveMesh::evaluatePass() {
       budget_spent_ = true;
       break;
     }
+    const uint32_t slot = work_[i];
+    if (i < listed && eval_idle_[slot] && !evaluate_every_vertex_) continue;
     // The sibling's slot is the one per-node read of most iterations (a cache miss over a
     // 1M-node array): fetch it a few vertices ahead.
     if (i + kPrefetchAhead < work_.size()) {
-      const uint32_t ahead = slot_bounds_[work_[i + kPrefetchAhead]].sibling;
-      if (ahead != kNone) __builtin_prefetch(&node_slot_[ahead]);
+      const uint32_t ahead_slot = work_[i + kPrefetchAhead];
+      if (!eval_idle_[ahead_slot])
+        if (const uint32_t ahead = slot_bounds_[ahead_slot].sibling; ahead != kNone)
+          __builtin_prefetch(&node_slot_[ahead]);
     }
-    const uint32_t slot = work_[i];
     const uint32_t v = slot_node_[slot];
     if (v == kNone) continue;
     const NodeBounds& nb = slot_bounds_[slot];

@@ -155,6 +155,11 @@ class AdaptiveMesh {
   /// vertices have taken new slots since the last time (docs/design.md §4).
   void orderForLocality();
 
+  /// A check of the evaluation's shortcut: when on, every pass evaluates every active vertex,
+  /// including those it marked as having nothing to do (docs/performance.md, "Adapt at
+  /// T = 7"). The adapted mesh is the same either way; only the time differs.
+  void setEvaluateEveryVertex(bool on) { evaluate_every_vertex_ = on; }
+
   // ---- output (slot-indexed; a slot keeps its index while its vertex stays active) ----
   /// Displayed (morphed) position per slot, size slotCount(); free slots hold stale values.
   std::span<const glm::vec3> positions() const { return {disp_.data(), slot_count_}; }
@@ -232,6 +237,10 @@ class AdaptiveMesh {
   bool advanceCollapse(uint32_t q, int depth);
   /// Adds (sign 1) or removes (sign -1) face f's area to/from its corners' accumulators.
   void accumulate(uint32_t f, float sign);
+  // The slot's ring, lock or vertex changed: it, and the slot of its vertex's vt sibling
+  // where it holds a vu (whose collapse test reads it), must be evaluated again in this pass.
+  void touchSlot(uint32_t slot);
+  bool idleAtStart(uint32_t slot, uint32_t node, bool vis, float target, float t_s, float t_c) const;
   bool splitDone(uint32_t node) const {
     return !pm_.isLeaf(node) && face_pos_[pm_.split(node).fl] != kPmNone;
   }
@@ -305,6 +314,10 @@ class AdaptiveMesh {
   std::vector<uint32_t> pre_node_;
   std::vector<uint8_t> pre_visible_;
   std::vector<float> pre_target_;
+  // Per slot: when the pass began, evaluating its vertex would have done nothing (the loop
+  // skips it unless touchSlot() cleared the mark since: see evaluatePass()).
+  std::vector<uint8_t> eval_idle_;
+  bool evaluate_every_vertex_ = false;
   std::vector<uint32_t> dirty_stamp_, moved_stamp_;
   std::vector<NodeBounds> slot_bounds_;  // copy of bounds_ of the slot's node
   std::vector<glm::vec3> slot_pos_;      // its position alone (the per-face pass reads 3 per face)

@@ -782,6 +782,34 @@ TEST(AdaptiveMesh, RenumberingChangesNoDecision) {
   EXPECT_EQ(plain.checkInvariants(), "");
 }
 
+// The evaluation skips the vertices that had nothing to do when its pass began unless their
+// ring, lock or sibling changed since (AdaptiveMesh::idleAtStart, touchSlot): the adapted mesh
+// is the same as when every vertex is evaluated, through orbits, a fast zoom-out with
+// geomorphs and a zoom back in, on a closed mesh and an open one with many components.
+TEST(AdaptiveMesh, SkippingIdleVerticesChangesNoDecision) {
+  for (const char* name : {"fine_torus", "cow.off"}) {
+    const Model& m = model(name);
+    ASSERT_FALSE(m.mesh.faces.empty()) << name;
+    AdaptiveMesh every(m.pm), skipping(m.pm);
+    every.setEvaluateEveryVertex(true);
+    DetailParams d;
+    d.target_area = 8.0f;
+    uint32_t ops = 0;
+    for (int k = 0; k < 150; ++k) {
+      const float dist = k < 50 ? 2.0f + 0.05f * k : k < 90 ? 4.5f * std::pow(8.0f, (k - 50) / 40.0f) : 1.5f;
+      const Camera cam = cameraAt(m.bounds, 3.0f * k, 20.0f, dist);
+      ASSERT_TRUE(adaptAlike(every, skipping, cam, d)) << name << " frame " << k;
+      ASSERT_EQ(every.stats().morphing, skipping.stats().morphing) << name << " frame " << k;
+      const NodeView a = nodeView(every), b = nodeView(skipping);
+      ASSERT_EQ(a.positions, b.positions) << name << " frame " << k;
+      ASSERT_EQ(a.faces, b.faces) << name << " frame " << k;
+      ops += every.stats().splits + every.stats().collapses;
+    }
+    EXPECT_GT(ops, 3000u) << name;
+    EXPECT_EQ(skipping.checkInvariants(), "") << name;
+  }
+}
+
 // adapt() orders the slots by itself as the mesh changes; the mesh stays valid and converges
 // into the band at rest.
 TEST(AdaptiveMesh, AdaptOrdersSlotsAsTheMeshChanges) {
