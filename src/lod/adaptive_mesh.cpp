@@ -1154,10 +1154,10 @@ void AdaptiveMesh::adapt(float dt_seconds) {
 
   // 1. Image areas of all active faces (and the band statistics of the incoming mesh): per
   // face in parallel, then summed into the rings in face order (the same sums as serially).
-  std::atomic<uint32_t> visible{0}, in_band{0};
+  std::atomic<uint32_t> visible{0}, in_band{0}, at_limit{0};
   const float near2 = std::max(camera_.near_plane * camera_.near_plane, 1e-20f);
   auto areas = [&](size_t begin, size_t end) {
-    uint32_t vis = 0, band = 0;
+    uint32_t vis = 0, band = 0, limit = 0;
     for (size_t k = begin; k < end; ++k) {
       const auto& c = active_fs_[k];
       const glm::vec3 &a = slot_pos_[c[0]], &b = slot_pos_[c[1]], &d = slot_pos_[c[2]];
@@ -1174,10 +1174,16 @@ void AdaptiveMesh::adapt(float dt_seconds) {
       if (!inside) continue;
       ++vis;
       const float t = modifiers_ ? targetAt(centre) : t0_;
-      if (img >= 0.5f * params_.t_c * t && img <= 2.0f * params_.t_s * t) ++band;
+      if (img >= 0.5f * params_.t_c * t && img <= 2.0f * params_.t_s * t) {
+        ++band;
+      } else {
+        const bool too_large = img > 2.0f * params_.t_s * t;
+        limit += atLimit({slot_node_[c[0]], slot_node_[c[1]], slot_node_[c[2]]}, too_large);
+      }
     }
     visible += vis;
     in_band += band;
+    at_limit += limit;
   };
   if (pool_) {
     pool_->forRange(active_faces_.size(), 4096, areas);
@@ -1196,6 +1202,8 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   stats_.visible_faces = visible;
   stats_.band_fraction =
       visible ? static_cast<float>(in_band.load()) / static_cast<float>(visible.load()) : 1.0f;
+  stats_.band_or_limit_fraction =
+      visible ? static_cast<float>(in_band.load() + at_limit.load()) / static_cast<float>(visible.load()) : 1.0f;
 
   // Geomorphs switched off: finish what is in flight.
   if (!params_.geomorphs && (!morphing_.empty() || !pending_.empty())) advanceMorphs(0.0f);
@@ -1388,8 +1396,9 @@ void AdaptiveMesh::exportCompact(TriMesh& out, std::vector<uint32_t>& node_ids) 
   }
 }
 
-void AdaptiveMesh::measureBand(float& band_fraction, uint32_t& visible_faces) const {
-  uint32_t visible = 0, in_band = 0;
+void AdaptiveMesh::measureBand(float& band_fraction, uint32_t& visible_faces,
+                               float* band_or_limit_fraction) const {
+  uint32_t visible = 0, in_band = 0, at_limit = 0;
   for (uint32_t f : active_faces_) {
     const auto& c = fv_[f];
     const glm::vec3 &a = node_pos_[c[0]], &b = node_pos_[c[1]], &d = node_pos_[c[2]];
@@ -1403,10 +1412,16 @@ void AdaptiveMesh::measureBand(float& band_fraction, uint32_t& visible_faces) co
     ++visible;
     const float img = faceImageArea(f);
     const float t = modifiers_ ? targetAt(centre) : t0_;
-    if (img >= 0.5f * params_.t_c * t && img <= 2.0f * params_.t_s * t) ++in_band;
+    if (img >= 0.5f * params_.t_c * t && img <= 2.0f * params_.t_s * t)
+      ++in_band;
+    else
+      at_limit += atLimit(c, img > 2.0f * params_.t_s * t);
   }
   visible_faces = visible;
   band_fraction = visible ? static_cast<float>(in_band) / static_cast<float>(visible) : 1.0f;
+  if (band_or_limit_fraction)
+    *band_or_limit_fraction =
+        visible ? static_cast<float>(in_band + at_limit) / static_cast<float>(visible) : 1.0f;
 }
 
 std::string AdaptiveMesh::checkInvariants() const {

@@ -104,6 +104,11 @@ struct LodStats {
   /// all modifiers at the face). Measured on the mesh that entered this adapt() call (the
   /// mesh drawn last frame) under the current view; see measureBand() for the current one.
   float band_fraction = 0.0f;
+  /// As band_fraction, counting as in the band the faces outside it only because the
+  /// progressive mesh ends there: larger than the band with every corner at full detail
+  /// (a leaf), or smaller with every corner in the base mesh (a root). What the adaptation can
+  /// be held to where the model itself is too coarse or too fine for the view.
+  float band_or_limit_fraction = 0.0f;
   float target_area = 0.0f;    ///< T·object_factor used this frame, px²
   bool slots_ordered = false;  ///< this frame renumbered the slots (orderForLocality())
 };
@@ -182,7 +187,8 @@ class AdaptiveMesh {
   const ProgressiveMesh& pm() const { return pm_; }
 
   /// Band fraction and visible faces of the current mesh under the current view.
-  void measureBand(float& band_fraction, uint32_t& visible_faces) const;
+  void measureBand(float& band_fraction, uint32_t& visible_faces,
+                   float* band_or_limit_fraction = nullptr) const;
 
   /// Full consistency check (tests and debugging; O(n·depth)): manifold rings, face adjacency,
   /// slot/free-list consistency, the active front of the hierarchy, face corners equal to the
@@ -241,6 +247,13 @@ class AdaptiveMesh {
   // where it holds a vu (whose collapse test reads it), must be evaluated again in this pass.
   void touchSlot(uint32_t slot);
   bool idleAtStart(uint32_t slot, uint32_t node, bool vis, float target, float t_s, float t_c) const;
+  // Whether a face out of the band (too large, or too small) with these corner nodes is at
+  // the end of the hierarchy in that direction (LodStats::band_or_limit_fraction).
+  bool atLimit(const std::array<uint32_t, 3>& nodes, bool too_large) const {
+    for (uint32_t v : nodes)
+      if (too_large ? !pm_.isLeaf(v) : pm_.parent[v] != kPmNone) return false;
+    return true;
+  }
   bool splitDone(uint32_t node) const {
     return !pm_.isLeaf(node) && face_pos_[pm_.split(node).fl] != kPmNone;
   }

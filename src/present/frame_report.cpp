@@ -13,6 +13,7 @@ void addLod(LodReport& sum, const LodReport& o) {
   sum.morphing += o.morphing;
   // Weighted by visible faces until divided at the end.
   sum.band_fraction += o.band_fraction * static_cast<double>(o.visible_faces);
+  sum.band_or_limit_fraction += o.band_or_limit_fraction * static_cast<double>(o.visible_faces);
   sum.visible_faces += o.visible_faces;
 }
 
@@ -26,7 +27,8 @@ nlohmann::json lodJson(const LodReport& l) {
   return {{"active_vertices", l.active_vertices}, {"active_faces", l.active_faces},
           {"visible_faces", l.visible_faces},     {"splits", l.splits},
           {"collapses", l.collapses},             {"morphing", l.morphing},
-          {"band_fraction", l.band_fraction},     {"target_area", l.target_area}};
+          {"band_fraction", l.band_fraction},     {"band_or_limit_fraction", l.band_or_limit_fraction},
+          {"target_area", l.target_area}};
 }
 
 nlohmann::json clusterJson(const ClusterStats& c) {
@@ -86,9 +88,9 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
     if (const AdaptiveMesh* lod = obj.drawing->lod()) {
       const LodStats& ls = lod->stats();
       LodReport l;
-      float band = 0.0f;
+      float band = 0.0f, band_or_limit = 0.0f;
       uint32_t visible_faces = 0;
-      lod->measureBand(band, visible_faces);
+      lod->measureBand(band, visible_faces, &band_or_limit);
       l.active_vertices = lod->activeVertexCount();
       l.active_faces = lod->activeFaceCount();
       l.visible_faces = visible_faces;
@@ -96,6 +98,7 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
       l.collapses = ls.collapses;
       l.morphing = ls.morphing;
       l.band_fraction = band;
+      l.band_or_limit_fraction = band_or_limit;
       l.target_area = ls.target_area;
       addLod(lod_sum, l);
       o.lod = l;
@@ -119,7 +122,10 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
     r.objects.push_back(std::move(o));
   }
   if (any_lod) {
-    if (lod_sum.visible_faces) lod_sum.band_fraction /= static_cast<double>(lod_sum.visible_faces);
+    if (lod_sum.visible_faces) {
+      lod_sum.band_fraction /= static_cast<double>(lod_sum.visible_faces);
+      lod_sum.band_or_limit_fraction /= static_cast<double>(lod_sum.visible_faces);
+    }
     t.lod = lod_sum;
   }
   if (scene.size() == 1) t.cluster = r.objects[0].cluster;

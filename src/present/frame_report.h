@@ -31,6 +31,9 @@ struct LodReport {
   /// Fraction of visible faces whose image area is in [t_c·T/2, 2·t_s·T], current view
   /// (totals: the mean weighted by visible faces).
   double band_fraction = 0.0;
+  /// As band_fraction, with faces outside the band only where the progressive mesh has no
+  /// finer or coarser level counted as in it (LodStats::band_or_limit_fraction).
+  double band_or_limit_fraction = 0.0;
   double target_area = 0.0;  ///< T × the object's factors, px²
 };
 
