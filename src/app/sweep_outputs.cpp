@@ -28,6 +28,7 @@ const std::vector<StatColumn>& statColumns() {
       {"active_faces", {"/lod/active_faces", "/faces_drawn"}},
       {"visible_faces", {"/lod/visible_faces"}},
       {"band_fraction", {"/lod/band_fraction"}},
+      {"band_or_limit_fraction", {"/lod/band_or_limit_fraction"}},
       {"target_area", {"/lod/target_area"}},
       {"coverage_px", {"/image/coverage_px"}},
       {"line_segments", {"/line_segments"}},

@@ -1006,7 +1006,18 @@ void AdaptiveMesh::evaluatePass() {
       break;
     }
     const uint32_t slot = work_[i];
-    if (i < listed && eval_idle_[slot] && !evaluate_every_vertex_) continue;
+    const bool marked_idle = i < listed && eval_idle_[slot];
+    if (marked_idle && !evaluate_every_vertex_) continue;
+    // Evaluating every vertex (a check): count the marked ones that act after all.
+    struct IdleCheck {
+      AdaptiveMesh& mesh;
+      bool on;
+      uint32_t ops;
+      size_t pending;
+      ~IdleCheck() {
+        if (on && (mesh.ops_ != ops || mesh.pending_.size() != pending)) ++mesh.idle_mispredictions_;
+      }
+    } idle_check{*this, marked_idle, ops_, pending_.size()};
     // The sibling's slot is the one per-node read of most iterations (a cache miss over a
     // 1M-node array): fetch it a few vertices ahead.
     if (i + kPrefetchAhead < work_.size()) {

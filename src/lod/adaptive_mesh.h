@@ -164,6 +164,10 @@ class AdaptiveMesh {
   /// including those it marked as having nothing to do (docs/performance.md, "Adapt at
   /// T = 7"). The adapted mesh is the same either way; only the time differs.
   void setEvaluateEveryVertex(bool on) { evaluate_every_vertex_ = on; }
+  /// With setEvaluateEveryVertex(true): how many vertices, marked as having nothing to do
+  /// and untouched since, did something when evaluated (an operation, or a collapse morph
+  /// started or cancelled). The vertices a skipping pass would have skipped wrongly: 0.
+  uint64_t idleMispredictions() const { return idle_mispredictions_; }
 
   // ---- output (slot-indexed; a slot keeps its index while its vertex stays active) ----
   /// Displayed (morphed) position per slot, size slotCount(); free slots hold stale values.
@@ -331,6 +335,7 @@ class AdaptiveMesh {
   // skips it unless touchSlot() cleared the mark since: see evaluatePass()).
   std::vector<uint8_t> eval_idle_;
   bool evaluate_every_vertex_ = false;
+  uint64_t idle_mispredictions_ = 0;
   std::vector<uint32_t> dirty_stamp_, moved_stamp_;
   std::vector<NodeBounds> slot_bounds_;  // copy of bounds_ of the slot's node
   std::vector<glm::vec3> slot_pos_;      // its position alone (the per-face pass reads 3 per face)

@@ -307,9 +307,10 @@ TEST_F(Sweep, WritesRunsCsvAndSheetThenSkipsWhatIsDone) {
     EXPECT_EQ(rows[i].at("status"), "ok");
     EXPECT_EQ(rows[i].at("target-area"), i < 2 ? "4" : "32");
     EXPECT_EQ(rows[i].at("view.dist"), i % 2 ? "6" : "3");
-    for (const char* col : {"faces", "active_faces", "visible_faces", "band_fraction", "strokes", "specks",
-                            "line_pixels", "ms_adapt", "ms_render", "ms_total"})
+    for (const char* col : {"faces", "active_faces", "visible_faces", "band_fraction", "band_or_limit_fraction",
+                            "strokes", "specks", "line_pixels", "ms_adapt", "ms_render", "ms_total"})
       EXPECT_FALSE(rows[i].at(col).empty()) << col;
+    EXPECT_GE(std::stod(rows[i].at("band_or_limit_fraction")), std::stod(rows[i].at("band_fraction")));
     EXPECT_GT(std::stoi(rows[i].at("line_pixels")), 50);
     EXPECT_EQ(std::stod(rows[i].at("target_area")), i < 2 ? 4.0 : 32.0);
   }

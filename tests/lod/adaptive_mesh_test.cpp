@@ -657,7 +657,8 @@ TEST(AdaptiveMesh, BandOrLimitCountsFacesAtTheHierarchysEnds) {
     ASSERT_GT(visible, 0u);
     EXPECT_LT(band, 0.05f);
     EXPECT_GT(or_limit, 0.99f);
-    EXPECT_EQ(or_limit, lod.stats().band_or_limit_fraction);  // the view did not change
+    // adapt()'s own figure, measured on the mesh that entered the last step, agrees.
+    EXPECT_GT(lod.stats().band_or_limit_fraction, 0.99f);
   }
   // Where the mesh can follow T (the 82k torus at the default T; the 9k one's full-detail
   // faces are larger than the band there), most faces are in the band proper.
@@ -828,29 +829,42 @@ TEST(AdaptiveMesh, RenumberingChangesNoDecision) {
 
 // The evaluation skips the vertices that had nothing to do when its pass began unless their
 // ring, lock or sibling changed since (AdaptiveMesh::idleAtStart, touchSlot): the adapted mesh
-// is the same as when every vertex is evaluated, through orbits, a fast zoom-out with
-// geomorphs and a zoom back in, on a closed mesh and an open one with many components.
+// is the same as when every vertex is evaluated, frame by frame, through orbits, a fast
+// zoom-out with geomorphs and a zoom back in, on a closed mesh and an open one with many
+// components; alone and with worker threads under an operation budget (the round robin's
+// resume path). And no vertex the skipping would pass over acts when evaluated.
 TEST(AdaptiveMesh, SkippingIdleVerticesChangesNoDecision) {
-  for (const char* name : {"fine_torus", "cow.off"}) {
-    const Model& m = model(name);
-    ASSERT_FALSE(m.mesh.faces.empty()) << name;
-    AdaptiveMesh every(m.pm), skipping(m.pm);
-    every.setEvaluateEveryVertex(true);
-    DetailParams d;
-    d.target_area = 8.0f;
-    uint32_t ops = 0;
-    for (int k = 0; k < 150; ++k) {
-      const float dist = k < 50 ? 2.0f + 0.05f * k : k < 90 ? 4.5f * std::pow(8.0f, (k - 50) / 40.0f) : 1.5f;
-      const Camera cam = cameraAt(m.bounds, 3.0f * k, 20.0f, dist);
-      ASSERT_TRUE(adaptAlike(every, skipping, cam, d)) << name << " frame " << k;
-      ASSERT_EQ(every.stats().morphing, skipping.stats().morphing) << name << " frame " << k;
-      const NodeView a = nodeView(every), b = nodeView(skipping);
-      ASSERT_EQ(a.positions, b.positions) << name << " frame " << k;
-      ASSERT_EQ(a.faces, b.faces) << name << " frame " << k;
-      ops += every.stats().splits + every.stats().collapses;
+  WorkerPool pool(3);
+  for (const bool threaded_budget : {false, true}) {
+    for (const char* name : {"fine_torus", "cow.off"}) {
+      SCOPED_TRACE(std::string(name) + (threaded_budget ? ", threads and a budget" : ""));
+      const Model& m = model(name);
+      ASSERT_FALSE(m.mesh.faces.empty());
+      AdaptiveMesh every(m.pm), skipping(m.pm);
+      every.setEvaluateEveryVertex(true);
+      DetailParams d;
+      d.target_area = 8.0f;
+      if (threaded_budget) {
+        every.setWorkerPool(&pool);
+        skipping.setWorkerPool(&pool);
+        d.max_operations = 60;
+      }
+      uint32_t ops = 0;
+      for (int k = 0; k < 150; ++k) {
+        const float dist = k < 50 ? 2.0f + 0.05f * k : k < 90 ? 4.5f * std::pow(8.0f, (k - 50) / 40.0f) : 1.5f;
+        const Camera cam = cameraAt(m.bounds, 3.0f * k, 20.0f, dist);
+        ASSERT_TRUE(adaptAlike(every, skipping, cam, d)) << "frame " << k;
+        ASSERT_EQ(every.stats().morphing, skipping.stats().morphing) << "frame " << k;
+        ASSERT_EQ(every.stats().pending_collapses, skipping.stats().pending_collapses) << "frame " << k;
+        const NodeView a = nodeView(every), b = nodeView(skipping);
+        ASSERT_EQ(a.positions, b.positions) << "frame " << k;
+        ASSERT_EQ(a.faces, b.faces) << "frame " << k;
+        ASSERT_EQ(every.idleMispredictions(), 0u) << "frame " << k;
+        ops += every.stats().splits + every.stats().collapses;
+      }
+      EXPECT_GT(ops, 3000u);
+      EXPECT_EQ(skipping.checkInvariants(), "");
     }
-    EXPECT_GT(ops, 3000u) << name;
-    EXPECT_EQ(skipping.checkInvariants(), "") << name;
   }
 }
 
