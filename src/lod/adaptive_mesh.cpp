@@ -1185,12 +1185,10 @@ void AdaptiveMesh::adapt(float dt_seconds) {
       if (!inside) continue;
       ++vis;
       const float t = modifiers_ ? targetAt(centre) : t0_;
-      if (img >= 0.5f * params_.t_c * t && img <= 2.0f * params_.t_s * t) {
+      if (const int side = bandSide(img, t); side == 0)
         ++band;
-      } else {
-        const bool too_large = img > 2.0f * params_.t_s * t;
-        limit += atLimit({slot_node_[c[0]], slot_node_[c[1]], slot_node_[c[2]]}, too_large);
-      }
+      else
+        limit += atLimit({slot_node_[c[0]], slot_node_[c[1]], slot_node_[c[2]]}, side);
     }
     visible += vis;
     in_band += band;
@@ -1423,10 +1421,10 @@ void AdaptiveMesh::measureBand(float& band_fraction, uint32_t& visible_faces,
     ++visible;
     const float img = faceImageArea(f);
     const float t = modifiers_ ? targetAt(centre) : t0_;
-    if (img >= 0.5f * params_.t_c * t && img <= 2.0f * params_.t_s * t)
+    if (const int side = bandSide(img, t); side == 0)
       ++in_band;
     else
-      at_limit += atLimit(c, img > 2.0f * params_.t_s * t);
+      at_limit += atLimit(c, side);
   }
   visible_faces = visible;
   band_fraction = visible ? static_cast<float>(in_band) / static_cast<float>(visible) : 1.0f;

@@ -251,11 +251,18 @@ class AdaptiveMesh {
   // where it holds a vu (whose collapse test reads it), must be evaluated again in this pass.
   void touchSlot(uint32_t slot);
   bool idleAtStart(uint32_t slot, uint32_t node, bool vis, float target, float t_s, float t_c) const;
-  // Whether a face out of the band (too large, or too small) with these corner nodes is at
-  // the end of the hierarchy in that direction (LodStats::band_or_limit_fraction).
-  bool atLimit(const std::array<uint32_t, 3>& nodes, bool too_large) const {
+  // Where a face of image area `img` lies against the band [t_c·T/2, 2·t_s·T] for target T
+  // `t` (LodStats::band_fraction): -1 below, 0 in it, 1 above.
+  int bandSide(float img, float t) const {
+    if (!(img >= 0.5f * params_.t_c * t)) return -1;  // (a NaN counts as below, out of the band)
+    return img <= 2.0f * params_.t_s * t ? 0 : 1;
+  }
+  // Whether a face outside the band on `side` with these corner nodes is at the end of the
+  // hierarchy in that direction: above with every corner a leaf, below with every corner a
+  // root (LodStats::band_or_limit_fraction).
+  bool atLimit(const std::array<uint32_t, 3>& nodes, int side) const {
     for (uint32_t v : nodes)
-      if (too_large ? !pm_.isLeaf(v) : pm_.parent[v] != kPmNone) return false;
+      if (side > 0 ? !pm_.isLeaf(v) : pm_.parent[v] != kPmNone) return false;
     return true;
   }
   bool splitDone(uint32_t node) const {

@@ -14,8 +14,6 @@ namespace {
 // relocation.
 constexpr uint32_t kRingSlack = 2;
 
-inline bool validTriple(const std::array<uint32_t, 3>& t, uint32_t nv) { return faceIsValid(t, nv) != 0; }
-
 inline EdgeKey edgeKey(uint32_t a, uint32_t b) { return {std::min(a, b), std::max(a, b)}; }
 
 }  // namespace
@@ -44,7 +42,7 @@ void buildAdjacency(std::span<const std::array<uint32_t, 3>> faces, uint32_t nv,
 
   // Valid faces: three distinct, in-range indices.
   out.face_valid.resize(nf);
-  for (uint32_t f = 0; f < nf; ++f) out.face_valid[f] = validTriple(faces[f], nv);
+  for (uint32_t f = 0; f < nf; ++f) out.face_valid[f] = faceIsValid(faces[f], nv);
 
   // Vertex → faces: count, lay the rings out with slack, fill in increasing face order.
   out.vertex_face_begin.resize(nv);
@@ -256,7 +254,7 @@ bool updateAdjacency(const TriMesh& mesh, std::span<const std::array<uint32_t, 3
   if (nv > old_nv && std::find(adj.face_valid.begin(), adj.face_valid.begin() + common, 0) !=
                          adj.face_valid.begin() + common) {
     for (uint32_t f = 0; f < common; ++f)
-      if (!adj.face_valid[f] && old_faces[f] == mesh.faces[f] && validTriple(mesh.faces[f], nv))
+      if (!adj.face_valid[f] && old_faces[f] == mesh.faces[f] && faceIsValid(mesh.faces[f], nv))
         added.push_back(f);
   }
 
@@ -284,7 +282,7 @@ bool updateAdjacency(const TriMesh& mesh, std::span<const std::array<uint32_t, 3
   for (uint32_t f : added) {
     if (f >= nf) continue;
     const auto& t = mesh.faces[f];
-    if (!validTriple(t, nv)) continue;
+    if (!faceIsValid(t, nv)) continue;
     adj.face_valid[f] = 1;
     for (uint8_t c = 0; c < 3; ++c) {
       ringInsert(adj, t[c], f, c);
