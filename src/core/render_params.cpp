@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/printable.h"
+
 namespace lodline {
 
 void LineStyles::scaleWidths(float s) {
@@ -55,7 +57,7 @@ Result<glm::vec4> parseColor(const std::string& s) {
   if (t == "green") return glm::vec4(0.1f, 0.6f, 0.2f, 1);
   if (t == "blue") return glm::vec4(0.1f, 0.25f, 0.8f, 1);
   if (t == "transparent") return glm::vec4(1, 1, 1, 0);
-  const auto bad = Error::usage("invalid colour '" + s +
+  const auto bad = Error::usage("invalid colour '" + printableText(s, 80) +
                                 "' (expected #rrggbb, #rrggbbaa, #rgb, transparent or a name)");
   if (t.size() < 2 || t[0] != '#') return bad;
   std::string hex = t.substr(1);

@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "io/atomic_file.h"
-#include "io/input_check.h"
+#include "core/printable.h"
 
 extern char** environ;
 

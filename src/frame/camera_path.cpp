@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.h"
+#include "core/printable.h"
 #include "io/input_check.h"
 
 namespace lodline {

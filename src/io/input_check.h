@@ -5,7 +5,6 @@
 
 #include <filesystem>
 #include <string>
-#include <string_view>
 
 #include "core/result.h"
 
@@ -16,9 +15,5 @@ namespace lodline {
 /// a <what>", "is not a regular file (a FIFO, device or socket)", "cannot open for reading:
 /// <reason>". `what` names the expected content ("mesh file", "PNG image", ...).
 Status checkInputFile(const std::filesystem::path& path, const std::string& what);
-
-/// `text` (e.g. a parser's message that quotes the file) made fit for a one-line error:
-/// control characters and non-ASCII bytes become '?', and it is cut to `max_chars` ("...").
-std::string printableText(std::string_view text, size_t max_chars = 200);
 
 }  // namespace lodline

@@ -19,6 +19,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/printable.h"
 #include "io/input_check.h"
 #include "io/load_mesh.h"
 

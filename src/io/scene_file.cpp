@@ -13,6 +13,7 @@
 #include <glm/matrix.hpp>
 
 #include "io/atomic_file.h"
+#include "core/printable.h"
 #include "io/input_check.h"
 #include "io/load_gltf.h"
 #include "io/load_mesh.h"

@@ -12,6 +12,7 @@
 #include "core/hash.h"
 #include "io/atomic_file.h"
 #include "io/image.h"
+#include "core/printable.h"
 #include "io/input_check.h"
 
 namespace lodline {

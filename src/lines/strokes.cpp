@@ -16,7 +16,7 @@ void StrokeSet::clear() {
 
 namespace {
 constexpr uint32_t kNone = 0xffffffffu;
-constexpr uint64_t kEndMask = (uint64_t{1} << 30) - 1;  // most segment ends supported
+[[maybe_unused]] constexpr uint64_t kEndMask = (uint64_t{1} << 30) - 1;  // most segment ends supported
 }  // namespace
 
 void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch) {

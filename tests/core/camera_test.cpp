@@ -95,6 +95,13 @@ TEST(RenderParams, ParseSizeColorStyle) {
   EXPECT_EQ(parseColor("#fff")->x, 1.0f);
   EXPECT_FALSE(parseColor("#12345").ok());
   EXPECT_FALSE(parseColor("mauve-ish").ok());
+  // A rejected value is echoed in the error, but never a control byte (a fuzz finding: a DEL
+  // inside a stroke style's colour reached the terminal).
+  const Result<glm::vec4> bad = parseColor(std::string("#12\x7f\x1b[2J") + std::string(200, 'f'));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().message.find_first_of("\x7f\x1b"), std::string::npos) << bad.error().message;
+  EXPECT_NE(bad.error().message.find("#12??[2J"), std::string::npos) << bad.error().message;
+  EXPECT_LT(bad.error().message.size(), 200u);
   EXPECT_EQ(*parseStyle("lines"), Style::kLines);
   EXPECT_FALSE(parseStyle("sketchy").ok());
 }
