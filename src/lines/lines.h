@@ -204,6 +204,9 @@ struct LineScratch {
   WorkerPool* pool = nullptr;
   std::vector<LineSet> part_sets;       // per-face pass, one set per part
   std::vector<uint32_t> part_interior;  // interior ids each part used
+  /// The per-face pass finds the faces with a line sixteen at a time where the processor has
+  /// AVX-512 (the same faces, in the same order); false scans them one by one (tests compare).
+  bool wide_face_scan = true;
 };
 
 /// Appends to `out` the segments of the zero set of `in.value` over the valid faces of

@@ -163,7 +163,7 @@ template <bool kOrtho, bool kDerivs>
 
 // viewRange() for the view's kind, compiled twice: for AVX2 (eight vertices a step) where the
 // processor has it, and for plain x86-64. No FMA in either, so both give the same bits.
-LODLINE_AVX2_CLONES void viewRangeOf(const ViewArrays& a, bool ortho, bool derivs, size_t begin, size_t end) {
+LODLINE_AVX512_CLONES void viewRangeOf(const ViewArrays& a, bool ortho, bool derivs, size_t begin, size_t end) {
   if (ortho) {
     if (derivs) viewRange<true, true>(a, begin, end);
     else viewRange<true, false>(a, begin, end);

@@ -819,6 +819,58 @@ TEST(ExtractLines, WorkerThreadsGiveTheSerialOutput) {
   EXPECT_EQ(serial.sources, threaded.sources);
 }
 
+// The face pass finds its faces sixteen at a time with AVX-512 where the processor has it
+// (extractZeroSets): the same segments as the face-by-face scan, on random values with exact
+// zeros, tests, gates and shut vertices, over faces whose count is no multiple of 16 and some
+// of which are invalid (an index out of range, a repeated one: they must read no code).
+TEST(ExtractLines, WideFaceScanGivesTheFaceByFaceOutput) {
+  TriMesh m = makeTorusKnot(2, 3, 1.0f, 0.2f, 333, 17, 0.18f);
+  const uint32_t nv = static_cast<uint32_t>(m.positions.size());
+  for (size_t f = 7; f < m.faces.size(); f += 101) m.faces[f][f % 3] = nv + static_cast<uint32_t>(f);
+  for (size_t f = 50; f < m.faces.size(); f += 257) m.faces[f][1] = m.faces[f][0];
+  MeshAdjacency adj;
+  buildAdjacency(m, adj);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<float> value(nv), num(nv), den(nv), gate(nv), value2(nv), num2(nv);
+  std::vector<uint8_t> shut(nv);
+  for (uint32_t v = 0; v < nv; ++v) {
+    value[v] = v % 13 == 0 ? 0.0f : u(rng) + 0.3f;
+    num[v] = u(rng);
+    den[v] = u(rng);
+    gate[v] = u(rng);
+    value2[v] = u(rng);
+    num2[v] = u(rng);
+    shut[v] = v % 29 == 0;
+  }
+  ZeroSetInput a, b;
+  a.value = value;
+  a.test_num = num;
+  a.test_den = den;
+  a.gate = gate;
+  a.gate_min = -0.8f;
+  a.fade = 0.1f;
+  b.value = value2;
+  b.test_num = num2;
+  b.shut = shut;
+  const ZeroSetInput both[2] = {a, b};
+  const LineKind types[2] = {LineKind::kContour, LineKind::kSuggestive};
+  LineScratch wide, narrow;
+  narrow.wide_face_scan = false;
+  LineSet w, n;
+  extractZeroSets(m.positions, m.faces, adj, both, types, wide, w);
+  extractZeroSets(m.positions, m.faces, adj, both, types, narrow, n);
+  RecordProperty("avx512f", __builtin_cpu_supports("avx512f") ? "yes" : "no");
+  ASSERT_GT(n.counts[static_cast<int>(LineKind::kContour)], 500u);
+  ASSERT_GT(n.counts[static_cast<int>(LineKind::kSuggestive)], 500u);
+  EXPECT_EQ(w.counts, n.counts);
+  EXPECT_EQ(w.points, n.points);
+  EXPECT_EQ(w.alpha, n.alpha);
+  EXPECT_EQ(w.point_ids, n.point_ids);
+  EXPECT_EQ(w.kinds, n.kinds);
+  EXPECT_EQ(w.sources, n.sources);
+}
+
 }  // namespace
 }  // namespace lodline
 
