@@ -87,8 +87,8 @@ template <int kShift>
   vertexCodesOf<false, false, false, kShift>(in, begin, end, code);
 }
 
-// Compiled for AVX2 (32 vertices a step) where the processor has it, and for plain x86-64;
-// comparisons only, so both give the same codes.
+// Compiled for AVX-512F and AVX2 (64 and 32 vertices a step) where the processor has them,
+// and for plain x86-64; comparisons only, so all give the same codes.
 LODLINE_AVX512_CLONES void vertexCodes(const ZeroSetInput& in, int k, size_t begin, size_t end, uint8_t* code) {
   if (k == 0) vertexCodesShifted<0>(in, begin, end, code);
   else vertexCodesShifted<3>(in, begin, end, code);
@@ -357,8 +357,8 @@ void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::
   const size_t parts = (!scratch.pool || nf < 16384) ? 1 : 4 * scratch.pool->threadCount();
   scratch.part_sets.resize(parts * count);
   scratch.part_interior.assign(parts * count, 0);
-  // With one part, the first zero set's segments go straight into `out`, with their final ids
-  // (copied over from a part set, they were a sixth of the pass on the elephant).
+  // With one part, the first zero set's segments go straight into `out` with their final ids,
+  // instead of into a part set that would then be copied there.
   const bool direct = parts == 1;
   const uint32_t first_id = std::max(scratch.next_interior_id, base);
   auto run_part = [&](size_t c) {

@@ -161,8 +161,9 @@ template <bool kOrtho, bool kDerivs>
   }
 }
 
-// viewRange() for the view's kind, compiled twice: for AVX2 (eight vertices a step) where the
-// processor has it, and for plain x86-64. No FMA in either, so both give the same bits.
+// viewRange() for the view's kind, compiled three times: for AVX-512F and AVX2 (sixteen and
+// eight vertices a step) where the processor has them, and for plain x86-64. No FMA in any,
+// so all give the same bits.
 LODLINE_AVX512_CLONES void viewRangeOf(const ViewArrays& a, bool ortho, bool derivs, size_t begin, size_t end) {
   if (ortho) {
     if (derivs) viewRange<true, true>(a, begin, end);
