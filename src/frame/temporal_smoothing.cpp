@@ -172,16 +172,15 @@ void TemporalSmoother::blendView(ViewQuantities& view, float w, float sc_thresho
       view.dwkr[i] = dwkr_[i];
     }
   }
-  if (has_dw && view.sc_num.size() == n && view.sc_den.size() == n) {
-    for (size_t i = 0; i < n; ++i)
-      suggestiveTest(view.ndotv[i], view.dwkr[i], sc_threshold, view.sc_num[i], view.sc_den[i]);
+  if (has_dw && view.sc_num.size() == n) {
+    for (size_t i = 0; i < n; ++i) view.sc_num[i] = suggestiveTest(view.ndotv[i], view.dwkr[i], sc_threshold);
   }
 }
 
 void TemporalSmoother::blendSuggestive(ViewQuantities& view, std::span<const uint32_t> vertices,
                                        float w, float sc_threshold) {
   const size_t n = view.ndotv.size();
-  if (view.dwkr.size() != n || view.sc_num.size() != n || view.sc_den.size() != n) return;
+  if (view.dwkr.size() != n || view.sc_num.size() != n) return;
   dwkr_.resize(n, 0.0f);
   dwkr_frame_.resize(n, 0);
   ++dw_frame_;
@@ -192,7 +191,7 @@ void TemporalSmoother::blendSuggestive(ViewQuantities& view, std::span<const uin
     dwkr_[i] = (1.0f - wi) * dwkr_[i] + wi * view.dwkr[i];
     dwkr_frame_[i] = dw_frame_;
     view.dwkr[i] = dwkr_[i];
-    suggestiveTest(view.ndotv[i], view.dwkr[i], sc_threshold, view.sc_num[i], view.sc_den[i]);
+    view.sc_num[i] = suggestiveTest(view.ndotv[i], view.dwkr[i], sc_threshold);
   }
 }
 

@@ -55,7 +55,7 @@ class TemporalSmoother {
 
   /// Blends kr and Dw kr of `view` into the state and writes the smoothed values back into
   /// `view`, recomputing the suggestive-contour test from them (sc_num = sinθ·Dw kr −
-  /// threshold·cosθ, sc_den = cosθ, as computeViewQuantities does). `sc_threshold` as there.
+  /// threshold·cosθ, as computeViewQuantities does). `sc_threshold` as there.
   void blendView(ViewQuantities& view, float w, float sc_threshold);
   /// Per vertex, how much the smoothed kr (kr·sin²θ, as ViewQuantities holds it) changed in
   /// the last blendView(): what moves the smoothed zero sets across the surface (0 for

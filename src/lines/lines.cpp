@@ -601,7 +601,7 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
   auto kr_zero = [&](std::span<const float> test_num, LineKind type, std::span<const float> gain) {
     in[n].value = view.kr;
     in[n].test_num = test_num;
-    in[n].test_den = view.sc_den;
+    in[n].test_den = view.ndotv;
     in[n].gate = view.ndotv;
     in[n].gate_min = params.suggestive_min_ndotv;
     in[n].fade = params.suggestive_fade / (fs * fs);
@@ -610,7 +610,7 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
     types[n++] = type;
   };
   if (params.suggestive && view.sc_num.size() == nv) kr_zero(view.sc_num, LineKind::kSuggestive, suggestive_gain);
-  if (params.suggestive_highlights && view.sh_num.size() == nv && view.sc_den.size() == nv)
+  if (params.suggestive_highlights && view.sh_num.size() == nv)
     kr_zero(view.sh_num, LineKind::kSuggestiveHighlight, {});
   // The level-set kinds (lines/level_lines.h), where their quantities were computed.
   if (params.isophotes && view.isophote.size() == nv && view.isophote_test.size() == nv) {

@@ -70,7 +70,6 @@ struct ViewArrays {
   float* kr;
   float* dwkr;
   float* num;
-  float* den;
   float ex, ey, ez, ox, oy, oz, sc_threshold;
 };
 
@@ -156,7 +155,6 @@ template <bool kOrtho, bool kDerivs>
     if constexpr (kDerivs) {
       std::copy_n(o_dwkr, n, a.dwkr + b);
       std::copy_n(o_num, n, a.num + b);
-      std::copy_n(o_ndotv, n, a.den + b);
     }
   }
 }
@@ -185,12 +183,11 @@ void computeViewQuantities(const SurfaceFields& s, const ViewSpec& view, float s
   out.kr.resize(nv);
   out.dwkr.resize(with_derivs ? nv : 0);
   out.sc_num.resize(with_derivs ? nv : 0);
-  out.sc_den.resize(with_derivs ? nv : 0);
   if (nv == 0) return;
   const glm::vec3 ortho_dir = glm::normalize(view.toward_viewer);
   const ViewArrays a{&s.positions[0].x, &s.normals[0].x, &s.pdir1[0].x, &s.pdir2[0].x, s.k1.data(), s.k2.data(),
                      with_derivs ? &s.dcurv[0].x : nullptr, out.ndotv.data(), out.kr.data(), out.dwkr.data(),
-                     out.sc_num.data(), out.sc_den.data(), view.eye.x, view.eye.y, view.eye.z, ortho_dir.x,
+                     out.sc_num.data(), view.eye.x, view.eye.y, view.eye.z, ortho_dir.x,
                      ortho_dir.y, ortho_dir.z, sc_threshold};
   auto range = [&](size_t begin, size_t end) { viewRangeOf(a, view.orthographic, with_derivs, begin, end); };
   if (pool) {
@@ -206,7 +203,6 @@ void computeSuggestiveQuantities(const SurfaceFields& s, const ViewSpec& view, f
   if (s.dcurv.size() != nv) return;
   out.dwkr.resize(nv, 0.0f);
   out.sc_num.resize(nv, 0.0f);
-  out.sc_den.resize(nv, 0.0f);
   const glm::vec3 ortho_dir = glm::normalize(view.toward_viewer);
   for (uint32_t i : vertices) {
     if (i >= nv) continue;
@@ -215,7 +211,6 @@ void computeSuggestiveQuantities(const SurfaceFields& s, const ViewSpec& view, f
     derivativeAt(s, i, va, sin_dwkr, dwkr);
     out.dwkr[i] = dwkr;
     out.sc_num[i] = sin_dwkr - sc_threshold * va.ndotv;
-    out.sc_den[i] = va.ndotv;
   }
 }
 

@@ -45,13 +45,12 @@ struct ViewQuantities {
   std::vector<float> ndotv;   ///< n·v̂ = cosθ (> 0 front-facing)
   std::vector<float> kr;      ///< kr·sin²θ = k1·u² + k2·v² (same zero set and sign as kr)
   std::vector<float> dwkr;    ///< Dw kr = C(ŵ,ŵ,ŵ) − 2·τ²·cotθ, 1/units²; 0 where sinθ < 1e-6
-  /// Suggestive-contour test: keep kr = 0 points where sc_num/sc_den > 0, i.e.
-  /// tanθ·Dw kr > threshold. sc_num = sinθ·Dw kr − threshold·cosθ (no division by n·v),
-  /// sc_den = cosθ. Empty when the fields carry no derivative tensor.
+  /// Suggestive-contour test: keep kr = 0 points where sc_num/ndotv > 0, i.e.
+  /// tanθ·Dw kr > threshold. sc_num = sinθ·Dw kr − threshold·cosθ (no division by n·v; the
+  /// denominator cosθ is ndotv itself). Empty when the fields carry no derivative tensor.
   std::vector<float> sc_num;
-  std::vector<float> sc_den;
   /// Suggestive-highlight test (DeCarlo & Rusinkiewicz 2007): −tanθ·Dw kr > threshold, as
-  /// sh_num = −sinθ·Dw kr − threshold·cosθ over sc_den; filled by suggestiveHighlightTest().
+  /// sh_num = −sinθ·Dw kr − threshold·cosθ over ndotv; filled by suggestiveHighlightTest().
   std::vector<float> sh_num;
   /// Level-set kinds (lines/level_lines.h); each empty when its kind is off.
   std::vector<float> isophote, isophote_test;    ///< wave of n·l/spacing; n·l > −spacing/2
@@ -61,12 +60,12 @@ struct ViewQuantities {
 
 /// Fills `out` for the view `view`. `sc_threshold` is the absolute threshold on tanθ·Dw kr
 /// in 1/units² (LineParams::suggestive_threshold / fs²). `fields` must hold vertexCount
-/// entries in every array (dcurv may be empty: then dwkr, sc_num, sc_den are left empty).
+/// entries in every array (dcurv may be empty: then dwkr and sc_num are left empty).
 /// `pool` (optional) splits the vertices over its threads; the result is the same.
 void computeViewQuantities(const SurfaceFields& fields, const ViewSpec& view, float sc_threshold,
                            ViewQuantities& out, WorkerPool* pool = nullptr);
 
-/// The derivative quantities alone (dwkr, sc_num, sc_den), at `vertices` only: sizes those
+/// The derivative quantities alone (dwkr, sc_num), at `vertices` only: sizes those
 /// arrays to vertexCount and leaves the other entries as they were. Same values as
 /// computeViewQuantities gives there; fields.dcurv must be current at `vertices` (a lazily
 /// evaluated ShapeCache computes it only where suggestive contours can be).
@@ -91,9 +90,9 @@ void suggestiveMotionGain(std::span<const glm::vec3> positions, const ViewQuanti
 void suggestiveHighlightTest(float sc_threshold, ViewQuantities& view);
 
 /// The suggestive-contour test from n·v and Dw kr (as computeViewQuantities forms it).
-inline void suggestiveTest(float ndotv, float dwkr, float sc_threshold, float& num, float& den) {
-  num = std::sqrt(std::max(0.0f, 1.0f - ndotv * ndotv)) * dwkr - sc_threshold * ndotv;
-  den = ndotv;
+/// Its denominator is ndotv.
+inline float suggestiveTest(float ndotv, float dwkr, float sc_threshold) {
+  return std::sqrt(std::max(0.0f, 1.0f - ndotv * ndotv)) * dwkr - sc_threshold * ndotv;
 }
 
 }  // namespace lodline

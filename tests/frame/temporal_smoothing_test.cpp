@@ -31,7 +31,6 @@ TEST(Smoothing, HeldValueReachesAlphaWithinT) {
   v.kr = {0.0f};
   v.dwkr = {0.0f};
   v.sc_num = {0.0f};
-  v.sc_den = {0.5f};
   s.blendView(v, w, 0.0f);  // initial state 0
   const int n = static_cast<int>(std::lround(f * t));
   for (int i = 0; i < n; ++i) {
