@@ -791,6 +791,16 @@ namespace {
 
 // The per-edge and per-face passes split over worker threads give exactly the serial output
 // (same segments in the same order, same point ids), for all line kinds together.
+// Every field of two line sets equal: the same segments, in the same order, with the same ids.
+void expectSameLines(const LineSet& a, const LineSet& b) {
+  EXPECT_EQ(a.counts, b.counts);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.alpha, b.alpha);
+  EXPECT_EQ(a.point_ids, b.point_ids);
+  EXPECT_EQ(a.kinds, b.kinds);
+  EXPECT_EQ(a.sources, b.sources);
+}
+
 TEST(ExtractLines, WorkerThreadsGiveTheSerialOutput) {
   const TriMesh m = makeTorusKnot(2, 3, 1.0f, 0.2f, 600, 24, 0.18f);  // 28,800 faces
   ShapeCache shape;
@@ -809,12 +819,7 @@ TEST(ExtractLines, WorkerThreadsGiveTheSerialOutput) {
   extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, threaded_scratch, threaded);
   ASSERT_GT(serial.counts[static_cast<int>(LineKind::kContour)], 100u);
   ASSERT_GT(serial.counts[static_cast<int>(LineKind::kSuggestive)], 100u);
-  EXPECT_EQ(serial.counts, threaded.counts);
-  EXPECT_EQ(serial.points, threaded.points);
-  EXPECT_EQ(serial.alpha, threaded.alpha);
-  EXPECT_EQ(serial.point_ids, threaded.point_ids);
-  EXPECT_EQ(serial.kinds, threaded.kinds);
-  EXPECT_EQ(serial.sources, threaded.sources);
+  expectSameLines(serial, threaded);
 }
 
 // The face pass finds its faces sixteen at a time with AVX-512 where the processor has it
@@ -858,15 +863,12 @@ TEST(ExtractLines, WideFaceScanGivesTheFaceByFaceOutput) {
   LineSet w, n;
   extractZeroSets(m.positions, m.faces, adj, both, types, wide, w);
   extractZeroSets(m.positions, m.faces, adj, both, types, narrow, n);
+#if defined(__x86_64__)
   RecordProperty("avx512f", __builtin_cpu_supports("avx512f") ? "yes" : "no");
+#endif
   ASSERT_GT(n.counts[static_cast<int>(LineKind::kContour)], 500u);
   ASSERT_GT(n.counts[static_cast<int>(LineKind::kSuggestive)], 500u);
-  EXPECT_EQ(w.counts, n.counts);
-  EXPECT_EQ(w.points, n.points);
-  EXPECT_EQ(w.alpha, n.alpha);
-  EXPECT_EQ(w.point_ids, n.point_ids);
-  EXPECT_EQ(w.kinds, n.kinds);
-  EXPECT_EQ(w.sources, n.sources);
+  expectSameLines(w, n);
 }
 
 }  // namespace
