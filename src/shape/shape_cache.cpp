@@ -889,9 +889,18 @@ void ShapeCache::compute(const TriMesh& mesh) {
   }
   computed_ = true;
   ++version_;
+  resetWaiting(mesh);
   stats_.full = true;
   stats_.normal_vertices = stats_.curvature_vertices = nv;
   stats_.derivative_vertices = eager ? nv : 0;
+}
+
+void ShapeCache::resetWaiting(const TriMesh& mesh) {
+  waiting_.clear();
+  if (!(params_.move_tolerance > 0.0f)) return;
+  computed_pos_.assign(mesh.positions.begin(), mesh.positions.end());
+  seen_pos_.resize(mesh.positions.size());
+  waiting_flag_.assign(mesh.positions.size(), 0);
 }
 
 const MeshAdjacency& ShapeCache::adjacency() const {
@@ -1037,7 +1046,42 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
       inc_verts_.push_back(v);
     }
   };
-  for (uint32_t v : changed_vertices) seed(v);
+  const float tol = params_.move_tolerance;
+  if (tol > 0.0f) {
+    // Small moves wait (ShapeParams::move_tolerance): a vertex is seeded once it is more than
+    // tol·√(point area) from where it was last computed, or once it stopped moving.
+    computed_pos_.resize(nv);
+    seen_pos_.resize(nv);
+    waiting_flag_.resize(nv, 0);
+    const float tol2 = tol * tol;
+    const uint32_t waited = static_cast<uint32_t>(waiting_.size());
+    for (uint32_t v : changed_vertices) {
+      if (v >= nv) continue;
+      if (v >= old_nv) {
+        seed(v);
+        continue;
+      }
+      const glm::vec3 d = mesh.positions[v] - computed_pos_[v];
+      if (!(glm::dot(d, d) <= tol2 * point_areas_[v])) {  // (a non-finite move is seeded)
+        seed(v);
+      } else if (!waiting_flag_[v]) {
+        waiting_flag_[v] = 1;
+        waiting_.push_back(v);
+        seen_pos_[v] = mesh.positions[v];
+      }
+    }
+    for (uint32_t k = 0; k < waited; ++k) {  // those that waited before this update
+      const uint32_t v = waiting_[k];
+      if (v >= nv || !waiting_flag_[v] || vertex_stamp_[v] == stamp_) continue;
+      if (std::memcmp(&mesh.positions[v], &seen_pos_[v], sizeof(glm::vec3)) == 0) {
+        seed(v);  // stopped
+      } else {
+        seen_pos_[v] = mesh.positions[v];
+      }
+    }
+  } else {
+    for (uint32_t v : changed_vertices) seed(v);
+  }
   if (!same_faces) {
     // Every vertex whose ring may have changed: those of changed, added and removed face
     // slots (old and new triples), and new vertices. A slot that became invalid is in no
@@ -1055,6 +1099,16 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
     for (uint32_t f : changed_faces_)
       if (f < nf) faces_copy_[f] = mesh.faces[f];
     vertex_count_ = nv;
+  }
+  if (tol > 0.0f) {  // every seed is computed at its current position now
+    for (uint32_t v : inc_verts_) {
+      computed_pos_[v] = mesh.positions[v];
+      waiting_flag_[v] = 0;
+    }
+    size_t kept = 0;
+    for (uint32_t v : waiting_)
+      if (v < nv && waiting_flag_[v]) waiting_[kept++] = v;
+    waiting_.resize(kept);
   }
   // The nested support sets, as prefixes of inc_faces_ / inc_verts_ (level = ring):
   //   C = changed; F1 = faces of C (geometry, corner areas); V1 = their vertices (normals,
@@ -1120,6 +1174,7 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
   stats_.normal_vertices = static_cast<uint32_t>(m1);
   stats_.curvature_vertices = static_cast<uint32_t>(m2);
   stats_.derivative_vertices = static_cast<uint32_t>(eager ? m3 : 0);
+  stats_.waiting_vertices = static_cast<uint32_t>(waiting_.size());
 }
 
 void ShapeCache::ensureDerivatives(const TriMesh& mesh, std::span<const uint32_t> vertices) {

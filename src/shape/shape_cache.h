@@ -63,6 +63,15 @@ struct ShapeParams {
   /// Threads for the per-face and per-vertex loops, the caller included (0: one per core;
   /// 1: none started). Results are bit-identical for every count. Default 0.
   unsigned threads = 0;
+  /// update() lets a vertex that moved by less than move_tolerance·√(its point area) since
+  /// its quantities were last computed wait: it is recomputed once its moves add up to more,
+  /// or once it stops moving (the first update() in which its position is the one of the
+  /// update before). A geomorph moves a vertex a little every frame, so a mesh under detail
+  /// control recomputes each morphing vertex's rings every few frames instead of every frame;
+  /// meanwhile its quantities are those of a position at most that far away. Once nothing
+  /// moves, the result is again bit-identical to compute() (docs/design.md §6, item 6).
+  /// Default 0: every move is recomputed at once, always bit-identical.
+  float move_tolerance = 0.0f;
 };
 
 /// What the last compute()/update() touched (for frame stats and tests).
@@ -74,6 +83,8 @@ struct ShapeUpdateStats {
   uint32_t normal_vertices = 0;      ///< vertices whose normal/area/frame were recomputed
   uint32_t curvature_vertices = 0;   ///< vertices whose curvature was recomputed
   uint32_t derivative_vertices = 0;  ///< vertices whose derivative tensor was recomputed
+  /// Vertices whose small moves wait after this update (ShapeParams::move_tolerance).
+  uint32_t waiting_vertices = 0;
 };
 
 /// Read-only views of the per-vertex fields the lines stage consumes (all of vertexCount
@@ -161,8 +172,13 @@ class ShapeCache {
   /// slots stable (edits in place, additions at the end); a compacted face array changes most
   /// slots and falls back to a full compute. Fewer vertices than last
   /// time, or nothing computed yet: compute(mesh). The result is always bit-identical to
-  /// compute(mesh) on a fresh cache.
+  /// compute(mesh) on a fresh cache, except at vertices within three rings of a vertex
+  /// whose small move waits (ShapeParams::move_tolerance > 0; waitingVertices()).
   void update(const TriMesh& mesh, std::span<const uint32_t> changed_vertices);
+  /// The vertices whose last moves wait (ShapeParams::move_tolerance); empty when the cache
+  /// is bit-identical to compute() on the mesh of the last call. An update() with no
+  /// changed vertex and the same positions recomputes them all.
+  std::span<const uint32_t> waitingVertices() const { return waiting_; }
 
   /// With lazy_derivatives: makes dcurv() valid at `vertices` (any order, repeats and
   /// out-of-range ids ignored) for `mesh`, the mesh of the last compute()/update(); the
@@ -319,6 +335,13 @@ class ShapeCache {
   uint32_t dgen_ = 1;
   uint32_t last_ensured_ = 0;
   std::vector<uint32_t> ens_verts_, ens_faces_;
+  // move_tolerance: per vertex, the position its quantities were last computed from and the
+  // one it had in the last update (to see that it stopped); the vertices that wait.
+  std::vector<glm::vec3> computed_pos_, seen_pos_;
+  std::vector<uint8_t> waiting_flag_;
+  std::vector<uint32_t> waiting_;
+  // Resets the move_tolerance state: every vertex computed at its current position.
+  void resetWaiting(const TriMesh& mesh);
 };
 
 }  // namespace lodline

@@ -114,6 +114,7 @@ void convergeAtStart(SceneDrawing& scene, const FrameParams& frame, const Detail
 // full recomputes.
 struct Stages {
   double adapt = 0.0, shape = 0.0, lines = 0.0, ops = 0.0, curvature = 0.0, full = 0.0, faces = 0.0;
+  double waiting = 0.0;  // morphing vertices whose small moves wait (ShapeParams::move_tolerance)
 };
 Stages stagesOf(const SceneDrawing& scene) {
   Stages st;
@@ -126,6 +127,7 @@ Stages stagesOf(const SceneDrawing& scene) {
       st.shape += t.shape;
       const ShapeUpdateStats& us = l.drawing().shape().lastStats();
       st.curvature += us.curvature_vertices;
+      st.waiting += us.waiting_vertices;
       st.full += us.full ? 1.0 : 0.0;
     }
     if (const AdaptiveMesh* lod = l.lod()) {
@@ -337,7 +339,7 @@ void stagesFrame(benchmark::State& state, const std::string& name, float target_
   detail.target_area = target_area;
   const float aspect = frame.aspect();
   convergeAtStart(scene, frame, detail);
-  std::vector<double> adapt, shape, lines, faces, silhouette, curvature;
+  std::vector<double> adapt, shape, lines, faces, silhouette, curvature, waiting;
   double full = 0.0, ordered = 0.0;
   float az = 0.0f;
   for (auto _ : state) {
@@ -347,6 +349,7 @@ void stagesFrame(benchmark::State& state, const std::string& name, float target_
     const Stages st = stagesOf(scene);
     full += st.full;
     curvature.push_back(st.curvature);
+    waiting.push_back(st.waiting);
     silhouette.push_back(scene.objects()[0].drawing->drawing().timings().silhouette);
     if (const AdaptiveMesh* lod = scene.objects()[0].drawing->lod()) ordered += lod->stats().slots_ordered;
     adapt.push_back(st.adapt);
@@ -362,6 +365,7 @@ void stagesFrame(benchmark::State& state, const std::string& name, float target_
   state.counters["silhouette_ms"] = bench::median(silhouette);  // the outline's input, not in lines_ms
   state.counters["full_shape_frames"] = full;   // frames whose shape update recomputed everything
   state.counters["curvature_vertices"] = bench::median(curvature);  // per frame: the work the shape update did
+  state.counters["waiting_vertices"] = bench::median(waiting);  // morphing vertices not recomputed this frame
   state.counters["ordered_frames"] = ordered;   // frames that renumbered the adapted mesh's slots
 }
 

@@ -267,6 +267,86 @@ TEST(ShapeCache, IncrementalUpdateIsBitIdentical) {
   expectBitIdentical(inc, full, "after connectivity change");
 }
 
+// ShapeParams::move_tolerance: a vertex's small moves wait (its quantities stay those of
+// where it was last computed) until they add up to more than the tolerance, or until it stops;
+// then the cache is again bit-identical to a fresh compute.
+TEST(ShapeCache, SmallMovesWaitUntilTheyAddUpOrStop) {
+  TriMesh m = makeTorusKnot(3, 2, 1.0f, 0.25f, 200, 24, 0.15f);
+  ShapeParams params;
+  params.move_tolerance = 0.3f;
+  ShapeCache inc(params);
+  inc.compute(m);
+  const uint32_t v = 1234;
+  const float scale = std::sqrt(inc.pointAreas()[v]);
+  const glm::vec3 dir = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+  const std::vector<glm::vec3> normals_before(inc.normals().begin(), inc.normals().end());
+  const uint32_t moved[] = {v};
+  auto fresh_equals = [&](const char* what) {
+    ShapeCache fresh(params);
+    fresh.compute(m);
+    expectBitIdentical(inc, fresh, what);
+  };
+  // Four steps of 0.1·scale: the first two wait (0.1, 0.2 < 0.3), the third is seeded
+  // (0.3·(1 + rounding) is not reliably above, so the check is on the fourth at 0.4).
+  for (int step = 1; step <= 4; ++step) {
+    m.positions[v] += 0.1f * scale * dir;
+    inc.update(m, moved);
+    if (step <= 2) {
+      EXPECT_EQ(inc.lastStats().changed_vertices, 0u) << step;
+      ASSERT_EQ(inc.waitingVertices().size(), 1u) << step;
+      EXPECT_EQ(inc.waitingVertices()[0], v);
+      EXPECT_EQ(inc.lastStats().waiting_vertices, 1u);
+      EXPECT_TRUE(test::sameBits(inc.normals(), std::span<const glm::vec3>(normals_before))) << step;
+    }
+    if (step == 4) {
+      EXPECT_TRUE(inc.waitingVertices().empty());
+      fresh_equals("after the moves added up");
+    }
+  }
+  // A small move waits; the next update in which the vertex has not moved recomputes it, even
+  // with nothing passed as changed.
+  m.positions[v] -= 0.05f * scale * dir;
+  inc.update(m, moved);
+  ASSERT_EQ(inc.waitingVertices().size(), 1u);
+  inc.update(m, {});
+  EXPECT_TRUE(inc.waitingVertices().empty());
+  EXPECT_GE(inc.lastStats().changed_vertices, 1u);
+  fresh_equals("after it stopped");
+  // Listed again without moving counts as stopped too.
+  m.positions[v] += 0.05f * scale * dir;
+  inc.update(m, moved);
+  ASSERT_EQ(inc.waitingVertices().size(), 1u);
+  inc.update(m, moved);
+  EXPECT_TRUE(inc.waitingVertices().empty());
+  fresh_equals("after it was listed unmoved");
+  // A move beyond the tolerance is recomputed at once; so is a non-finite one.
+  m.positions[v] += 0.5f * scale * dir;
+  inc.update(m, moved);
+  EXPECT_TRUE(inc.waitingVertices().empty());
+  fresh_equals("after a large move");
+  m.positions[v].x = std::numeric_limits<float>::quiet_NaN();
+  inc.update(m, moved);
+  EXPECT_TRUE(inc.waitingVertices().empty());
+  // Several vertices waiting while others move on: only theirs lag. Then all stop.
+  m = makeTorusKnot(3, 2, 1.0f, 0.25f, 200, 24, 0.15f);
+  inc.compute(m);
+  std::vector<uint32_t> some;
+  for (uint32_t w = 100; w < 4000; w += 97) some.push_back(w);
+  int frames_waiting = 0, frames_seeded = 0;
+  for (int frame = 0; frame < 6; ++frame) {
+    for (size_t k = 0; k < some.size(); ++k)  // 0.04 to 0.12 of each vertex's scale a frame
+      m.positions[some[k]] += (0.04f + 0.02f * static_cast<float>(k % 5)) * std::sqrt(inc.pointAreas()[some[k]]) * dir;
+    inc.update(m, some);
+    frames_waiting += !inc.waitingVertices().empty();
+    frames_seeded += inc.lastStats().changed_vertices > 0;
+  }
+  EXPECT_EQ(frames_waiting, 6);  // the slowest still wait after six frames (0.24 < 0.3)
+  EXPECT_GE(frames_seeded, 3);   // the fastest were recomputed every third frame
+  inc.update(m, {});
+  EXPECT_TRUE(inc.waitingVertices().empty());
+  fresh_equals("after several stopped");
+}
+
 // The per-face and per-vertex loops run on worker threads when they are long: one thread and
 // several give the same bits, for a full compute and for an incremental update.
 TEST(ShapeCache, ThreadCountDoesNotChangeTheResult) {
