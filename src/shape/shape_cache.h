@@ -69,7 +69,7 @@ struct ShapeParams {
   /// update before). A geomorph moves a vertex a little every frame, so a mesh under detail
   /// control recomputes each morphing vertex's rings every few frames instead of every frame;
   /// meanwhile its quantities are those of a position at most that far away. Once nothing
-  /// moves, the result is again bit-identical to compute() (docs/design.md §6, item 6).
+  /// moves, the result is again bit-identical to compute() (docs/design.md §6, item 5).
   /// Default 0: every move is recomputed at once, always bit-identical.
   float move_tolerance = 0.0f;
 };
