@@ -1025,7 +1025,17 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
     // valid), new slots start empty.
     const uint32_t common = std::min(old_nf, nf);
     changed_faces_.clear();
-    for (uint32_t f = 0; f < common; ++f)
+    // Sixteen faces (192 bytes) at a time with memcmp, face by face only where they differ:
+    // a few percent of the slots change a frame, and the face-by-face loop alone took 0.3 ms
+    // on an 81k-face adapted mesh.
+    constexpr uint32_t kChunk = 16;
+    uint32_t f = 0;
+    for (; f + kChunk <= common; f += kChunk) {
+      if (std::memcmp(&faces_copy_[f], &mesh.faces[f], kChunk * sizeof(mesh.faces[0])) == 0) continue;
+      for (uint32_t g = f; g < f + kChunk; ++g)
+        if (faces_copy_[g] != mesh.faces[g]) changed_faces_.push_back(g);
+    }
+    for (; f < common; ++f)
       if (faces_copy_[f] != mesh.faces[f]) changed_faces_.push_back(f);
     for (uint32_t f = common; f < std::max(old_nf, nf); ++f) changed_faces_.push_back(f);
     in_place = updateAdjacency(mesh, faces_copy_, changed_faces_, adjacency_);
