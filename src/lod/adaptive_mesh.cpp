@@ -23,6 +23,7 @@
 #include <cstring>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <type_traits>
 
 #include <glm/common.hpp>
@@ -30,6 +31,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/mesh_order.h"
+#include "lod/face_areas.h"
 
 namespace lodline {
 namespace {
@@ -1167,24 +1169,20 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   // face in parallel, then summed into the rings in face order (the same sums as serially).
   std::atomic<uint32_t> visible{0}, in_band{0}, at_limit{0};
   const float near2 = std::max(camera_.near_plane * camera_.near_plane, 1e-20f);
+  static_assert(std::tuple_size_v<decltype(planes_)> == kFrustumPlanes);
+  const FaceAreaView view{active_fs_.data(), slot_pos_.data(), planes_.data(), eye_, forward_, k_, near2,
+                          camera_.orthographic};
+  active_visible_.resize(active_faces_.size());
   auto areas = [&](size_t begin, size_t end) {
+    faceImageAreas(view, begin, end, active_area_.data(), active_visible_.data());
     uint32_t vis = 0, band = 0, limit = 0;
     for (size_t k = begin; k < end; ++k) {
+      if (!active_visible_[k]) continue;
       const auto& c = active_fs_[k];
-      const glm::vec3 &a = slot_pos_[c[0]], &b = slot_pos_[c[1]], &d = slot_pos_[c[2]];
-      const glm::vec3 n = glm::cross(b - a, d - a);
-      const float area = 0.5f * glm::length(n);
-      const glm::vec3 centre = (a + b + d) * (1.0f / 3.0f);
-      const glm::vec3 m = centre - eye_;
-      const float img = camera_.orthographic ? k_ * area : k_ * area / std::max(glm::dot(m, m), near2);
-      active_area_[k] = img;
-      const glm::vec3 view_dir = camera_.orthographic ? forward_ : m;
-      if (glm::dot(n, view_dir) >= 0.0f) continue;
-      bool inside = true;
-      for (const glm::vec4& pl : planes_) inside &= glm::dot(glm::vec3(pl), centre) + pl.w >= 0.0f;
-      if (!inside) continue;
+      const float img = active_area_[k];
       ++vis;
-      const float t = modifiers_ ? targetAt(centre) : t0_;
+      const float t =
+          modifiers_ ? targetAt((slot_pos_[c[0]] + slot_pos_[c[1]] + slot_pos_[c[2]]) * (1.0f / 3.0f)) : t0_;
       if (const int side = bandSide(img, t); side == 0)
         ++band;
       else

@@ -320,6 +320,7 @@ class AdaptiveMesh {
   std::vector<uint32_t> active_faces_;
   std::vector<std::array<uint32_t, 3>> active_fs_;
   std::vector<float> active_area_;
+  std::vector<uint8_t> active_visible_;  // adapt() step 1: per active face, facing and in the frustum
   // Slots.
   uint32_t slot_count_ = 0;
   uint32_t active_vertices_ = 0;
