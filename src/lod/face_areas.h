@@ -30,8 +30,8 @@ struct FaceAreaView {
 /// and d the distance from the eye to its centre (k·A when orthographic); visible[f] = 1 when
 /// it faces the camera (its normal against the direction to its centre, or `forward`) and its
 /// centre lies inside every plane, else 0. `area` and `visible` hold at least `end` entries
-/// and alias nothing else. Sixteen or eight faces a step where the processor has AVX-512F or
-/// AVX2, with the same bits as one face at a time.
+/// and alias nothing else. Eight faces a step where the processor has AVX2 or AVX-512F (the
+/// compiler keeps to 256-bit vectors here), with the same bits as one face at a time.
 void faceImageAreas(const FaceAreaView& view, size_t begin, size_t end, float* area, uint8_t* visible);
 
 }  // namespace lodline
