@@ -335,6 +335,7 @@ class ShapeCache {
   uint32_t dgen_ = 1;
   uint32_t last_ensured_ = 0;
   std::vector<uint32_t> ens_verts_, ens_faces_;
+  std::vector<uint64_t> ens_bits_;  // ensureDerivatives(): its faces as a bitmap, to list them in order
   // move_tolerance: per vertex, the position its quantities were last computed from and the
   // one it had in the last update (to see that it stopped); the vertices that wait.
   std::vector<glm::vec3> computed_pos_, seen_pos_;
