@@ -2,8 +2,9 @@
 // x86-64 (SSE2) the build targets, and pick one when the program loads (GCC's target_clones,
 // an ifunc). The release build keeps the baseline so that one binary runs on any x86-64; the
 // loops so marked run eight floats a step where the processor allows.
-// LODLINE_AVX512_CLONES adds an AVX-512F clone (sixteen floats a step) for the per-vertex
-// loops of the line stage, whose arithmetic is plain enough for the vectoriser to widen.
+// LODLINE_AVX512_CLONES adds an AVX-512F clone for loops whose arithmetic is plain enough
+// for the vectoriser to widen (sixteen floats a step where GCC chooses 512-bit vectors, as in
+// the line stage's per-vertex loops; eight where it keeps to 256 bits, as in lod/face_areas).
 //
 // Only for loops whose results do not depend on the clone: the clones enable no FMA, the
 // build fuses no multiply-adds (-ffp-contract=off, CMakeLists.txt), and IEEE division and

@@ -23,7 +23,6 @@
 #include <cstring>
 #include <numeric>
 #include <string>
-#include <tuple>
 #include <type_traits>
 
 #include <glm/common.hpp>
@@ -31,7 +30,6 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/mesh_order.h"
-#include "lod/face_areas.h"
 
 namespace lodline {
 namespace {
@@ -1169,7 +1167,6 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   // face in parallel, then summed into the rings in face order (the same sums as serially).
   std::atomic<uint32_t> visible{0}, in_band{0}, at_limit{0};
   const float near2 = std::max(camera_.near_plane * camera_.near_plane, 1e-20f);
-  static_assert(std::tuple_size_v<decltype(planes_)> == kFrustumPlanes);
   const FaceAreaView view{active_fs_.data(), slot_pos_.data(), planes_.data(), eye_, forward_, k_, near2,
                           camera_.orthographic};
   active_visible_.resize(active_faces_.size());

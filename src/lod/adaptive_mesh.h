@@ -39,6 +39,7 @@
 #include "core/result.h"
 #include "core/timer.h"
 #include "core/worker_pool.h"
+#include "lod/face_areas.h"
 #include "pm/progressive_mesh.h"
 
 namespace lodline {
@@ -378,7 +379,7 @@ class AdaptiveMesh {
   Camera camera_;
   int width_ = 0, height_ = 0;
   glm::mat4 view_proj_{1.0f};
-  std::array<glm::vec4, 5> planes_{};
+  std::array<glm::vec4, kFrustumPlanes> planes_{};
   glm::vec3 eye_{0.0f}, forward_{0.0f, 0.0f, -1.0f};
   float k_ = 1.0f;
   glm::vec3 last_eye_{0.0f};  // eye and k_ of the last adapt() (areaShrinkRate)

@@ -789,8 +789,6 @@ TEST(LineTypes, Names) {
 namespace lodline {
 namespace {
 
-// The per-edge and per-face passes split over worker threads give exactly the serial output
-// (same segments in the same order, same point ids), for all line kinds together.
 // Every field of two line sets equal: the same segments, in the same order, with the same ids.
 void expectSameLines(const LineSet& a, const LineSet& b) {
   EXPECT_EQ(a.counts, b.counts);
@@ -801,6 +799,8 @@ void expectSameLines(const LineSet& a, const LineSet& b) {
   EXPECT_EQ(a.sources, b.sources);
 }
 
+// The per-edge and per-face passes split over worker threads give exactly the serial output
+// (same segments in the same order, same point ids), for all line kinds together.
 TEST(ExtractLines, WorkerThreadsGiveTheSerialOutput) {
   const TriMesh m = makeTorusKnot(2, 3, 1.0f, 0.2f, 600, 24, 0.18f);  // 28,800 faces
   ShapeCache shape;
