@@ -72,6 +72,12 @@ constexpr uint32_t kMaxRefusalShift = 3;
 /// (smaller ones fit in the caches whatever their order).
 constexpr uint32_t kOrderFreshShare = 4;
 constexpr uint32_t kOrderMinVertices = 4096;
+/// A collapse may turn a face over (against its full-detail normal) where the face then
+/// covers less than this many pixels, which no drawing can show. At the coarsest levels after
+/// a fast zoom-out, refusing such sub-pixel folds held whole regions finer than the view asks
+/// for (docs/detail-control.md §7); the faces so folded are listed, and refined back where
+/// they grow past this size (repairFolds()).
+constexpr float kFoldAreaPx = 0.25f;
 
 /// An index from a free list, the last freed first, or else the next unused one (`count`).
 uint32_t takeIndex(std::vector<uint32_t>& free, uint32_t& count) {
@@ -415,9 +421,7 @@ float AdaptiveMesh::targetAt(const glm::vec3& p) const {
   return t;
 }
 
-float AdaptiveMesh::faceImageArea(uint32_t f) const {
-  const auto& c = active_fs_[face_pos_[f]];
-  const glm::vec3 &a = slot_pos_[c[0]], &b = slot_pos_[c[1]], &d = slot_pos_[c[2]];
+float AdaptiveMesh::triangleImageArea(const glm::vec3& a, const glm::vec3& b, const glm::vec3& d) const {
   const float area = 0.5f * glm::length(glm::cross(b - a, d - a));
   if (camera_.orthographic) return k_ * area;
   const glm::vec3 m = (a + b + d) * (1.0f / 3.0f) - eye_;
@@ -425,16 +429,15 @@ float AdaptiveMesh::faceImageArea(uint32_t f) const {
   return k_ * area / std::max(glm::dot(m, m), near2);
 }
 
+float AdaptiveMesh::faceImageArea(uint32_t f) const {
+  const auto& c = active_fs_[face_pos_[f]];
+  return triangleImageArea(slot_pos_[c[0]], slot_pos_[c[1]], slot_pos_[c[2]]);
+}
+
 float AdaptiveMesh::faceImageAreaWith(uint32_t f, uint32_t moved, const glm::vec3& p) const {
   const auto& c = fv_[f];
-  const glm::vec3 a = c[0] == moved ? p : node_pos_[c[0]];
-  const glm::vec3 b = c[1] == moved ? p : node_pos_[c[1]];
-  const glm::vec3 d = c[2] == moved ? p : node_pos_[c[2]];
-  const float area = 0.5f * glm::length(glm::cross(b - a, d - a));
-  if (camera_.orthographic) return k_ * area;
-  const glm::vec3 m = (a + b + d) * (1.0f / 3.0f) - eye_;
-  const float near2 = std::max(camera_.near_plane * camera_.near_plane, 1e-20f);
-  return k_ * area / std::max(glm::dot(m, m), near2);
+  return triangleImageArea(c[0] == moved ? p : node_pos_[c[0]], c[1] == moved ? p : node_pos_[c[1]],
+                           c[2] == moved ? p : node_pos_[c[2]]);
 }
 
 bool AdaptiveMesh::visible(const NodeBounds& nb) const {
@@ -597,6 +600,24 @@ inline void relink(std::array<uint32_t, 3>& nb, uint32_t from, uint32_t to) {
 }
 }  // namespace
 
+bool AdaptiveMesh::flipped(uint32_t f) const {
+  const auto& c = fv_[f];
+  return !facingOk(node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]], ref_normal_[f]);
+}
+
+// The geometry test of a split or collapse for one of the faces it keeps, with corners q
+// afterwards (final positions). A face already turned over does not refuse the operation (it
+// is listed in folded_ and repaired there); a collapse may turn one over where it is then
+// sub-pixel (kFoldAreaPx), and says so in *folds.
+bool AdaptiveMesh::facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* folds) const {
+  if (facingOk(q[0], q[1], q[2], ref_normal_[f])) return true;
+  if (flipped(f)) return true;
+  if (folds == nullptr || !have_view_ || !(triangleImageArea(q[0], q[1], q[2]) < kFoldAreaPx))
+    return false;
+  *folds = true;
+  return true;
+}
+
 bool AdaptiveMesh::doSplit(uint32_t s, bool check, bool morph) {
   if (pm_.isLeaf(s) || node_slot_[s] == kNone) return false;
   const VertexSplit& vs = pm_.split(s);
@@ -620,7 +641,7 @@ bool AdaptiveMesh::doSplit(uint32_t s, bool check, bool morph) {
       const uint32_t i = cornerOf(f, s);
       glm::vec3 q[3] = {node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]]};
       q[i] = pu;
-      if (!facingOk(q[0], q[1], q[2], ref_normal_[f])) return false;
+      if (!facingAllowed(f, q, nullptr)) return false;
     }
     if (!facingOk(pu, pt, node_pos_[l], ref_normal_[vs.fl]) ||
         !facingOk(pt, pu, node_pos_[r], ref_normal_[vs.fr]))
@@ -697,12 +718,13 @@ bool AdaptiveMesh::doCollapse(uint32_t p, bool check) {
   if (!collectFan(vs.vu, fn_ul, fn_ur, fan_u_) || !collectFan(vs.vt, fn_rt, fn_tl, fan_t_))
     return false;
   const glm::vec3 pp = node_pos_[p];
+  bool folds = false;
   if (check) {
     for (uint32_t f : fan_u_) {
       const auto& c = fv_[f];
       glm::vec3 q[3] = {node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]]};
       q[cornerOf(f, vs.vu)] = pp;
-      if (!facingOk(q[0], q[1], q[2], ref_normal_[f])) return false;
+      if (!facingAllowed(f, q, &folds)) return false;
     }
   }
   if (node_state_[p] & kPending) removePending(p);
@@ -741,6 +763,11 @@ bool AdaptiveMesh::doCollapse(uint32_t p, bool check) {
   if (have_view_)
     for (uint32_t f : fan_u_) active_area_[face_pos_[f]] = faceImageArea(f);
   for (uint32_t f : fan_u_) accumulate(f, 1.0f);
+  if (folds) {
+    for (uint32_t f : fan_u_)
+      if (flipped(f) && std::find(folded_.begin(), folded_.end(), f) == folded_.end()) folded_.push_back(f);
+    ++stats_.folds;
+  }
   changes_.collapsed.push_back(p);
   markDirty(st);
   markDirty(su);
@@ -1136,6 +1163,27 @@ bool AdaptiveMesh::advanceCollapse(uint32_t q, int depth) {
   return doCollapse(q, true);
 }
 
+// Faces a collapse turned over while sub-pixel (kFoldAreaPx) are dropped from the list once
+// gone or facing as recorded again; one that has grown past that size (the camera came
+// closer before a split undid the fold) has its corners refined: with every corner at full
+// detail a face has its recorded geometry, so this ends. Nearly always the coarsening that
+// the fold unblocked removes the face in the same frame.
+void AdaptiveMesh::repairFolds() {
+  size_t kept = 0;
+  for (size_t k = 0; k < folded_.size(); ++k) {
+    const uint32_t f = folded_[k];
+    if (face_pos_[f] == kNone || !flipped(f)) continue;
+    if (!(faceImageArea(f) < kFoldAreaPx)) {
+      ++stats_.fold_repairs;
+      for (int i = 0; i < 3 && face_pos_[f] != kNone && flipped(f); ++i)
+        if (const uint32_t c = fv_[f][i]; !pm_.isLeaf(c)) forceSplit(c, true, false);
+      if (face_pos_[f] == kNone || !flipped(f)) continue;
+    }
+    folded_[kept++] = f;
+  }
+  folded_.resize(kept);
+}
+
 void AdaptiveMesh::adapt(float dt_seconds) {
   ++frame_;
   if (frame_ == 0) {  // stamp wrap-around
@@ -1151,7 +1199,7 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   changes_.moved.clear();
   changes_.dirty.clear();
   changes_.everything = false;
-  stats_.splits = stats_.collapses = 0;
+  stats_.splits = stats_.collapses = stats_.folds = stats_.fold_repairs = 0;
   stats_.slots_ordered = false;
   ops_ = 0;
   adapt_clock_.lap();
@@ -1223,6 +1271,8 @@ void AdaptiveMesh::adapt(float dt_seconds) {
     if (budget_spent_) break;
   }
 
+  repairFolds();
+
   // 3. Geomorphs.
   advanceMorphs(std::max(dt_seconds, 0.0f));
 
@@ -1233,6 +1283,7 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   stats_.active_faces = static_cast<uint32_t>(active_faces_.size());
   stats_.morphing = static_cast<uint32_t>(morphing_.size());
   stats_.pending_collapses = static_cast<uint32_t>(pending_.size());
+  stats_.folded_faces = static_cast<uint32_t>(folded_.size());
 }
 
 // Splits take slots from the free list or the end, and faces join the active list at its end
@@ -1322,7 +1373,8 @@ bool AdaptiveMesh::collapseGeometryOk(uint32_t p) const {
     const auto& c = fv_[f];
     glm::vec3 q[3] = {node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]]};
     q[cornerOf(f, vs.vu)] = pp;
-    if (!facingOk(q[0], q[1], q[2], ref_normal_[f])) return false;
+    bool folds = false;
+    if (!facingAllowed(f, q, &folds)) return false;
   }
   return true;
 }
@@ -1570,10 +1622,9 @@ std::string AdaptiveMesh::checkInvariants() const {
     if (!(node_state_[vs.vt] & kLocked) || !(node_state_[vs.vu] & kLocked) || !ecolLegal(p))
       return "pending collapse " + str(p) + " is not locked/legal";
   }
-  // No face flipped relative to its full-detail normal.
+  // No face flipped relative to its full-detail normal, except the sub-pixel folds listed.
   for (uint32_t f : active_faces_) {
-    const auto& c = fv_[f];
-    if (!facingOk(node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]], ref_normal_[f]))
+    if (flipped(f) && std::find(folded_.begin(), folded_.end(), f) == folded_.end())
       return "face " + str(f) + " is flipped relative to its full-detail normal";
   }
   return "";

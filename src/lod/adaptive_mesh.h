@@ -111,6 +111,9 @@ struct LodStats {
   /// be held to where the model itself is too coarse or too fine for the view.
   float band_or_limit_fraction = 0.0f;
   float target_area = 0.0f;    ///< T·object_factor used this frame, px²
+  uint32_t folds = 0;          ///< this frame's collapses that turned a sub-pixel face over
+  uint32_t fold_repairs = 0;   ///< folded faces grown past that size, refined this frame
+  uint32_t folded_faces = 0;   ///< active faces turned over (all sub-pixel when listed) after this frame
   bool slots_ordered = false;  ///< this frame renumbered the slots (orderForLocality())
 };
 
@@ -215,8 +218,12 @@ class AdaptiveMesh {
     const auto& c = fv_[f];
     return c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : 3;
   }
+  float triangleImageArea(const glm::vec3& a, const glm::vec3& b, const glm::vec3& d) const;
   float faceImageArea(uint32_t f) const;
   float faceImageAreaWith(uint32_t f, uint32_t moved, const glm::vec3& p) const;
+  bool flipped(uint32_t f) const;
+  bool facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* folds) const;
+  void repairFolds();
   float targetAt(const glm::vec3& p) const;
   /// Static per-node data for the view tests, also copied into each active vertex's slot.
   struct NodeBounds {
@@ -364,6 +371,7 @@ class AdaptiveMesh {
   std::vector<uint32_t> stack_;
   std::vector<uint32_t> chain_;  // splits made by the current forceSplit
   mutable std::vector<uint32_t> fan_u_, fan_t_;
+  std::vector<uint32_t> folded_;  // faces a collapse turned over while sub-pixel (repairFolds())
   std::vector<uint32_t> done_pending_;
   mutable std::vector<uint32_t> compact_index_;  // exportCompact's slot → vertex map
   // orderForLocality(): slots allocated since it last ran, the box its Morton codes span
