@@ -222,6 +222,7 @@ class AdaptiveMesh {
   float faceImageArea(uint32_t f) const;
   float faceImageAreaWith(uint32_t f, uint32_t moved, const glm::vec3& p) const;
   bool flipped(uint32_t f) const;
+  float missingNeighbours(uint32_t v) const;
   bool facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* folds) const;
   void repairFolds();
   float targetAt(const glm::vec3& p) const;

@@ -126,10 +126,12 @@ Result<std::unique_ptr<CaptureRun>> CaptureRun::start(LoadedScene& loaded, Scene
   SceneDrawing& scene = loaded.drawing;
   const FrameParams& frame = loaded.view.frame;
   const float dt = static_cast<float>(1.0 / rq.fps);
-  // Frame 0 starts from the detail converged for its camera (as a still render would), not
-  // from the base mesh, so the first frames are not a refinement transient.
+  // Frame 0 starts from the detail converged for its camera, by the same steps as a still
+  // render (so it is that still's mesh), not from the base mesh, so the first frames are not a
+  // refinement transient.
   const Camera cam0 = rq.path.at(run->t0_, scene.bounds());
-  if (auto steps = scene.converge(cam0, frame.width, frame.height, loaded.detail.params, dt, loaded.detail.max_adapt_frames);
+  if (auto steps = scene.converge(cam0, frame.width, frame.height, loaded.detail.params,
+                                  SceneDrawing::kConvergeStepSeconds, loaded.detail.max_adapt_frames);
       !steps)
     return steps.error();
   // When the camera moves from frame 0 to 1, frame 0 is already a frame in motion.
