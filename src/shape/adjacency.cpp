@@ -258,17 +258,40 @@ bool updateAdjacency(const TriMesh& mesh, std::span<const std::array<uint32_t, 3
         added.push_back(f);
   }
 
+  // A changed slot usually keeps two of its corners (a split or collapse moves one corner
+  // of the faces around it): a corner with the same vertex keeps its ring entry, and a side
+  // with the same two ends keeps its edge, as removing and re-inserting them would leave
+  // them. Bit c (corner c) and bit 3 + j (side j, corners j and j + 1) of kept[i] for changed[i].
+  std::vector<uint8_t>& kept = adj.scratch_kept;
+  kept.assign(changed.size(), 0);
+  for (size_t i = 0; i < changed.size(); ++i) {
+    const uint32_t f = changed[i];
+    if (f >= old_nf || f >= nf || !adj.face_valid[f] || !faceIsValid(mesh.faces[f], nv)) continue;
+    const auto &t = old_faces[f], &n = mesh.faces[f];
+    uint8_t k = 0;
+    for (int c = 0; c < 3; ++c) k |= static_cast<uint8_t>(t[c] == n[c]) << c;
+    for (int j = 0; j < 3; ++j) {  // a side whose two corners are both kept
+      const int j1 = j == 2 ? 0 : j + 1;
+      k |= static_cast<uint8_t>((k >> j & 1) && (k >> j1 & 1)) << (3 + j);
+    }
+    kept[i] = k;
+  }
+
   // 1. Take every changed slot's old face out of the rings and off its edges.
-  for (uint32_t f : changed) {
+  for (size_t i = 0; i < changed.size(); ++i) {
+    const uint32_t f = changed[i];
     if (f >= old_nf || !adj.face_valid[f]) continue;
     const auto& t = old_faces[f];
-    for (uint32_t v : t) {
-      ringRemove(adj, v, f);
-      touch(v);
+    for (int c = 0; c < 3; ++c) {
+      if (!(kept[i] >> c & 1)) ringRemove(adj, t[c], f);
+      touch(t[c]);
     }
-    for (uint32_t& e : adj.face_edges[f]) {
+    for (int j = 0; j < 3; ++j) {
+      if (kept[i] >> (3 + j) & 1) continue;
+      // Off the side first: f may still be in the ring that edgeRemoveFace() searches.
+      const uint32_t e = adj.face_edges[f][j];
+      adj.face_edges[f][j] = kNoIndex;
       edgeRemoveFace(adj, e, f);
-      e = kNoIndex;
     }
     adj.face_valid[f] = 0;
   }
@@ -279,16 +302,19 @@ bool updateAdjacency(const TriMesh& mesh, std::span<const std::array<uint32_t, 3
 
   // 2. Put the new faces in, and the unchanged faces that only the new vertices make valid
   // (an index that was out of range; found before step 1 below).
-  for (uint32_t f : added) {
+  for (size_t i = 0; i < added.size(); ++i) {
+    const uint32_t f = added[i];
     if (f >= nf) continue;
     const auto& t = mesh.faces[f];
     if (!faceIsValid(t, nv)) continue;
+    const uint8_t k = i < kept.size() ? kept[i] : 0;
     adj.face_valid[f] = 1;
     for (uint8_t c = 0; c < 3; ++c) {
-      ringInsert(adj, t[c], f, c);
+      if (!(k >> c & 1)) ringInsert(adj, t[c], f, c);
       touch(t[c]);
     }
     for (int j = 0; j < 3; ++j) {
+      if (k >> (3 + j) & 1) continue;
       const uint32_t a = t[j], b = t[j == 2 ? 0 : j + 1];
       uint32_t e = adj.findEdge(a, b);
       if (e == kNoIndex) {

@@ -56,7 +56,7 @@ struct MeshAdjacency {
 
   /// Working storage (kept so rebuilding or updating every frame allocates nothing).
   std::vector<uint32_t> scratch_seen, scratch_edge, scratch_added, free_edges, ring_limit;
-  std::vector<uint8_t> scratch_mark;
+  std::vector<uint8_t> scratch_mark, scratch_kept;
 
   size_t edgeCount() const { return edges.size(); }
   /// Faces of v, in increasing order.
