@@ -113,7 +113,7 @@ struct LodStats {
   float target_area = 0.0f;    ///< T·object_factor used this frame, px²
   uint32_t folds = 0;          ///< this frame's collapses that turned a sub-pixel face over
   uint32_t fold_repairs = 0;   ///< folded faces grown past that size, refined this frame
-  uint32_t folded_faces = 0;   ///< active faces turned over (all sub-pixel when listed) after this frame
+  uint32_t folded_faces = 0;   ///< faces still listed as turned over after this frame (sub-pixel, or being refined back)
   bool slots_ordered = false;  ///< this frame renumbered the slots (orderForLocality())
 };
 
