@@ -831,6 +831,7 @@ void ShapeCache::resize(uint32_t nv, uint32_t nf) {
   dcurv_.resize(params_.derivatives ? nv : 0);
   vertex_dgen_.resize(params_.lazy_derivatives ? nv : 0, 0);
   face_dgen_.resize(params_.lazy_derivatives ? nf : 0, 0);
+  curv_gen_.resize(params_.lazy_derivatives ? nv : 0, 0);
   vertex_stamp_.assign(nv, 0);
   face_stamp_.assign(nf, 0);
   vertex_level_.assign(nv, 0);
@@ -883,10 +884,9 @@ void ShapeCache::compute(const TriMesh& mesh) {
       parallelFor(nv, [&](uint32_t v) { vertexDerivative(v); });
     }
   }
-  if (!eager && params_.lazy_derivatives && ++dgen_ == 0) {  // every tensor is stale now
-    std::fill(vertex_dgen_.begin(), vertex_dgen_.end(), 0);
-    std::fill(face_dgen_.begin(), face_dgen_.end(), 0);
-    dgen_ = 1;
+  if (!eager && params_.lazy_derivatives) {  // every tensor is stale now
+    nextGeneration();
+    dfloor_ = dgen_;
   }
   computed_ = true;
   ++version_;
@@ -1143,7 +1143,8 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
   growVertices(mesh, n1, n2, 2);
   const size_t m2 = inc_verts_.size();
   size_t n3 = n2, m3 = m2;
-  if (params_.derivatives) {
+  const bool eager = params_.derivatives && !params_.lazy_derivatives;
+  if (eager) {
     growFaces(m1, m2, 3);
     n3 = inc_faces_.size();
     growVertices(mesh, n2, n3, 3);
@@ -1165,16 +1166,15 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
     curvatureFitBlock(mesh, faces, count, out);
   });
   forEachMarked(false, m2, 2, [&](uint32_t v) { vertexCurvature(v); });
-  const bool eager = params_.derivatives && !params_.lazy_derivatives;
   if (eager) {
     forEachMarkedFaceBlock(n3, 3, [&](const uint32_t* faces, uint32_t count) {
       alignas(32) float out[fit::kDerivOut * W];
       derivativeFitBlock(mesh, faces, count, out);
     });
     forEachMarked(false, m3, 3, [&](uint32_t v) { vertexDerivative(v); });
-  } else if (params_.lazy_derivatives) {  // F3 and V3 hold stale fits and tensors now
-    for (size_t k = 0; k < n3; ++k) face_dgen_[inc_faces_[k]] = 0;
-    for (size_t k = 0; k < m3; ++k) vertex_dgen_[inc_verts_[k]] = 0;
+  } else if (params_.lazy_derivatives) {  // V2's curvatures are new: what reads them is stale
+    nextGeneration();
+    for (size_t k = 0; k < m2; ++k) curv_gen_[inc_verts_[k]] = dgen_;
   }
   ++version_;
   stats_ = ShapeUpdateStats{};
@@ -1188,6 +1188,38 @@ void ShapeCache::update(const TriMesh& mesh, std::span<const uint32_t> changed_v
   stats_.waiting_vertices = static_cast<uint32_t>(waiting_.size());
 }
 
+void ShapeCache::nextGeneration() {
+  if (++dgen_ != 0) return;
+  // Wrapped (once every 2³² updates): every fit and tensor stale, every curvature older.
+  std::fill(vertex_dgen_.begin(), vertex_dgen_.end(), 0);
+  std::fill(face_dgen_.begin(), face_dgen_.end(), 0);
+  std::fill(curv_gen_.begin(), curv_gen_.end(), 0);
+  dgen_ = dfloor_ = 1;
+}
+
+bool ShapeCache::fitCurrent(uint32_t f) const {
+  const uint32_t g = face_dgen_[f];
+  if (g < dfloor_) return false;
+  for (uint32_t u : faces_copy_[f])
+    if (curv_gen_[u] > g) return false;
+  return true;
+}
+
+// A tensor reads v's curvature and the fits of the faces around v, and each fit the
+// curvatures of its corners (and their positions, normals and rings, which change only with
+// those curvatures). So it is current iff computed since the last compute() and neither v's
+// curvature nor that of a corner around v has been recomputed since.
+bool ShapeCache::tensorCurrent(uint32_t v) const {
+  const uint32_t g = vertex_dgen_[v];
+  if (g < dfloor_) return false;
+  if (!adjacency_current_) return true;  // no update() since compute(): the floor decides
+  if (curv_gen_[v] > g) return false;    // (v itself: a vertex left with no faces)
+  for (uint32_t i = adjacency_.vertex_face_begin[v]; i < adjacency_.vertex_face_end[v]; ++i)
+    for (uint32_t u : faces_copy_[adjacency_.vertex_faces[i]])
+      if (curv_gen_[u] > g) return false;
+  return true;
+}
+
 void ShapeCache::ensureDerivatives(const TriMesh& mesh, std::span<const uint32_t> vertices) {
   last_ensured_ = 0;
   if (!params_.derivatives || !params_.lazy_derivatives || !computed_) return;
@@ -1197,12 +1229,12 @@ void ShapeCache::ensureDerivatives(const TriMesh& mesh, std::span<const uint32_t
   ens_faces_.clear();
   // Marked current as they are scheduled (repeats drop out); all are computed below.
   for (uint32_t v : vertices) {
-    if (v >= nv || vertex_dgen_[v] == dgen_) continue;
+    if (v >= nv || tensorCurrent(v)) continue;
     vertex_dgen_[v] = dgen_;
     ens_verts_.push_back(v);
     for (uint32_t i = adjacency_.vertex_face_begin[v]; i < adjacency_.vertex_face_end[v]; ++i) {
       const uint32_t f = adjacency_.vertex_faces[i];
-      if (face_dgen_[f] == dgen_) continue;
+      if (fitCurrent(f)) continue;
       face_dgen_[f] = dgen_;
       ens_faces_.push_back(f);
     }

@@ -54,7 +54,8 @@ struct ShapeParams {
   /// of the incremental support for most vertices. Default false.
   bool lazy_derivatives = false;
   /// update() recomputes everything (same result, in memory order) when the vertices it
-  /// would touch (the changed set grown by three rings) exceed this fraction of all
+  /// would touch (the changed set grown by three rings with eager derivatives, by two with
+  /// lazy ones, whose staleness is read off the curvatures' generations) exceed this fraction of all
   /// vertices. Default 0.8: large incremental sets are visited in memory order anyway. When
   /// chosen (eager tensors, adjacency rebuilt every frame), a 1.1M-triangle knot orbit with
   /// 22k adapted vertices averaged 7.0 ms per update at 0.8 against 8.6 ms at 0.5, which fell
@@ -187,7 +188,7 @@ class ShapeCache {
   /// Whether dcurv()[v] holds the current derivative tensor (always, unless lazy).
   bool derivativeValid(uint32_t v) const {
     return params_.derivatives &&
-           (!params_.lazy_derivatives || (v < vertex_dgen_.size() && vertex_dgen_[v] == dgen_));
+           (!params_.lazy_derivatives || (v < vertex_dgen_.size() && tensorCurrent(v)));
   }
   /// Vertices whose derivative tensor the last ensureDerivatives() computed.
   uint32_t lastEnsured() const { return last_ensured_; }
@@ -330,9 +331,16 @@ class ShapeCache {
   std::vector<uint32_t> inc_verts_, inc_faces_;
   std::vector<uint32_t> marked_faces_;  // forEachMarkedFaceBlock(): the many, in index order
   std::vector<uint32_t> changed_faces_;  // face slots whose triple changed in this update
-  // Lazy derivatives: a vertex's tensor / a face's fit is current iff its entry == dgen_.
-  std::vector<uint32_t> vertex_dgen_, face_dgen_;
-  uint32_t dgen_ = 1;
+  // Lazy derivatives, by generations (one per compute()/update()): the generation in which
+  // each vertex's curvature, each vertex's tensor and each face's fit were last computed. A
+  // fit or tensor is current iff computed since the last compute() (dfloor_) and no
+  // curvature it reads is newer (fitCurrent(), tensorCurrent()); update() only stamps the
+  // curvatures it recomputes, instead of growing a third ring to mark the stale tensors.
+  std::vector<uint32_t> vertex_dgen_, face_dgen_, curv_gen_;
+  uint32_t dgen_ = 1, dfloor_ = 1;
+  void nextGeneration();
+  bool fitCurrent(uint32_t f) const;
+  bool tensorCurrent(uint32_t v) const;
   uint32_t last_ensured_ = 0;
   std::vector<uint32_t> ens_verts_, ens_faces_;
   std::vector<uint64_t> ens_bits_;  // ensureDerivatives(): its faces as a bitmap, to list them in order

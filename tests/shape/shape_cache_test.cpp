@@ -478,6 +478,20 @@ TEST(ShapeCache, LazyDerivativesEqualEagerOnRequest) {
   ShapeCache eager;
   eager.compute(m);
   EXPECT_TRUE(std::memcmp(lazy.dcurv().data(), eager.dcurv().data(), lazy.dcurv().size_bytes()) == 0);
+  // A vertex left with no faces (its slot freed, as a collapse frees one): its tensor, which
+  // no face around it reads any more, is stale by its own curvature and becomes zero again.
+  const uint32_t lone = 3000;
+  ASSERT_NE(lazy.dcurv()[lone], glm::vec4(0.0f));
+  for (auto& f : m.faces)
+    for (uint32_t& c : f)
+      if (c == lone) c = f[0] == lone ? f[1] : f[0];  // a repeated corner: an invalid face
+  lazy.update(m, {});
+  EXPECT_FALSE(lazy.derivativeValid(lone));
+  lazy.ensureDerivatives(m, all_now);
+  EXPECT_TRUE(lazy.derivativeValid(lone));
+  eager.compute(m);
+  EXPECT_EQ(lazy.dcurv()[lone], glm::vec4(0.0f));
+  EXPECT_TRUE(std::memcmp(lazy.dcurv().data(), eager.dcurv().data(), lazy.dcurv().size_bytes()) == 0);
 }
 
 // Connectivity edits of the kind a view-dependent mesh makes, with stable face slots: an
