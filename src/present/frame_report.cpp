@@ -11,6 +11,7 @@ void addLod(LodReport& sum, const LodReport& o) {
   sum.splits += o.splits;
   sum.collapses += o.collapses;
   sum.morphing += o.morphing;
+  sum.folded_faces += o.folded_faces;
   // Weighted by visible faces until divided at the end.
   sum.band_fraction += o.band_fraction * static_cast<double>(o.visible_faces);
   sum.band_or_limit_fraction += o.band_or_limit_fraction * static_cast<double>(o.visible_faces);
@@ -28,7 +29,7 @@ nlohmann::json lodJson(const LodReport& l) {
           {"visible_faces", l.visible_faces},     {"splits", l.splits},
           {"collapses", l.collapses},             {"morphing", l.morphing},
           {"band_fraction", l.band_fraction},     {"band_or_limit_fraction", l.band_or_limit_fraction},
-          {"target_area", l.target_area}};
+          {"target_area", l.target_area},         {"folded_faces", l.folded_faces}};
 }
 
 nlohmann::json clusterJson(const ClusterStats& c) {
@@ -100,6 +101,7 @@ FrameReport reportFrame(const SceneDrawing& scene, ScenePresenter& presenter, Li
       l.band_fraction = band;
       l.band_or_limit_fraction = band_or_limit;
       l.target_area = ls.target_area;
+      l.folded_faces = ls.folded_faces;
       addLod(lod_sum, l);
       o.lod = l;
       any_lod = true;

@@ -35,6 +35,9 @@ struct LodReport {
   /// finer or coarser level counted as in it (LodStats::band_or_limit_fraction).
   double band_or_limit_fraction = 0.0;
   double target_area = 0.0;  ///< T × the object's factors, px²
+  /// Faces turned over against their full-detail normals, each under 1 px² when folded
+  /// (LodStats::folded_faces; docs/detail-control.md §7).
+  uint64_t folded_faces = 0;
 };
 
 struct ObjectReport {

@@ -45,6 +45,7 @@ TEST_F(LodCli, ConvergedStillKeepsTrianglesInTheBand) {
   EXPECT_EQ(j["lod"]["target_area"].get<double>(), 16.0);
   EXPECT_EQ(j["lod"]["splits"].get<int>(), 0);  // converged
   EXPECT_EQ(j["lod"]["collapses"].get<int>(), 0);
+  EXPECT_EQ(j["lod"]["folded_faces"].get<int>(), 0);  // a still is refined, not folded
   EXPECT_EQ(j["faces_drawn"], j["lod"]["active_faces"]);
   EXPECT_LT(j["faces_drawn"].get<int>(), j["model"]["faces"].get<int>());
   EXPECT_GT(j["line_segments"].get<int>(), 100);
