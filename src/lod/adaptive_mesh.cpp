@@ -243,6 +243,7 @@ void AdaptiveMesh::resetToBase() {
   eval_free_.clear();
   morphing_.clear();
   pending_.clear();
+  folded_.clear();
   for (uint32_t r : pm_.roots) allocSlot(r);
   for (size_t k = 0; k < pm_.base_faces.size(); ++k) {
     const uint32_t f = pm_.base_faces[k];
