@@ -466,10 +466,10 @@ bool AdaptiveMesh::visible(const NodeBounds& nb) const {
 
 float AdaptiveMesh::ringMean(uint32_t v) const { return ringMeanAt(node_slot_[v]); }
 
-float AdaptiveMesh::missingNeighbours(uint32_t v) const {
-  int missing = 0;
+uint32_t AdaptiveMesh::missingNeighbours(uint32_t v) const {
+  uint32_t missing = 0;
   for (uint32_t f : pm_.split(v).fn) missing += face_pos_[f] == kNone;
-  return static_cast<float>(missing);
+  return missing;
 }
 
 float AdaptiveMesh::ringMeanAt(uint32_t slot) const {
@@ -726,14 +726,7 @@ bool AdaptiveMesh::doCollapse(uint32_t p, bool check) {
     return false;
   const glm::vec3 pp = node_pos_[p];
   bool folds = false;
-  if (check) {
-    for (uint32_t f : fan_u_) {
-      const auto& c = fv_[f];
-      glm::vec3 q[3] = {node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]]};
-      q[cornerOf(f, vs.vu)] = pp;
-      if (!facingAllowed(f, q, &folds)) return false;
-    }
-  }
+  if (check && !fanFacingAllowed(vs.vu, pp, folds)) return false;
   if (node_state_[p] & kPending) removePending(p);
   node_state_[p] = 0;
   node_state_[vs.vt] = 0;
@@ -1087,8 +1080,8 @@ void AdaptiveMesh::evaluatePass() {
         // each of fn0..fn3 the chain creates. When that alone would bring v's mean to
         // t_s·T, the chain would be made and undone (forceSplit): skip it as if it had
         // been, which it is in about nine cases of ten (docs/performance.md).
-        if (const float missing = missingNeighbours(v); missing > 0.0f) {
-          const float ratio = ring_cnt_[slot] / (ring_cnt_[slot] + missing);
+        if (const uint32_t missing = missingNeighbours(v); missing > 0) {
+          const float ratio = static_cast<float>(ring_cnt_[slot]) / static_cast<float>(ring_cnt_[slot] + missing);
           if (!(mean * ratio > t_s * target)) {
             undone_ratio_[slot] = ratio;
             retry_frame_[v] = frame_ + kRetryFrames;
@@ -1387,12 +1380,17 @@ void AdaptiveMesh::orderForLocality() {
 bool AdaptiveMesh::collapseGeometryOk(uint32_t p) const {
   const VertexSplit& vs = pm_.split(p);
   if (!collectFan(vs.vu, vs.fn[1], vs.fn[2], fan_u_)) return false;
-  const glm::vec3 pp = node_pos_[p];
+  bool folds = false;
+  return fanFacingAllowed(vs.vu, node_pos_[p], folds);
+}
+
+// The faces of fan_u_ (vu's fan, collected) with vu moved to p's position pp: facingAllowed for
+// each; `folds` tells whether one would turn over (sub-pixel).
+bool AdaptiveMesh::fanFacingAllowed(uint32_t vu, const glm::vec3& pp, bool& folds) const {
   for (uint32_t f : fan_u_) {
     const auto& c = fv_[f];
     glm::vec3 q[3] = {node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]]};
-    q[cornerOf(f, vs.vu)] = pp;
-    bool folds = false;
+    q[cornerOf(f, vu)] = pp;
     if (!facingAllowed(f, q, &folds)) return false;
   }
   return true;

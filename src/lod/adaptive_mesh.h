@@ -222,8 +222,10 @@ class AdaptiveMesh {
   float faceImageArea(uint32_t f) const;
   float faceImageAreaWith(uint32_t f, uint32_t moved, const glm::vec3& p) const;
   bool flipped(uint32_t f) const;
-  float missingNeighbours(uint32_t v) const;
+  /// How many of fn0..fn3 of v's split are not active (the forced splits its split needs).
+  uint32_t missingNeighbours(uint32_t v) const;
   bool facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* folds) const;
+  bool fanFacingAllowed(uint32_t vu, const glm::vec3& pp, bool& folds) const;
   void repairFolds();
   float targetAt(const glm::vec3& p) const;
   /// Static per-node data for the view tests, also copied into each active vertex's slot.
