@@ -88,8 +88,8 @@ uint32_t takeIndex(std::vector<uint32_t>& free, uint32_t& count) {
 }
 
 /// v[0, new_to_old.size()) = v[new_to_old[i]], through `scratch` (bytes).
-template <class T>
-void gatherInPlace(std::vector<T>& v, std::span<const uint32_t> new_to_old, std::vector<unsigned char>& scratch) {
+template <class T, class A>
+void gatherInPlace(std::vector<T, A>& v, std::span<const uint32_t> new_to_old, std::vector<unsigned char>& scratch) {
   static_assert(std::is_trivially_copyable_v<T>);
   const size_t n = new_to_old.size();
   if (scratch.size() < n * sizeof(T)) scratch.resize(n * sizeof(T));

@@ -29,6 +29,8 @@
 #include <string>
 #include <vector>
 
+#include "core/huge_pages.h"
+
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -313,58 +315,59 @@ class AdaptiveMesh {
   uint32_t n_nodes_ = 0, n_faces_ = 0;
 
   // Static per node / per face.
-  std::vector<glm::vec3> node_pos_;
-  std::vector<NodeBounds> bounds_;
-  std::vector<glm::vec3> ref_normal_;  // unit full-detail normal per face (0: degenerate)
+  HugeVector<glm::vec3> node_pos_;
+  HugeVector<NodeBounds> bounds_;
+  HugeVector<glm::vec3> ref_normal_;  // unit full-detail normal per face (0: degenerate)
 
   // Dynamic per node.
-  std::vector<uint32_t> node_slot_;
-  std::vector<uint8_t> node_state_;
-  std::vector<uint32_t> pending_pos_;
-  std::vector<uint32_t> retry_frame_;  // frame before which a refused split is not retried
+  HugeVector<uint32_t> node_slot_;
+  HugeVector<uint8_t> node_state_;
+  HugeVector<uint32_t> pending_pos_;
+  HugeVector<uint32_t> retry_frame_;  // frame before which a refused split is not retried
   // Dynamic per face.
-  std::vector<std::array<uint32_t, 3>> fv_;   // corner nodes
-  std::vector<std::array<uint32_t, 3>> fnb_;  // neighbour across (c[i], c[i+1])
-  std::vector<uint32_t> face_pos_;            // index in active_faces_, kPmNone if inactive
+  HugeVector<std::array<uint32_t, 3>> fv_;   // corner nodes
+  HugeVector<std::array<uint32_t, 3>> fnb_;  // neighbour across (c[i], c[i+1])
+  HugeVector<uint32_t> face_pos_;            // index in active_faces_, kPmNone if inactive
   // Per active face, by position in the active list (swap-removed together, read in order by
   // the per-frame pass): face id, corner slots, image area in px² (logical positions).
-  std::vector<uint32_t> active_faces_;
-  std::vector<std::array<uint32_t, 3>> active_fs_;
-  std::vector<float> active_area_;
-  std::vector<uint8_t> active_visible_;  // adapt() step 1: per active face, facing and in the frustum
+  HugeVector<uint32_t> active_faces_;
+  HugeVector<std::array<uint32_t, 3>> active_fs_;
+  HugeVector<float> active_area_;
+  HugeVector<uint8_t> active_visible_;  // adapt() step 1: per active face, facing and in the frustum
   // Slots.
   uint32_t slot_count_ = 0;
   uint32_t active_vertices_ = 0;
-  std::vector<uint32_t> slot_node_;
-  std::vector<uint32_t> slot_face_;
-  std::vector<glm::vec3> disp_, morph_from_, morph_to_;
-  std::vector<float> morph_t_, morph_rate_;
-  std::vector<uint32_t> morph_pos_;
-  std::vector<uint8_t> slot_locked_;     // copy of kLocked of the slot's node (read per frame)
-  std::vector<uint32_t> illegal_frame_;  // frame whose check found the slot's collapse illegal
+  HugeVector<uint32_t> slot_node_;
+  HugeVector<uint32_t> slot_face_;
+  HugeVector<glm::vec3> disp_, morph_from_, morph_to_;
+  HugeVector<float> morph_t_, morph_rate_;
+  HugeVector<uint32_t> morph_pos_;
+  HugeVector<uint8_t> slot_locked_;     // copy of kLocked of the slot's node (read per frame)
+  HugeVector<uint32_t> illegal_frame_;  // frame whose check found the slot's collapse illegal
   // Per slot: the ring mean after / before the last forced split of its vertex that was undone
   // because the chain left its own split not due (0: none since the slot took its vertex).
-  std::vector<float> undone_ratio_;
-  std::vector<uint8_t> refusals_;  // per slot: its vertex's forced splits refused in a row
+  HugeVector<float> undone_ratio_;
+  HugeVector<uint8_t> refusals_;  // per slot: its vertex's forced splits refused in a row
   // evaluatePass(): node, visibility and target T of each slot, computed up front.
-  std::vector<uint32_t> pre_node_;
-  std::vector<uint8_t> pre_visible_;
-  std::vector<float> pre_target_;
+  HugeVector<uint32_t> pre_node_;
+  HugeVector<uint8_t> pre_visible_;
+  HugeVector<float> pre_target_;
   // Per slot: when the pass began, evaluating its vertex would have done nothing (the loop
   // skips it unless touchSlot() cleared the mark since: see evaluatePass()).
-  std::vector<uint8_t> eval_idle_;
+  HugeVector<uint8_t> eval_idle_;
   bool evaluate_every_vertex_ = false;
   uint64_t idle_mispredictions_ = 0;
-  std::vector<uint32_t> dirty_stamp_, moved_stamp_;
-  std::vector<NodeBounds> slot_bounds_;  // copy of bounds_ of the slot's node
-  std::vector<glm::vec3> slot_pos_;      // its position alone (the per-face pass reads 3 per face)
-  std::vector<double> ring_sum_;   // per slot: sum of the image areas of the incident faces
-  std::vector<int32_t> ring_cnt_;  // per slot: number of incident active faces
+  HugeVector<uint32_t> dirty_stamp_, moved_stamp_;
+  HugeVector<NodeBounds> slot_bounds_;  // copy of bounds_ of the slot's node
+  HugeVector<glm::vec3> slot_pos_;      // its position alone (the per-face pass reads 3 per face)
+  HugeVector<double> ring_sum_;   // per slot: sum of the image areas of the incident faces
+  HugeVector<int32_t> ring_cnt_;  // per slot: number of incident active faces
   std::vector<uint32_t> free_slots_;
   // The order of evaluation, apart from the slots' numbering (orderForLocality()): each slot's
   // place in it, the slot at each place (kPmNone: free), the free places (reused last freed
   // first, as slots were) and the places used so far.
-  std::vector<uint32_t> slot_eval_, eval_slot_, eval_free_;
+  HugeVector<uint32_t> slot_eval_, eval_slot_;
+  std::vector<uint32_t> eval_free_;
   uint32_t eval_count_ = 0;
   std::vector<uint32_t> morphing_;
   std::vector<uint32_t> pending_;

@@ -43,8 +43,8 @@ uint64_t checksumOf(FileHeader h, const char* payload, size_t size) {
   return hashBytes(payload, size, hashBytes(&h, sizeof(h)));
 }
 
-template <class T>
-void append(std::string& buf, const std::vector<T>& v) {
+template <class T, class A>
+void append(std::string& buf, const std::vector<T, A>& v) {
   buf.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
 }
 

@@ -239,7 +239,7 @@ class Builder {
   std::vector<RingFace> ring_a_, ring_b_, ring_c_;
   std::vector<std::pair<float, uint32_t>> cand_;
   float cos_change_ = 0, cos_dev_ = 0;
-  std::vector<VertexSplit> splits_;
+  HugeVector<VertexSplit> splits_;
   uint32_t alive_faces_ = 0;
 };
 

@@ -25,6 +25,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "core/huge_pages.h"
 #include "core/mesh.h"
 #include "core/result.h"
 
@@ -80,7 +81,7 @@ struct ProgressiveMesh {
   std::vector<glm::vec3> positions;                 ///< input positions, one per leaf node
   std::vector<std::array<uint32_t, 3>> faces;       ///< input faces (full detail), by face id
   std::vector<uint8_t> vertex_flags;                ///< PmVertexFlags per input vertex
-  std::vector<VertexSplit> splits;                  ///< split i creates node vertexCount()+i
+  HugeVector<VertexSplit> splits;                    ///< split i creates node vertexCount()+i
   std::vector<uint32_t> base_faces;                 ///< ids of the faces of the base mesh
   std::vector<std::array<uint32_t, 3>> base_corners;    ///< node ids, per base face
   std::vector<std::array<uint32_t, 3>> base_neighbors;  ///< across edge (c[i], c[i+1]), or kPmNone
@@ -88,7 +89,7 @@ struct ProgressiveMesh {
   uint64_t params_hash = 0;   ///< hash of the PmBuildParams used
 
   // ---- derived by finalize() ----
-  std::vector<uint32_t> parent;       ///< per node: parent node or kPmNone (roots)
+  HugeVector<uint32_t> parent;        ///< per node: parent node or kPmNone (roots)
   std::vector<uint32_t> origin;       ///< per node: the input vertex whose position it has
   std::vector<uint32_t> face_parent;  ///< per face: node whose split creates it, or kPmNone
   std::vector<uint32_t> roots;        ///< nodes without parent (vertices of the base mesh)
