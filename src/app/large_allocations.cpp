@@ -10,24 +10,25 @@
 //
 // Linked into the `lodline` executable only (not the library, the tests' binaries or the
 // Python module), and left out of sanitizer builds, whose allocators must see every block.
-// Where THP is off, madvise fails harmlessly and the blocks are ordinary memory.
-#include <sys/mman.h>
-
+// Where THP is off, madvise fails harmlessly and the blocks are ordinary memory. The
+// library's hot arrays get the same on their own (core/huge_pages.h).
 #include <algorithm>
 #include <cstddef>
 #include <cstdlib>
 #include <new>
 
+#include "core/huge_pages.h"
+
 namespace {
 
-constexpr std::size_t kHugePage = std::size_t(2) << 20;
+constexpr std::size_t kHugePage = lodline::huge_pages::kPageBytes;
 
 void* allocate(std::size_t size, std::size_t align) noexcept {
   if (size == 0) size = 1;
   if (size >= kHugePage) {
     void* p = nullptr;
     if (posix_memalign(&p, std::max(align, kHugePage), size) != 0) return nullptr;
-    madvise(p, size, MADV_HUGEPAGE);  // advice only: an error leaves ordinary pages
+    lodline::huge_pages::advise(p, size);  // advice only: an error leaves ordinary pages
     return p;
   }
   if (align <= alignof(std::max_align_t)) return std::malloc(size);

@@ -8,19 +8,21 @@
 
 namespace lodline::huge_pages {
 
-namespace {
-std::size_t roundUp(std::size_t bytes) { return (bytes + kPageBytes - 1) / kPageBytes * kPageBytes; }
-}  // namespace
-
-void* allocate(std::size_t bytes) {
-  const std::size_t size = roundUp(bytes);
-  void* p = std::aligned_alloc(kPageBytes, size);
-  if (!p) throw std::bad_alloc();
+void advise(void* p, std::size_t bytes) noexcept {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   // Advice only: where the kernel has no huge pages to give (or THP is off) this fails or is
   // ignored, and the memory stays on ordinary pages.
-  (void)madvise(p, size, MADV_HUGEPAGE);
+  (void)madvise(p, bytes, MADV_HUGEPAGE);
+#else
+  (void)p;
+  (void)bytes;
 #endif
+}
+
+void* allocate(std::size_t bytes) {
+  void* p = nullptr;
+  if (posix_memalign(&p, kPageBytes, bytes) != 0) throw std::bad_alloc();
+  advise(p, bytes);
   return p;
 }
 

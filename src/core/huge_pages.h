@@ -9,10 +9,13 @@
 // knot at T = 7 px² (docs/performance.md, "Huge pages"): the CPU stages of a frame take about
 // a tenth less.
 //
-// HugePageAllocator gives allocations of kHugeMinBytes or more their own 2 MiB-aligned block
-// rounded up to whole huge pages and advises it; smaller ones go to operator new as usual.
-// The rounding costs at most one huge page per large array, so the threshold is a few pages.
-// It is stateless: vectors that use it compare and swap like ordinary ones.
+// HugePageAllocator gives allocations of kHugeMinBytes (one huge page) or more a 2 MiB-aligned
+// block and advises it; smaller ones go to operator new as usual. The block is not rounded up:
+// its tail, past the last whole huge page, stays on ordinary pages, so no memory is added.
+// It is stateless: vectors that use it compare and swap like ordinary ones. The `lodline`
+// program also puts every block of that size on huge pages (app/large_allocations.cpp, with
+// advise()); this allocator gives the same to the library's hot arrays wherever it runs (the
+// Python module, the tests and benchmarks, other programs).
 #pragma once
 
 #include <cstddef>
@@ -23,9 +26,11 @@ namespace lodline {
 
 namespace huge_pages {
 inline constexpr std::size_t kPageBytes = std::size_t{2} << 20;
-inline constexpr std::size_t kHugeMinBytes = 2 * kPageBytes;
-/// Allocates `bytes` (≥ kHugeMinBytes) 2 MiB-aligned and advises huge pages; throws
-/// std::bad_alloc on failure.
+inline constexpr std::size_t kHugeMinBytes = kPageBytes;
+/// Marks [p, p + bytes) for transparent huge pages (madvise MADV_HUGEPAGE); a no-op where
+/// the system has none.
+void advise(void* p, std::size_t bytes) noexcept;
+/// Allocates `bytes` 2 MiB-aligned and advises huge pages; throws std::bad_alloc on failure.
 void* allocate(std::size_t bytes);
 void deallocate(void* p, std::size_t bytes) noexcept;
 }  // namespace huge_pages
