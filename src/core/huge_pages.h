@@ -6,8 +6,8 @@
 // walk is itself several memory reads. On Linux, memory advised with MADV_HUGEPAGE is backed
 // by 2 MiB pages where the kernel can (transparent huge pages in "madvise" mode, the usual
 // setting; in "always" mode this changes nothing, in "never" it is ignored). Measured on the
-// knot at T = 7 px² (docs/performance.md, "Huge pages"): the CPU stages of a frame take about
-// a tenth less.
+// knot at T = 7 px² (docs/performance.md, "Huge pages for the adaptation's arrays"): the
+// adapt stage of a frame takes about an eighth less.
 //
 // HugePageAllocator gives allocations of kHugeMinBytes (one huge page) or more a 2 MiB-aligned
 // block and advises it; smaller ones go to operator new as usual. The block is not rounded up:
