@@ -45,12 +45,24 @@ struct HugePageAllocator {
   T* allocate(std::size_t n) {
     if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
     const std::size_t bytes = n * sizeof(T);
-    if (bytes < huge_pages::kHugeMinBytes) return static_cast<T*>(::operator new(bytes, std::align_val_t{alignof(T)}));
+    if (bytes < huge_pages::kHugeMinBytes) {
+      if constexpr (alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__)
+        return static_cast<T*>(::operator new(bytes, std::align_val_t{alignof(T)}));
+      else
+        return static_cast<T*>(::operator new(bytes));
+    }
     return static_cast<T*>(huge_pages::allocate(bytes));
   }
   void deallocate(T* p, std::size_t n) noexcept {
     const std::size_t bytes = n * sizeof(T);
-    if (bytes < huge_pages::kHugeMinBytes) return ::operator delete(p, bytes, std::align_val_t{alignof(T)});
+    // Unsized: clang before 19 does not declare the sized operator delete by default.
+    if (bytes < huge_pages::kHugeMinBytes) {
+      if constexpr (alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__)
+        ::operator delete(p, std::align_val_t{alignof(T)});
+      else
+        ::operator delete(p);
+      return;
+    }
     huge_pages::deallocate(p, bytes);
   }
   template <class U>
