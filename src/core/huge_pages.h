@@ -7,7 +7,7 @@
 // by 2 MiB pages where the kernel can (transparent huge pages in "madvise" mode, the usual
 // setting; in "always" mode this changes nothing, in "never" it is ignored). Measured on the
 // knot at T = 7 px² (docs/performance.md, "Huge pages for the adaptation's arrays"): the
-// adapt stage of a frame takes about an eighth less.
+// adapt stage of a frame takes 5-12% less, depending on the machine's state.
 //
 // HugePageAllocator gives allocations of kHugeMinBytes (one huge page) or more a 2 MiB-aligned
 // block and advises it; smaller ones go to operator new as usual. The block is not rounded up:
