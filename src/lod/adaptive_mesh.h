@@ -29,14 +29,13 @@
 #include <string>
 #include <vector>
 
-#include "core/huge_pages.h"
-
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "core/camera.h"
+#include "core/huge_pages.h"
 #include "core/mesh.h"
 #include "core/result.h"
 #include "core/timer.h"
