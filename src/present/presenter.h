@@ -74,7 +74,8 @@ class ScenePresenter {
   /// (startSequence() starts afresh). Errors: shader compilation for new objects, a style
   /// check() refuses.
   Status present(const SceneDrawing& scene, const Camera& camera, const FrameParams& frame, bool all_meshes);
-  /// As present(), and runs `overlap` on a second thread once the meshes are uploaded and
+  /// As present(), and runs `overlap` on a second thread (at a lower priority than the
+  /// drawing's: nice +10 on Linux) once the meshes are uploaded and
   /// each object's strokes, silhouette, median edge and bounds are copied, before the faces
   /// are drawn; present() returns when both are done. From then on present() reads only the
   /// objects' intersection lines, fixed when the scene is built. So the next frame's CPU
