@@ -31,6 +31,8 @@
 //   STAGE_ITERS=300 perf record ./build/tests/bench/detail_frame_bench --benchmark_filter=stages/knot1m/T:7
 // silhouette_ms is the mesh's own silhouette for the outline, part of the frame's CPU work
 // but not of lines_ms (which the issue-21 figures have always been).
+// The `controlled/` cases run controlled frames alone (stages, then present, nothing else):
+// the stages as an application's frame loop sees them (controlledFrames()).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -263,6 +265,34 @@ void detailFrame(benchmark::State& state, const std::string& name, float target_
   state.counters["full_lines_ms"] = bench::median(full_lines);
   state.counters["full_draw_ms"] = bench::median(full_draw);
   state.counters["full_ms"] = bench::median(full_lines) + bench::median(full_draw);
+}
+
+// Controlled frames alone, one after the other (issue 21): each iteration computes a frame's
+// CPU stages and presents it, nothing else, as `view` and `capture --metrics` do. In
+// `detail_frame/` each controlled frame is followed by the static redraw and the full-detail
+// frame of the same model; here the stage times are those of an application's frame loop.
+// On llvmpipe they read as in `detail_frame/`, 40-50% above `stages/` (docs/performance.md,
+// "The CPU stages alone and in a frame"): the software rasteriser, running on the same cores,
+// takes the caches. Same orbit, convergence and counters as `detail_frame/`; STAGE_ITERS sets
+// the frame count, as for `stages/`, to profile the stages as a frame leaves the caches:
+//   STAGE_ITERS=300 perf record ./build/tests/bench/detail_frame_bench --benchmark_filter=controlled/knot1m/T:7
+void controlledFrames(benchmark::State& state, const std::string& name, float target_area) {
+  auto set_up = twoPresenters(state, name);
+  if (!set_up) return;
+  FrameParams frame;
+  frame.msaa = 1;
+  SceneDrawing controlled = sceneOf(std::make_unique<LodDrawing>(set_up->model->mesh, set_up->model->pm), name);
+  DetailParams detail;
+  detail.target_area = target_area;
+  convergeAtStart(controlled, frame, detail);
+  ControlledFrames frames;
+  float az = 0.0f;
+  for (auto _ : state) {
+    frames.record(controlled, *set_up->first, orbitAt(controlled, az, frame.aspect()), frame, detail, az == 0.0f);
+    az += 1.0f;
+  }
+  frames.counters(state);
+  state.counters["cpu_ms"] = frames.cpuMs();
 }
 
 // Frames in a pipeline (issue 21; docs/performance.md, "Frames in a pipeline"): frame i + 1's
@@ -637,6 +667,13 @@ int main(int argc, char** argv) {
     const std::string label = "scale/knot_" + std::to_string(static_cast<int>(faces / 1e5)) + "00k/T:16";
     benchmark::RegisterBenchmark(label.c_str(), [faces](benchmark::State& s) { lodline::scaleFrame(s, faces, 16.0f); })
         ->Iterations(30)
+        ->Unit(benchmark::kMillisecond);
+  }
+  for (const auto& [name, t] : cases) {
+    const std::string label = std::string("controlled/") + name + "/T:" + std::to_string(static_cast<int>(t));
+    benchmark::RegisterBenchmark(label.c_str(),
+                                 [name, t](benchmark::State& s) { lodline::controlledFrames(s, name, t); })
+        ->Iterations(std::getenv("STAGE_ITERS") ? std::atoi(std::getenv("STAGE_ITERS")) : 30)
         ->Unit(benchmark::kMillisecond);
   }
   for (const auto& [name, t] : cases) {
