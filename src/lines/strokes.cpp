@@ -25,8 +25,10 @@ void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch) {
   const size_t nends = 2 * ns;
   LODLINE_ASSERT(nends <= kEndMask);
   // Partner ends: two ends join when they are the only two with their (type, point id).
-  // Ids are small (edge, vertex or interior indices), so a table indexed by id·kind count + kind
-  // finds them in one pass; only the entries touched are reset afterwards.
+  // Ids are small (edge, vertex or interior indices), so a table indexed by kind·(largest id
+  // + 1) + id finds them in one pass; only the entries touched are reset afterwards. Kind
+  // first: a frame's ends are mostly of two or three kinds, whose entries then lie in as many
+  // blocks, where id first spread them one in kLineKindCount over the whole table.
   scratch.partner.assign(nends, kNone);
   uint32_t max_id = 0;
   for (uint32_t id : lines.point_ids) max_id = std::max(max_id, id);
@@ -35,9 +37,9 @@ void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch) {
     scratch.first_end.resize(table_size, kNone);
     scratch.end_count.resize(table_size, 0);
   }
+  const size_t ids = static_cast<size_t>(max_id) + 1;
   auto slot = [&](size_t k) {
-    return static_cast<size_t>(lines.point_ids[k]) * kLineKindCount +
-           static_cast<size_t>(lines.kinds[k / 2]);
+    return static_cast<size_t>(lines.kinds[k / 2]) * ids + static_cast<size_t>(lines.point_ids[k]);
   };
   for (size_t k = 0; k < nends; ++k) {
     const size_t t = slot(k);
