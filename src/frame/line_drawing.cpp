@@ -216,11 +216,22 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
       }
     });
     needed_.clear();  // in vertex order, which the gathers below prefer
-    for (uint32_t v = 0; v < nv; ++v) {
-      if (!needed_mark_[v]) continue;
-      needed_.push_back(v);
-      needed_mark_[v] = 0;
+    uint32_t v = 0;
+    for (; v + 8 <= nv; v += 8) {  // few are marked: eight unmarked ones skipped at a time
+      uint64_t word;
+      std::memcpy(&word, &needed_mark_[v], sizeof(word));
+      if (word == 0) continue;
+      for (uint32_t u = v; u < v + 8; ++u)
+        if (needed_mark_[u]) {
+          needed_.push_back(u);
+          needed_mark_[u] = 0;
+        }
     }
+    for (; v < nv; ++v)
+      if (needed_mark_[v]) {
+        needed_.push_back(v);
+        needed_mark_[v] = 0;
+      }
     shape_.ensureDerivatives(mesh_, needed_);
     fields.dcurv = shape_.dcurv();
     computeSuggestiveQuantities(fields, ViewSpec::fromCamera(camera), sc_threshold, needed_, view_);
