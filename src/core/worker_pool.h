@@ -62,8 +62,6 @@ class WorkerPool {
   /// are the same (they never depend on the thread count). Scopes alive when it changes keep
   /// what they did.
   void setQuiet(bool quiet) { quiet_.store(quiet, std::memory_order_relaxed); }
-  /// Whether loops run on the calling thread alone now (setQuiet(), or a single thread).
-  bool runsInline() const { return threadCount() <= 1 || quiet_.load(std::memory_order_relaxed); }
 
   /// Calls fn(begin, end) on contiguous, disjoint chunks that cover [0, n) and returns when
   /// all are done. Chunks hold at least min_chunk items (the last may hold fewer) and are

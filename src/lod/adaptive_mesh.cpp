@@ -1254,30 +1254,14 @@ void AdaptiveMesh::adapt(float dt_seconds) {
   } else {
     areas(0, active_faces_.size());
   }
-  // The ring sums, each thread over all faces in order for the slots of its own range: every
-  // sum adds the same terms in the same order as a serial pass would, and no two threads
-  // write one slot.
-  const uint32_t ring_parts = pool_ && !pool_->runsInline() && slot_count_ >= 4096 ? pool_->threadCount() : 1;
-  auto rings = [&](size_t part_begin, size_t part_end) {
-    for (size_t part = part_begin; part < part_end; ++part) {
-      const uint32_t lo = static_cast<uint32_t>(uint64_t{slot_count_} * part / ring_parts);
-      const uint32_t hi = static_cast<uint32_t>(uint64_t{slot_count_} * (part + 1) / ring_parts);
-      std::fill(ring_sum_.begin() + lo, ring_sum_.begin() + hi, 0.0);
-      std::fill(ring_cnt_.begin() + lo, ring_cnt_.begin() + hi, 0);
-      for (size_t k = 0; k < active_faces_.size(); ++k) {
-        const float img = active_area_[k];
-        for (uint32_t slot : active_fs_[k]) {
-          if (slot - lo >= hi - lo) continue;  // (unsigned: outside [lo, hi))
-          ring_sum_[slot] += img;
-          ++ring_cnt_[slot];
-        }
-      }
+  std::fill(ring_sum_.begin(), ring_sum_.begin() + slot_count_, 0.0);
+  std::fill(ring_cnt_.begin(), ring_cnt_.begin() + slot_count_, 0);
+  for (size_t k = 0; k < active_faces_.size(); ++k) {
+    const float img = active_area_[k];
+    for (uint32_t slot : active_fs_[k]) {
+      ring_sum_[slot] += img;
+      ++ring_cnt_[slot];
     }
-  };
-  if (ring_parts > 1) {
-    pool_->forRange(ring_parts, 1, rings);
-  } else {
-    rings(0, 1);
   }
   stats_.visible_faces = visible;
   stats_.band_fraction =
