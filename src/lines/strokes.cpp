@@ -32,12 +32,12 @@ void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch) {
   scratch.partner.assign(nends, kNone);
   uint32_t max_id = 0;
   for (uint32_t id : lines.point_ids) max_id = std::max(max_id, id);
-  const size_t table_size = (static_cast<size_t>(max_id) + 1) * kLineKindCount;
+  const size_t ids = static_cast<size_t>(max_id) + 1;
+  const size_t table_size = ids * kLineKindCount;
   if (scratch.first_end.size() < table_size) {
     scratch.first_end.resize(table_size, kNone);
     scratch.end_count.resize(table_size, 0);
   }
-  const size_t ids = static_cast<size_t>(max_id) + 1;
   auto slot = [&](size_t k) {
     return static_cast<size_t>(lines.kinds[k / 2]) * ids + static_cast<size_t>(lines.point_ids[k]);
   };
