@@ -226,6 +226,10 @@ class AdaptiveMesh {
   /// How many of fn0..fn3 of v's split are not active (the forced splits its split needs).
   uint32_t missingNeighbours(uint32_t v) const;
   bool facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* folds) const;
+  /// facingAllowed() for a face a split keeps, and also where the face ends against its
+  /// full-detail normal without turning over (its normal stays within 90° of the current
+  /// one); `turned` is then set, and the split lists the face with the folds.
+  bool splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool& turned) const;
   bool fanFacingAllowed(uint32_t vu, const glm::vec3& pp, bool& folds) const;
   void repairFolds();
   float targetAt(const glm::vec3& p) const;

@@ -716,6 +716,32 @@ TEST(AdaptiveMesh, DueCollapsesAreUnblockedAfterAZoomOut) {
   }
 }
 
+// A split is refused only where it turns a face over, not where it leaves a coarse face more
+// than 90° from the normal of its full-detail face (splitFacingAllowed()). The refined
+// elephant's progressive mesh has coarse faces around its legs and trunk that point far from
+// their full-detail faces; refusing every split that left one past 90° held it at about 1,100
+// faces and a band fraction of 0.77, however many frames it had. Here: 120 frames at the
+// default framing, every one allowed to retry, and the faces so left are listed as folds.
+TEST(AdaptiveMesh, SplitsThatTurnNoFaceOverRefineASubdividedModel) {
+  const Model& m = model("refined_elephant.off");
+  if (m.mesh.faces.empty()) GTEST_SKIP() << "refined_elephant.off not found";
+  AdaptiveMesh lod(m.pm);
+  DetailParams d;
+  d.geomorphs = false;
+  ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, kDefaultFramingRadii), kW, kH, d).ok());
+  uint32_t listed = 0;  // frames that end with a face listed as folded
+  for (int i = 0; i < 120; ++i) {
+    lod.adapt(1.0f / 30);
+    ASSERT_EQ(lod.checkInvariants(), "") << "frame " << i;
+    listed += lod.stats().folded_faces > 0;
+  }
+  float band = 0.0f;
+  uint32_t visible = 0;
+  lod.measureBand(band, visible);
+  EXPECT_GE(band, 0.9f) << "active faces " << lod.activeFaceCount() << ", frames with folds listed " << listed;
+  EXPECT_GT(visible, 8000u);
+}
+
 TEST(AdaptiveMesh, FastZoomOutKeepsTheBand) {
   // Measured when written: 0.863 while zooming, 0.989 ten frames after. Without the morph
   // speed that follows the zoom (collapseSpeedup) the lowest frame is 0.576, without the
@@ -733,31 +759,41 @@ TEST(AdaptiveMesh, FastZoomOutKeepsTheBand) {
 TEST(AdaptiveMesh, SubPixelFoldsFreeTheTorusAndAreRepairedWhenTheyGrow) {
   expectFastZoomKeepsTheBand("fine_torus");
 
-  // The same zoom, stopped at the first frame that leaves a folded face listed; then the
-  // camera jumps back in, where the fold would be seen.
+  // The same zoom, stopped at the first frame that leaves a fold of a collapse listed; then
+  // the camera jumps back in, where the fold would be seen: every listed fold must be gone,
+  // and somewhere repaired. Whether a fold is left listed at the end of a frame, and whether
+  // the splits of the way back remove it before the repair has to, depends on the order of
+  // operations (since splits may leave a face against its full-detail normal, 2026-12-07, the
+  // azimuth of 35° used before leaves none): several azimuths, and the repair must happen in
+  // one of them.
   const Model& m = model("fine_torus");
   DetailParams d;
-  AdaptiveMesh lod(m.pm);
-  ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, kDefaultFramingRadii), kW, kH, d).ok());
-  for (int i = 0; i < 300; ++i) lod.adapt(1.0f);
-  uint32_t folds = 0;
-  for (int f = 1; f <= 60 && lod.stats().folded_faces == 0; ++f) {
-    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, zoomOutRadii(f)), kW, kH, d).ok());
-    lod.adapt(1.0f / 30);
-    folds += lod.stats().folds;
-    ASSERT_EQ(lod.checkInvariants(), "") << "frame " << f;
+  uint32_t folds_seen = 0, repairs = 0;
+  for (const float az : {35.0f, 30.0f, 60.0f, 90.0f, 150.0f, 240.0f, 270.0f}) {
+    SCOPED_TRACE(az);
+    AdaptiveMesh lod(m.pm);
+    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, az, 20.0f, kDefaultFramingRadii), kW, kH, d).ok());
+    for (int i = 0; i < 300; ++i) lod.adapt(1.0f);
+    uint32_t folds = 0;  // the collapses that folded a face (a split may list one too)
+    for (int f = 1; f <= 60 && !(folds > 0 && lod.stats().folded_faces > 0); ++f) {
+      ASSERT_TRUE(lod.setView(cameraAt(m.bounds, az, 20.0f, zoomOutRadii(f)), kW, kH, d).ok());
+      lod.adapt(1.0f / 30);
+      folds += lod.stats().folds;
+      ASSERT_EQ(lod.checkInvariants(), "") << "frame " << f;
+    }
+    if (!(folds > 0 && lod.stats().folded_faces > 0)) continue;
+    folds_seen += folds;
+    for (const float s : {8.0f, 4.0f, 2.0f, 1.0f, 0.5f}) {
+      ASSERT_TRUE(lod.setView(cameraAt(m.bounds, az, 20.0f, kDefaultFramingRadii * s), kW, kH, d).ok());
+      lod.adapt(1.0f / 30);
+      repairs += lod.stats().fold_repairs;
+      ASSERT_EQ(lod.checkInvariants(), "") << "distance " << s;
+    }
+    EXPECT_EQ(lod.stats().folded_faces, 0u);
+    if (repairs > 0) break;
   }
-  EXPECT_GT(folds, 0u);
-  ASSERT_GT(lod.stats().folded_faces, 0u);
-  uint32_t repairs = 0;
-  for (const float s : {8.0f, 4.0f, 2.0f, 1.0f, 0.5f}) {
-    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, kDefaultFramingRadii * s), kW, kH, d).ok());
-    lod.adapt(1.0f / 30);
-    repairs += lod.stats().fold_repairs;
-    ASSERT_EQ(lod.checkInvariants(), "") << "distance " << s;
-  }
+  EXPECT_GT(folds_seen, 0u);
   EXPECT_GT(repairs, 0u);
-  EXPECT_EQ(lod.stats().folded_faces, 0u);
 }
 
 }  // namespace
