@@ -629,7 +629,7 @@ bool AdaptiveMesh::facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* fold
 // face's normal before it. The full-detail normal, which the other tests compare with, is a
 // poor reference for a coarse face: on a subdivided model a face that spans a leg or a trunk
 // at a few hundred faces may point far from where its full-detail face does, and a split
-// that turns it by a few degrees can leave it more than 90° from there. Refusing those held
+// that turns it by a small angle can leave it more than 90° from there. Refusing those held
 // the refined elephant's progressive mesh (built since 2026-12-05, in another collapse order)
 // at 1,100 faces and a band fraction of 0.77 at its default view, legs and body drawn as a
 // few large triangles, where the target asks for 17k (docs/detail-control.md §8). Such a face
@@ -1198,11 +1198,12 @@ bool AdaptiveMesh::advanceCollapse(uint32_t q, int depth) {
   return doCollapse(q, true);
 }
 
-// Faces a collapse turned over while sub-pixel (kFoldAreaPx) are dropped from the list once
-// gone or facing as recorded again; one that has grown past that size (the camera came
-// closer before a split undid the fold) has its corners refined: with every corner at full
-// detail a face has its recorded geometry, so this ends. Nearly always the coarsening that
-// the fold unblocked removes the face in the same frame.
+// Faces a collapse turned over while sub-pixel (kFoldAreaPx), and faces a split left against
+// their full-detail normal without turning them over (splitFacingAllowed()), are dropped from
+// the list once gone or facing as recorded again; one of a pixel or more (for a fold: the
+// camera came closer before a split undid it) has its corners refined: with every corner at
+// full detail a face has its recorded geometry, so this ends. Nearly always the coarsening
+// that a fold unblocked removes the face in the same frame.
 void AdaptiveMesh::repairFolds() {
   size_t kept = 0;
   for (size_t k = 0; k < folded_.size(); ++k) {
