@@ -634,12 +634,16 @@ bool AdaptiveMesh::facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* fold
 // at 1,100 faces and a band fraction of 0.77 at its default view, legs and body drawn as a
 // few large triangles, where the target asks for 17k (docs/detail-control.md §8). Such a face
 // is listed with the folds; repairFolds() refines its corners until it faces as recorded.
+// A face already against its full-detail normal (listed) is held to the same rule: a split
+// may not turn it over either. One of no area now has no normal to turn from, and does not
+// refuse, as before.
 bool AdaptiveMesh::splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool& turned) const {
-  if (facingAllowed(f, q, nullptr)) return true;
+  if (facingOk(q[0], q[1], q[2], ref_normal_[f])) return true;
   const auto& c = fv_[f];
   const glm::vec3 before =
       glm::cross(node_pos_[c[1]] - node_pos_[c[0]], node_pos_[c[2]] - node_pos_[c[0]]);
-  if (!(glm::dot(glm::cross(q[1] - q[0], q[2] - q[0]), before) > 0.0f)) return false;
+  if (glm::dot(before, before) > 0.0f && !(glm::dot(glm::cross(q[1] - q[0], q[2] - q[0]), before) > 0.0f))
+    return false;
   turned = true;
   return true;
 }
@@ -1205,15 +1209,24 @@ bool AdaptiveMesh::advanceCollapse(uint32_t q, int depth) {
 // full detail a face has its recorded geometry, so this ends. Nearly always the coarsening
 // that a fold unblocked removes the face in the same frame.
 void AdaptiveMesh::repairFolds() {
+  // Packed in place. A repair's splits may list faces (appended, repaired in this loop too),
+  // and the listing looks the face up over the whole list: an entry dropped here is cleared
+  // at once, or its stale copy would make a face turned again look listed.
   size_t kept = 0;
   for (size_t k = 0; k < folded_.size(); ++k) {
     const uint32_t f = folded_[k];
-    if (face_pos_[f] == kNone || !flipped(f)) continue;
+    if (face_pos_[f] == kNone || !flipped(f)) {
+      folded_[k] = kNone;
+      continue;
+    }
     if (!(faceImageArea(f) < kFoldAreaPx)) {
       ++stats_.fold_repairs;
       for (int i = 0; i < 3 && face_pos_[f] != kNone && flipped(f); ++i)
         if (const uint32_t c = fv_[f][i]; !pm_.isLeaf(c)) forceSplit(c, true, false);
-      if (face_pos_[f] == kNone || !flipped(f)) continue;
+      if (face_pos_[f] == kNone || !flipped(f)) {
+        folded_[k] = kNone;
+        continue;
+      }
     }
     folded_[kept++] = f;
   }
@@ -1663,7 +1676,8 @@ std::string AdaptiveMesh::checkInvariants() const {
     if (!(node_state_[vs.vt] & kLocked) || !(node_state_[vs.vu] & kLocked) || !ecolLegal(p))
       return "pending collapse " + str(p) + " is not locked/legal";
   }
-  // No face flipped relative to its full-detail normal, except the sub-pixel folds listed.
+  // No face flipped relative to its full-detail normal unless listed (the sub-pixel folds of
+  // collapses, and faces splits left against that normal without turning them over).
   for (uint32_t f : active_faces_) {
     if (flipped(f) && std::find(folded_.begin(), folded_.end(), f) == folded_.end())
       return "face " + str(f) + " is flipped relative to its full-detail normal";

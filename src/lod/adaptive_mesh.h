@@ -226,9 +226,10 @@ class AdaptiveMesh {
   /// How many of fn0..fn3 of v's split are not active (the forced splits its split needs).
   uint32_t missingNeighbours(uint32_t v) const;
   bool facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* folds) const;
-  /// facingAllowed() for a face a split keeps, and also where the face ends against its
-  /// full-detail normal without turning over (its normal stays within 90° of the current
-  /// one); `turned` is then set, and the split lists the face with the folds.
+  /// Whether a split may give a face it keeps the corners q: where the face ends facing as
+  /// its full-detail face does, and also where it ends against that normal without turning
+  /// over (its normal stays within 90° of the current one); `turned` is then set, and the
+  /// split lists the face with the folds.
   bool splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool& turned) const;
   bool fanFacingAllowed(uint32_t vu, const glm::vec3& pp, bool& folds) const;
   void repairFolds();
@@ -380,7 +381,9 @@ class AdaptiveMesh {
   std::vector<uint32_t> stack_;
   std::vector<uint32_t> chain_;  // splits made by the current forceSplit
   mutable std::vector<uint32_t> fan_u_, fan_t_;
-  std::vector<uint32_t> folded_;  // faces a collapse turned over while sub-pixel (repairFolds())
+  // Faces against their full-detail normal: turned over by a collapse while sub-pixel, or
+  // left so by a split that did not turn them over (repairFolds()).
+  std::vector<uint32_t> folded_;
   std::vector<uint32_t> done_pending_;
   mutable std::vector<uint32_t> compact_index_;  // exportCompact's slot → vertex map
   // orderForLocality(): slots allocated since it last ran, the box its Morton codes span
