@@ -10,7 +10,7 @@
 // adapt stage of a frame takes 5-12% less, depending on the machine's state.
 //
 // HugePageAllocator gives allocations of kHugeMinBytes (one huge page) or more a 2 MiB-aligned
-// block and advises it; smaller ones go to operator new as usual. The block is not rounded up:
+// block and advises it; smaller ones go to std::allocator as usual. The block is not rounded up:
 // its tail, past the last whole huge page, stays on ordinary pages, so no memory is added.
 // It is stateless: vectors that use it compare and swap like ordinary ones. The `lodline`
 // program also puts every block of that size on huge pages (app/large_allocations.cpp, with
@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <new>
 #include <vector>
 
@@ -45,22 +46,13 @@ struct HugePageAllocator {
   T* allocate(std::size_t n) {
     if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
     const std::size_t bytes = n * sizeof(T);
-    if (bytes < huge_pages::kHugeMinBytes) {
-      if constexpr (alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__)
-        return static_cast<T*>(::operator new(bytes, std::align_val_t{alignof(T)}));
-      else
-        return static_cast<T*>(::operator new(bytes));
-    }
+    if (bytes < huge_pages::kHugeMinBytes) return std::allocator<T>().allocate(n);
     return static_cast<T*>(huge_pages::allocate(bytes));
   }
   void deallocate(T* p, std::size_t n) noexcept {
     const std::size_t bytes = n * sizeof(T);
-    // Unsized: clang before 19 does not declare the sized operator delete by default.
     if (bytes < huge_pages::kHugeMinBytes) {
-      if constexpr (alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__)
-        ::operator delete(p, std::align_val_t{alignof(T)});
-      else
-        ::operator delete(p);
+      std::allocator<T>().deallocate(p, n);
       return;
     }
     huge_pages::deallocate(p, bytes);

@@ -637,6 +637,11 @@ bool AdaptiveMesh::facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* fold
 // A face already against its full-detail normal (listed) is held to the same rule: a split
 // may not turn it over either. One of no area now has no normal to turn from, and does not
 // refuse, as before.
+void AdaptiveMesh::listFlipped(std::span<const uint32_t> faces) {
+  for (uint32_t f : faces)
+    if (flipped(f) && std::find(folded_.begin(), folded_.end(), f) == folded_.end()) folded_.push_back(f);
+}
+
 bool AdaptiveMesh::splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool& turned) const {
   if (facingOk(q[0], q[1], q[2], ref_normal_[f])) return true;
   const auto& c = fv_[f];
@@ -728,9 +733,7 @@ bool AdaptiveMesh::doSplit(uint32_t s, bool check, bool morph) {
   for (uint32_t f : fan_u_) accumulate(f, 1.0f);
   accumulate(vs.fl, 1.0f);
   accumulate(vs.fr, 1.0f);
-  if (turned)
-    for (uint32_t f : fan_u_)
-      if (flipped(f) && std::find(folded_.begin(), folded_.end(), f) == folded_.end()) folded_.push_back(f);
+  if (turned) listFlipped(fan_u_);
   changes_.split.push_back(s);
   markDirty(st);
   markDirty(su);
@@ -791,8 +794,7 @@ bool AdaptiveMesh::doCollapse(uint32_t p, bool check) {
     for (uint32_t f : fan_u_) active_area_[face_pos_[f]] = faceImageArea(f);
   for (uint32_t f : fan_u_) accumulate(f, 1.0f);
   if (folds) {
-    for (uint32_t f : fan_u_)
-      if (flipped(f) && std::find(folded_.begin(), folded_.end(), f) == folded_.end()) folded_.push_back(f);
+    listFlipped(fan_u_);
     ++stats_.folds;
   }
   changes_.collapsed.push_back(p);

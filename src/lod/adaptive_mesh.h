@@ -232,6 +232,9 @@ class AdaptiveMesh {
   /// split lists the face with the folds.
   bool splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool& turned) const;
   bool fanFacingAllowed(uint32_t vu, const glm::vec3& pp, bool& folds) const;
+  /// Adds to folded_ those of `faces` that are against their full-detail normal and not
+  /// listed yet (after a collapse that folded one, or a split that left one so).
+  void listFlipped(std::span<const uint32_t> faces);
   void repairFolds();
   float targetAt(const glm::vec3& p) const;
   /// Static per-node data for the view tests, also copied into each active vertex's slot.
