@@ -653,6 +653,31 @@ bool AdaptiveMesh::splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool&
   return true;
 }
 
+// A face a split creates had no normal before, so the test of the faces it keeps does not
+// apply; it was held to its full-detail normal instead. At the coarse levels of a
+// progressive mesh that refused, for good, splits whose new face ends a little over 90°
+// from where its full-detail face points: on the bunny's default view about 120 vertices
+// behind its ears (dot products of -0.1 to -0.4), and the back of its neck stayed one large
+// triangle across the notch under the ear, drawn as a contour with a corner and a dangling
+// piece (docs/detail-control.md §9). A new face is a fold only where it is turned over
+// against the two faces it opens between, which is what this refuses; one merely against
+// its full-detail normal is listed with the folds, and repairFolds() refines its corners
+// once it covers a pixel.
+bool AdaptiveMesh::splitNewFaceAllowed(uint32_t f, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                                       uint32_t side0, uint32_t side1, bool& turned) const {
+  if (facingOk(a, b, c, ref_normal_[f])) return true;
+  auto unit = [&](uint32_t g) {
+    const auto& k = fv_[g];
+    const glm::vec3 n = glm::cross(node_pos_[k[1]] - node_pos_[k[0]], node_pos_[k[2]] - node_pos_[k[0]]);
+    const float len = glm::length(n);
+    return len > 0.0f ? n / len : glm::vec3(0.0f);
+  };
+  const glm::vec3 before = unit(side0) + unit(side1);
+  if (glm::dot(before, before) > 0.0f && !(glm::dot(glm::cross(b - a, c - a), before) > 0.0f)) return false;
+  turned = true;
+  return true;
+}
+
 bool AdaptiveMesh::doSplit(uint32_t s, bool check, bool morph) {
   if (pm_.isLeaf(s) || node_slot_[s] == kNone) return false;
   const VertexSplit& vs = pm_.split(s);
@@ -679,8 +704,8 @@ bool AdaptiveMesh::doSplit(uint32_t s, bool check, bool morph) {
       q[i] = pu;
       if (!splitFacingAllowed(f, q, turned)) return false;
     }
-    if (!facingOk(pu, pt, node_pos_[l], ref_normal_[vs.fl]) ||
-        !facingOk(pt, pu, node_pos_[r], ref_normal_[vs.fr]))
+    if (!splitNewFaceAllowed(vs.fl, pu, pt, node_pos_[l], fn_tl, fn_ul, turned) ||
+        !splitNewFaceAllowed(vs.fr, pt, pu, node_pos_[r], fn_ur, fn_rt, turned))
       return false;
   }
   // Pending collapses whose fl/fr are among fn0..3 would lose their neighbourhood: cancel.
@@ -733,7 +758,11 @@ bool AdaptiveMesh::doSplit(uint32_t s, bool check, bool morph) {
   for (uint32_t f : fan_u_) accumulate(f, 1.0f);
   accumulate(vs.fl, 1.0f);
   accumulate(vs.fr, 1.0f);
-  if (turned) listFlipped(fan_u_);
+  if (turned) {
+    listFlipped(fan_u_);
+    const uint32_t created[2] = {vs.fl, vs.fr};
+    listFlipped(created);
+  }
   changes_.split.push_back(s);
   markDirty(st);
   markDirty(su);

@@ -231,6 +231,12 @@ class AdaptiveMesh {
   /// over (its normal stays within 90° of the current one); `turned` is then set, and the
   /// split lists the face with the folds.
   bool splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool& turned) const;
+  /// The same for a face the split creates, (a, b, c), which opens between the faces `side0`
+  /// and `side1` (adjacent before the split): it may end against its full-detail normal
+  /// (`turned` is set) as long as it is not turned over against the two faces it opens
+  /// between (its normal within 90° of the sum of their unit normals before the split).
+  bool splitNewFaceAllowed(uint32_t f, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                           uint32_t side0, uint32_t side1, bool& turned) const;
   bool fanFacingAllowed(uint32_t vu, const glm::vec3& pp, bool& folds) const;
   /// Adds to folded_ those of `faces` that are against their full-detail normal and not
   /// listed yet (after a collapse that folded one, or a split that left one so).
