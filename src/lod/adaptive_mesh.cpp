@@ -16,6 +16,7 @@
 // (across edge (c[i], c[i+1])). Rotation counter-clockwise around corner i goes through the
 // neighbour across edge (c[i+2], c[i]).
 #include "lod/adaptive_mesh.h"
+#include "lod/fold_rules.h"
 
 #include <algorithm>
 #include <atomic>
@@ -67,6 +68,8 @@ constexpr uint32_t kUndoneRecheckFrames = 32;
 /// Consecutive refusals of a vertex's forced split (fold-overs) double its wait, at most
 /// this many times (8 frames, then 16, 32, 64).
 constexpr uint32_t kMaxRefusalShift = 3;
+// Rounds of corner splits one repair of a listed face may make in a frame (repairFolds()).
+constexpr int kMaxRepairRounds = 32;
 /// orderForLocality() runs once more than 1/kOrderFreshShare of the active vertices have taken
 /// new slots since it last ran, on meshes of at least kOrderMinVertices active vertices
 /// (smaller ones fit in the caches whatever their order).
@@ -598,8 +601,7 @@ bool AdaptiveMesh::ecolLegal(uint32_t p) const {
 namespace {
 inline bool facingOk(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
                      const glm::vec3& ref) {
-  if (ref.x == 0.0f && ref.y == 0.0f && ref.z == 0.0f) return true;
-  return glm::dot(glm::cross(b - a, c - a), ref) > 0.0f;
+  return facesAlong(a, b, c, ref);
 }
 inline void relink(std::array<uint32_t, 3>& nb, uint32_t from, uint32_t to) {
   for (uint32_t& x : nb)
@@ -666,14 +668,11 @@ bool AdaptiveMesh::splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool&
 bool AdaptiveMesh::splitNewFaceAllowed(uint32_t f, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
                                        uint32_t side0, uint32_t side1, bool& turned) const {
   if (facingOk(a, b, c, ref_normal_[f])) return true;
-  auto unit = [&](uint32_t g) {
+  auto normal = [&](uint32_t g) {
     const auto& k = fv_[g];
-    const glm::vec3 n = glm::cross(node_pos_[k[1]] - node_pos_[k[0]], node_pos_[k[2]] - node_pos_[k[0]]);
-    const float len = glm::length(n);
-    return len > 0.0f ? n / len : glm::vec3(0.0f);
+    return glm::cross(node_pos_[k[1]] - node_pos_[k[0]], node_pos_[k[2]] - node_pos_[k[0]]);
   };
-  const glm::vec3 before = unit(side0) + unit(side1);
-  if (glm::dot(before, before) > 0.0f && !(glm::dot(glm::cross(b - a, c - a), before) > 0.0f)) return false;
+  if (turnedOverBetween(a, b, c, normal(side0), normal(side1))) return false;
   turned = true;
   return true;
 }
@@ -695,7 +694,7 @@ bool AdaptiveMesh::doSplit(uint32_t s, bool check, bool morph) {
   if (fv_[fn_tl][prev3(cornerOf(fn_tl, s))] != l || fv_[fn_ur][prev3(cornerOf(fn_ur, s))] != r)
     return false;
   const glm::vec3 pu = node_pos_[vs.vu], pt = node_pos_[vs.vt];
-  bool turned = false;  // a kept face ends against its full-detail normal (not turned over)
+  bool turned = false;  // a kept or new face ends against its full-detail normal (not turned over)
   if (check) {
     for (uint32_t f : fan_u_) {
       const auto& c = fv_[f];
@@ -1239,6 +1238,19 @@ bool AdaptiveMesh::advanceCollapse(uint32_t q, int depth) {
 // camera came closer before a split undid it) has its corners refined: with every corner at
 // full detail a face has its recorded geometry, so this ends. Nearly always the coarsening
 // that a fold unblocked removes the face in the same frame.
+void AdaptiveMesh::undoSplitsSince(size_t mark) {
+  while (changes_.split.size() > mark) {
+    const uint32_t x = changes_.split.back();
+    if (!doCollapse(x, false)) break;
+    changes_.split.pop_back();
+    changes_.collapsed.pop_back();
+    --stats_.collapses;
+    --stats_.splits;
+    ops_ -= 2;
+    retry_frame_[x] = frame_ + kRetryFrames;
+  }
+}
+
 void AdaptiveMesh::repairFolds() {
   // Packed in place. A repair's splits may list faces (appended, repaired in this loop too),
   // and the listing looks the face up over the whole list: an entry dropped here is cleared
@@ -1251,9 +1263,25 @@ void AdaptiveMesh::repairFolds() {
       continue;
     }
     if (!(faceImageArea(f) < kFoldAreaPx)) {
-      ++stats_.fold_repairs;
-      for (int i = 0; i < 3 && face_pos_[f] != kNone && flipped(f); ++i)
-        if (const uint32_t c = fv_[f][i]; !pm_.isLeaf(c)) forceSplit(c, true, false);
+      // Down to the corners' full detail if need be, in this frame: a split that leaves the
+      // face on its t side does not move it, and a repair spread over frames is collapsed
+      // again by the criterion in between.
+      const size_t mark = changes_.split.size();
+      bool progress = true;
+      for (int round = 0; progress && round < kMaxRepairRounds && face_pos_[f] != kNone && flipped(f); ++round) {
+        progress = false;
+        for (int i = 0; i < 3 && face_pos_[f] != kNone && flipped(f); ++i)
+          if (const uint32_t c = fv_[f][i]; !pm_.isLeaf(c)) progress |= forceSplit(c, true, false);
+      }
+      // Where a corner's split is refused, the face stays turned and the splits made for it
+      // would be collapsed by the criterion next frame and made again here, a split and a
+      // collapse every frame at rest that redraws the lines there (the femur's default view
+      // did so): they are undone and wait, as a refused forced chain does.
+      if (face_pos_[f] != kNone && flipped(f)) {
+        undoSplitsSince(mark);
+      } else {
+        ++stats_.fold_repairs;
+      }
       if (face_pos_[f] == kNone || !flipped(f)) {
         folded_[k] = kNone;
         continue;

@@ -202,7 +202,8 @@ class AdaptiveMesh {
   /// Full consistency check (tests and debugging; O(n·depth)): manifold rings, face adjacency,
   /// slot/free-list consistency, the active front of the hierarchy, face corners equal to the
   /// active ancestors of their input corners, no face flipped relative to its full-detail
-  /// normal (logical positions). Returns "" or a description of the first violation.
+  /// normal (logical positions) unless listed with the folds. Returns "" or a description of
+  /// the first violation.
   std::string checkInvariants() const;
 
  private:
@@ -242,6 +243,9 @@ class AdaptiveMesh {
   /// listed yet (after a collapse that folded one, or a split that left one so).
   void listFlipped(std::span<const uint32_t> faces);
   void repairFolds();
+  /// Collapses the splits recorded in changes_.split from index `mark` on, newest first, as
+  /// if they had not been made this frame, and lets each wait kRetryFrames.
+  void undoSplitsSince(size_t mark);
   float targetAt(const glm::vec3& p) const;
   /// Static per-node data for the view tests, also copied into each active vertex's slot.
   struct NodeBounds {
@@ -391,7 +395,8 @@ class AdaptiveMesh {
   std::vector<uint32_t> chain_;  // splits made by the current forceSplit
   mutable std::vector<uint32_t> fan_u_, fan_t_;
   // Faces against their full-detail normal: turned over by a collapse while sub-pixel, or
-  // left so by a split that did not turn them over (repairFolds()).
+  // left so by a split that did not turn them over, kept (splitFacingAllowed()) or created
+  // (splitNewFaceAllowed()); repairFolds() refines them.
   std::vector<uint32_t> folded_;
   std::vector<uint32_t> done_pending_;
   mutable std::vector<uint32_t> compact_index_;  // exportCompact's slot → vertex map
