@@ -1232,12 +1232,6 @@ bool AdaptiveMesh::advanceCollapse(uint32_t q, int depth) {
   return doCollapse(q, true);
 }
 
-// Faces a collapse turned over while sub-pixel (kFoldAreaPx), and faces a split left against
-// their full-detail normal without turning them over (splitFacingAllowed()), are dropped from
-// the list once gone or facing as recorded again; one of a pixel or more (for a fold: the
-// camera came closer before a split undid it) has its corners refined: with every corner at
-// full detail a face has its recorded geometry, so this ends. Nearly always the coarsening
-// that a fold unblocked removes the face in the same frame.
 void AdaptiveMesh::undoSplitsSince(size_t mark) {
   while (changes_.split.size() > mark) {
     const uint32_t x = changes_.split.back();
@@ -1251,6 +1245,14 @@ void AdaptiveMesh::undoSplitsSince(size_t mark) {
   }
 }
 
+// Faces a collapse turned over while sub-pixel (kFoldAreaPx), and faces a split left against
+// their full-detail normal without turning them over (kept: splitFacingAllowed(); created:
+// splitNewFaceAllowed()), are dropped from the list once gone or facing as recorded again;
+// one of a pixel or more (for a fold: the camera came closer before a split undid it) has its
+// corners refined within the frame: with every corner at full detail a face has its recorded
+// geometry, so this ends, unless a corner's split is refused, and then the repair's splits are
+// undone and wait (docs/detail-control.md §9). Nearly always the coarsening that a fold
+// unblocked removes the face in the same frame.
 void AdaptiveMesh::repairFolds() {
   // Packed in place. A repair's splits may list faces (appended, repaired in this loop too),
   // and the listing looks the face up over the whole list: an entry dropped here is cleared
