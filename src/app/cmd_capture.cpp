@@ -32,6 +32,7 @@ struct CaptureOptions {
   std::string metrics;
   std::string stats;
   std::string svg;
+  std::string pops;
   std::string context = "auto";
 };
 
@@ -61,11 +62,12 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
     std::filesystem::create_directories(rq.output, ec);
     if (ec) return reportError(Error::runtime(o.output + ": cannot create directory: " + ec.message()));
   }
-  if (!o.svg.empty()) {
+  for (const std::string* dir : {&o.svg, &o.pops}) {
+    if (dir->empty()) continue;
     std::error_code ec;
-    std::filesystem::create_directories(o.svg, ec);
-    if (ec || !std::filesystem::is_directory(o.svg))
-      return reportError(Error::runtime(o.svg + ": cannot create directory" + (ec ? ": " + ec.message() : "")));
+    std::filesystem::create_directories(*dir, ec);
+    if (ec || !std::filesystem::is_directory(*dir))
+      return reportError(Error::runtime(*dir + ": cannot create directory" + (ec ? ": " + ec.message() : "")));
   }
   const LoadedScene& l = **loaded;
   const CapturePathOptions& c = o.capture;
@@ -77,6 +79,7 @@ int runCapture(CLI::App& cmd, CaptureOptions& o) {
   rq.metrics = o.metrics;
   rq.stats = o.stats;
   rq.svg_dir = o.svg;
+  rq.pop_dir = o.pops;
   rq.interrupted = &g_interrupted;
   rq.progress = isatty(STDERR_FILENO);
   std::signal(SIGINT, onInterrupt);
@@ -112,6 +115,10 @@ Command addCaptureCommand(CLI::App& parent) {
   cmd->add_option("--svg", o->svg,
                   "DIR/: one SVG per frame (frame_NNNNN.svg), each stroke with an id it keeps while it "
                   "persists from frame to frame (docs/capture.md)");
+  cmd->add_option("--pop-frames", o->pops,
+                  "DIR/: one PNG per frame after the first (pop_NNNNN.png): the frame faded, with the line pixels "
+                  "that appeared since the previous frame in green and those that vanished in red, as the churn "
+                  "counts them (motion-compensated, by opacity; docs/capture.md)");
   cmd->add_option("--context", o->context, "OpenGL context: auto, egl or osmesa")->capture_default_str();
   return {cmd, [o, cmd] { return runCapture(*cmd, *o); }};
 }

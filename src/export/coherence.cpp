@@ -103,7 +103,7 @@ uint64_t moveLinePixels(const LineMask& from, const SurfaceImage& surf_a, const 
 // looked up where it was (`at_source`: a pixel of the zones' frame) or where it moved to.
 void unmatchedMoved(const std::vector<MovedPixel>& moved, const LineMask& target, int r, uint64_t& count,
                     double& weight, const ChangeZones* zones, bool at_source, uint64_t& near_ops,
-                    uint64_t& near_morphs) {
+                    uint64_t& near_morphs, uint8_t* pops) {
   count = 0;
   uint64_t excess = 0;
   for (const MovedPixel& p : moved) {
@@ -113,6 +113,11 @@ void unmatchedMoved(const std::vector<MovedPixel>& moved, const LineMask& target
         best = std::max(best, target.on[static_cast<size_t>(yy) * target.width + xx]);
     count += best == 0;
     excess += p.opacity > best ? p.opacity - best : 0;
+    if (pops && p.opacity > best) {  // where the pixel is in the current frame
+      uint8_t& v = pops[at_source ? static_cast<size_t>(p.from_y) * target.width + p.from_x
+                                  : static_cast<size_t>(p.y) * target.width + p.x];
+      v = std::max<uint8_t>(v, static_cast<uint8_t>(p.opacity - best));
+    }
     if (zones && best == 0) {
       const uint8_t z = at_source ? zones->at(p.from_x, p.from_y) : zones->at(p.x, p.y);
       near_ops += (z & ChangeZones::kNearOps) != 0;
@@ -123,6 +128,38 @@ void unmatchedMoved(const std::vector<MovedPixel>& moved, const LineMask& target
 }
 
 }  // namespace
+
+void PopMap::reset(int w, int h) {
+  width = std::max(w, 0);
+  height = std::max(h, 0);
+  appeared.assign(static_cast<size_t>(width) * height, 0);
+  vanished.assign(static_cast<size_t>(width) * height, 0);
+}
+
+Image popImage(const Image& frame, const PopMap& pops) {
+  Image out = frame;
+  const size_t n = static_cast<size_t>(frame.width) * frame.height;
+  const bool with_pops = pops.width == frame.width && pops.height == frame.height && pops.appeared.size() == n &&
+                         pops.vanished.size() == n && frame.rgba.size() == 4 * n;
+  for (size_t i = 0; i < n && 4 * i + 3 < out.rgba.size(); ++i) {
+    uint8_t* px = &out.rgba[4 * i];
+    float c[3];
+    for (int k = 0; k < 3; ++k) c[k] = 255.0f - (255.0f - px[k]) / 3.0f;
+    auto over = [&](uint8_t a, float r, float g, float b) {
+      const float t = a / 255.0f;
+      c[0] += (r - c[0]) * t;
+      c[1] += (g - c[1]) * t;
+      c[2] += (b - c[2]) * t;
+    };
+    if (with_pops) {
+      over(pops.vanished[i], 220.0f, 0.0f, 0.0f);
+      over(pops.appeared[i], 0.0f, 170.0f, 0.0f);
+    }
+    for (int k = 0; k < 3; ++k) px[k] = static_cast<uint8_t>(std::lround(std::clamp(c[k], 0.0f, 255.0f)));
+    px[3] = 255;
+  }
+  return out;
+}
 
 void ChangeZones::reset(int w, int h) {
   width = std::max(w, 0);
@@ -164,6 +201,10 @@ CompensatedChange compareMasksCompensated(const LineMask& previous, const Surfac
       !same(current_surface.width, current_surface.height)) {
     c.appeared = c.line_pixels;  // no comparable previous frame: everything is new
     c.appeared_weight = c.line_weight;
+    if (params.pops) {
+      params.pops->reset(w, h);
+      if (current.on.size() == params.pops->appeared.size()) params.pops->appeared = current.on;
+    }
     return c;
   }
   const PixelProjector prev_proj(previous_camera, w, h), cur_proj(current_camera, w, h);
@@ -171,15 +212,16 @@ CompensatedChange compareMasksCompensated(const LineMask& previous, const Surfac
                                      params.zones->bits.size() == static_cast<size_t>(w) * h
                                  ? params.zones
                                  : nullptr;
+  if (params.pops) params.pops->reset(w, h);
   std::vector<MovedPixel> moved;
   // Forward: does each previous line pixel still have a line where its point went?
   c.dropped += moveLinePixels(previous, previous_surface, prev_proj, current_surface, cur_proj, params, moved);
   unmatchedMoved(moved, current, params.tolerance, c.vanished, c.vanished_weight, zones, false, c.popped_near_ops,
-                 c.popped_near_morphs);
+                 c.popped_near_morphs, params.pops ? params.pops->vanished.data() : nullptr);
   // Backward: was there a line where each current line pixel's point was before?
   c.dropped += moveLinePixels(current, current_surface, cur_proj, previous_surface, prev_proj, params, moved);
   unmatchedMoved(moved, previous, params.tolerance, c.appeared, c.appeared_weight, zones, true, c.popped_near_ops,
-                 c.popped_near_morphs);
+                 c.popped_near_morphs, params.pops ? params.pops->appeared.data() : nullptr);
   if (zones)
     for (size_t i = 0; i < current.on.size(); ++i) {
       if (!current.on[i]) continue;

@@ -73,6 +73,25 @@ struct ChangeZones {
   uint8_t at(int x, int y) const { return bits[static_cast<size_t>(y) * width + x]; }
 };
 
+/// Where a compared frame's lines popped, per pixel of the current frame (row 0 = top), as
+/// compareMasksCompensated() counts them: `appeared` holds, at a current line pixel, how much
+/// more opaque it is than the most opaque line within the tolerance of where its surface point
+/// was; `vanished` the same for a previous line pixel, marked where its point is now (the
+/// larger where several land on one pixel). 0–255 like LineMask; 0: nothing popped there.
+/// What `capture --pop-frames` draws (docs/capture.md).
+struct PopMap {
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> appeared, vanished;
+  /// Sizes both planes and clears them.
+  void reset(int w, int h);
+};
+
+/// The frame `frame` faded to a third of its contrast, with `pops` over it: vanished pixels in
+/// red and appeared ones in green, each as opaque as it popped (what `capture --pop-frames`
+/// writes). Where `pops` does not match the frame's size, the faded frame alone.
+Image popImage(const Image& frame, const PopMap& pops);
+
 struct CompensationParams {
   /// Chebyshev tolerance of the comparison after moving, pixels (as compareMasks). Default 1.
   int tolerance = 1;
@@ -86,6 +105,8 @@ struct CompensationParams {
   /// Where the mesh changed in the current frame (optional; used only when its size is the
   /// masks'): the popped and line pixels in it are counted (CompensatedChange::*_near_*).
   const ChangeZones* zones = nullptr;
+  /// Where the popped pixels are (optional): reset to the masks' size and filled.
+  PopMap* pops = nullptr;
 };
 
 struct CompensatedChange {

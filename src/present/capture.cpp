@@ -95,7 +95,7 @@ int64_t captureFrameCount(const CameraPath& path, double fps) {
 
 CaptureRun::CaptureRun(LoadedScene& loaded, ScenePresenter& presenter, const CaptureRequest& rq, bool measure)
     : loaded_(loaded), presenter_(presenter), path_(rq.path), fps_(rq.fps), range_(rq.range), measure_(measure),
-      next_(rq.range.first), t0_(rq.path.keys().front().time) {
+      want_pops_(!rq.pop_dir.empty()), next_(rq.range.first), t0_(rq.path.keys().front().time) {
   // Smoothing at the capture's frame rate (Jeong §3.3: f is the capture rate when capturing).
   const SmoothingParams& sm = loaded.detail.smoothing;
   smoothing_w_ = sm.enabled ? smoothingWeight(sm.alpha, sm.seconds, static_cast<float>(fps_)) : 1.0f;
@@ -176,6 +176,7 @@ Result<CapturedFrame> CaptureRun::next() {
     changeZones(scene, f.camera, loaded_.view.frame.width, loaded_.view.frame.height, zones_);
     CompensationParams cp;
     cp.zones = &zones_;
+    if (want_pops_) cp.pops = &f.pops;
     f.coherence = meter_.measure(mask_, surface_, f.camera, cp);
     std::ostringstream row;
     writeMetricsRow(row, f.index, report, f.coherence, frame_clock.elapsed());
@@ -200,7 +201,8 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
     video.emplace(std::move(v.value()));
   }
 
-  const bool want_metrics = !rq.metrics.empty() || !rq.stats.empty();
+  const bool want_pops = !rq.pop_dir.empty();
+  const bool want_metrics = !rq.metrics.empty() || !rq.stats.empty() || want_pops;
   const bool want_svg = !rq.svg_dir.empty();
   StrokeIdTracker ids;  // stroke ids from frame 0 on, so frame k's are the same whichever range
   std::ostringstream csv;
@@ -237,6 +239,11 @@ Result<CaptureOutcome> captureFrames(LoadedScene& loaded, const CaptureRequest& 
       char name[32];
       std::snprintf(name, sizeof(name), "frame_%05lld.svg", static_cast<long long>(k));
       if (failure = writeFrameSvg(rq.svg_dir / name, scene, p, &ids.ids()); !failure) break;
+    }
+    if (want_pops && f->coherence.compared) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "pop_%05lld.png", static_cast<long long>(k));
+      if (failure = writePng(rq.pop_dir / name, popImage(f->image, f->pops)); !failure) break;
     }
     if (rq.png_sequence) {
       char name[32];

@@ -45,6 +45,10 @@ struct CaptureRequest {
   /// A folder for frame_NNNNN.svg, one per frame, strokes with stable ids
   /// (present/stroke_ids.h); empty: none. Must exist.
   std::filesystem::path svg_dir;
+  /// A folder for pop_NNNNN.png, one per frame after the first: the frame faded, with the
+  /// line pixels that appeared since the previous frame in green and those that vanished in
+  /// red, by how much they popped (export/coherence.h, PopMap); empty: none. Must exist.
+  std::filesystem::path pop_dir;
   /// Set (by a signal handler) to stop after the current frame; outputs are finished.
   const std::atomic<bool>* interrupted = nullptr;
   bool progress = false;  ///< a progress bar on stderr
@@ -72,6 +76,9 @@ struct CapturedFrame {
   Image image;              ///< the colour image, row 0 = top
   bool measured = false;    ///< `metrics_row` and `coherence` were computed
   FrameCoherence coherence;  ///< against the previous frame (compared = false for frame 0)
+  /// Where lines popped against the previous frame (measured frames of a capture whose request
+  /// names a pop_dir; empty otherwise).
+  PopMap pops;
   std::string metrics_row;  ///< the frame's line of the `--metrics` CSV (metricsCsvHeader())
   double specks = 0.0;
   double texture_drift = 0.0;
@@ -107,6 +114,7 @@ class CaptureRun {
   double fps_ = 30.0;
   FrameRange range_;
   bool measure_ = false;
+  bool want_pops_ = false;  ///< request.pop_dir set: measured frames carry their PopMap
   bool pipeline_ = false;
   bool simulated_ahead_ = false;  ///< frame next_ was simulated during the last present()
   int64_t next_ = 0;

@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 
 #include "io/generate.h"
+#include "io/image.h"
 #include "io/load_mesh.h"
 #include "test_util.h"
 
@@ -252,6 +253,46 @@ TEST_F(Capture, BuiltInPathsStartFromTheView) {
     }
     EXPECT_GT(first_pixels["3"], 2.0 * first_pixels["10"]);
   }
+}
+
+// capture --pop-frames DIR/: one PNG per compared frame (none for the first), the frame's size,
+// with green pixels where lines appeared and red where they vanished, present exactly where
+// the metrics count popped pixels.
+TEST_F(Capture, PopFramesShowWhereLinesPopped) {
+  const auto pops = dir_ / "pops", csv = dir_ / "m.csv";
+  std::string out;
+  ASSERT_EQ(shell(capture("--path orbit --duration 2 --fps 30 --frames 6 -o " + (dir_ / "png").string() +
+                          "/ --metrics " + csv.string() + " --pop-frames " + pops.string() + "/"),
+                  &out),
+            0)
+      << out;
+  EXPECT_FALSE(std::filesystem::exists(pops / "pop_00000.png"));
+  const auto cols = readCsv(csv);
+  double popped_total = 0.0;
+  int tinted_total = 0;
+  for (int k = 1; k < 6; ++k) {
+    const auto f = pops / ("pop_0000" + std::to_string(k) + ".png");
+    auto img = readPng(f);
+    ASSERT_TRUE(img.ok()) << f;
+    auto frame = readPng(dir_ / "png" / ("frame_0000" + std::to_string(k) + ".png"));
+    ASSERT_TRUE(frame.ok());
+    EXPECT_EQ(img->width, frame->width);
+    EXPECT_EQ(img->height, frame->height);
+    int tinted = 0;  // red or green, not grey
+    for (int y = 0; y < img->height; ++y)
+      for (int x = 0; x < img->width; ++x) {
+        const uint8_t* c = img->pixel(x, y);
+        tinted += std::abs(int{c[0]} - int{c[1]}) > 24;
+      }
+    const double popped = cols.at("appeared").at(k) + cols.at("vanished").at(k);
+    if (popped == 0.0) EXPECT_EQ(tinted, 0) << "frame " << k;
+    popped_total += popped;
+    tinted_total += tinted;
+  }
+  // The default drawing has strong lines: most popped pixels show (faint ones may not).
+  EXPECT_GT(popped_total, 0.0);
+  EXPECT_GT(tinted_total, 0);
+  EXPECT_LE(tinted_total, 2.0 * popped_total + 50.0);
 }
 
 // capture --svg DIR/: one SVG per frame, each stroke with an id; most of a frame's stroke

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -149,12 +150,34 @@ TEST(CompensatedCoherence, ALineRemovedInOneFrameCountsOnce) {
   const SurfaceImage s = raycastSphere(cam, {0, 0, 0}, 1.5f);
   LineMask with = rim(s), without = rim(s);
   hline(with, kH / 2, kW / 2 - 20, kW / 2 + 20);  // a 40-px line across the sphere's face
-  const CompensatedChange gone = compareMasksCompensated(with, s, cam, without, s, cam);
+  PopMap pops;
+  CompensationParams cp;
+  cp.pops = &pops;
+  auto marked = [](const std::vector<uint8_t>& plane) {
+    return std::count_if(plane.begin(), plane.end(), [](uint8_t v) { return v != 0; });
+  };
+  const CompensatedChange gone = compareMasksCompensated(with, s, cam, without, s, cam, cp);
   EXPECT_EQ(gone.vanished, 40u);
   EXPECT_EQ(gone.appeared, 0u);
-  const CompensatedChange back = compareMasksCompensated(without, s, cam, with, s, cam);
+  // The pop map marks the 40 vanished pixels where they were (the camera did not move), at
+  // their full opacity, and nothing as appeared.
+  ASSERT_EQ(pops.width, kW);
+  EXPECT_EQ(marked(pops.vanished), 40);
+  EXPECT_EQ(marked(pops.appeared), 0);
+  EXPECT_EQ(pops.vanished[static_cast<size_t>(kH / 2) * kW + kW / 2], 255);
+  const CompensatedChange back = compareMasksCompensated(without, s, cam, with, s, cam, cp);
   EXPECT_EQ(back.appeared, 40u);
   EXPECT_EQ(back.vanished, 0u);
+  EXPECT_EQ(marked(pops.appeared), 40);  // reset by the call: nothing left of the first
+  EXPECT_EQ(marked(pops.vanished), 0);
+  // Drawn over a white frame: the popped pixels green, the rest white.
+  Image white(kW, kH);
+  std::fill(white.rgba.begin(), white.rgba.end(), uint8_t{255});
+  const Image shown = popImage(white, pops);
+  const uint8_t* at = shown.pixel(kW / 2, kH / 2);
+  EXPECT_LT(at[0], 10);
+  EXPECT_GT(at[1], 150);
+  EXPECT_EQ(shown.pixel(2, 2)[0], 255);
   // Moving with the camera, the removal still counts exactly the line's pixels.
   const Camera moved = lookAt({0.3f, 0.1f, 8}, {0.3f, 0.1f, 0});
   const SurfaceImage s2 = raycastSphere(moved, {0, 0, 0}, 1.5f);
