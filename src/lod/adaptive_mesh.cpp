@@ -68,7 +68,7 @@ constexpr uint32_t kUndoneRecheckFrames = 32;
 /// Consecutive refusals of a vertex's forced split (fold-overs) double its wait, at most
 /// this many times (8 frames, then 16, 32, 64).
 constexpr uint32_t kMaxRefusalShift = 3;
-// Rounds of corner splits one repair of a listed face may make in a frame (repairFolds()).
+/// Rounds of corner splits one repair of a listed face may make in a frame (repairFolds()).
 constexpr int kMaxRepairRounds = 32;
 /// orderForLocality() runs once more than 1/kOrderFreshShare of the active vertices have taken
 /// new slots since it last ran, on meshes of at least kOrderMinVertices active vertices
@@ -627,6 +627,11 @@ bool AdaptiveMesh::facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* fold
   return true;
 }
 
+void AdaptiveMesh::listFlipped(std::span<const uint32_t> faces) {
+  for (uint32_t f : faces)
+    if (flipped(f) && std::find(folded_.begin(), folded_.end(), f) == folded_.end()) folded_.push_back(f);
+}
+
 // A split is refused only where it would turn a face over, through more than 90° from the
 // face's normal before it. The full-detail normal, which the other tests compare with, is a
 // poor reference for a coarse face: on a subdivided model a face that spans a leg or a trunk
@@ -639,18 +644,14 @@ bool AdaptiveMesh::facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* fold
 // A face already against its full-detail normal (listed) is held to the same rule: a split
 // may not turn it over either. One of no area now has no normal to turn from, and does not
 // refuse, as before.
-void AdaptiveMesh::listFlipped(std::span<const uint32_t> faces) {
-  for (uint32_t f : faces)
-    if (flipped(f) && std::find(folded_.begin(), folded_.end(), f) == folded_.end()) folded_.push_back(f);
+glm::vec3 AdaptiveMesh::faceNormalNow(uint32_t f) const {
+  const auto& c = fv_[f];
+  return glm::cross(node_pos_[c[1]] - node_pos_[c[0]], node_pos_[c[2]] - node_pos_[c[0]]);
 }
 
 bool AdaptiveMesh::splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool& turned) const {
   if (facingOk(q[0], q[1], q[2], ref_normal_[f])) return true;
-  const auto& c = fv_[f];
-  const glm::vec3 before =
-      glm::cross(node_pos_[c[1]] - node_pos_[c[0]], node_pos_[c[2]] - node_pos_[c[0]]);
-  if (glm::dot(before, before) > 0.0f && !(glm::dot(glm::cross(q[1] - q[0], q[2] - q[0]), before) > 0.0f))
-    return false;
+  if (turnedOverFrom(q[0], q[1], q[2], faceNormalNow(f))) return false;
   turned = true;
   return true;
 }
@@ -668,11 +669,7 @@ bool AdaptiveMesh::splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool&
 bool AdaptiveMesh::splitNewFaceAllowed(uint32_t f, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
                                        uint32_t side0, uint32_t side1, bool& turned) const {
   if (facingOk(a, b, c, ref_normal_[f])) return true;
-  auto normal = [&](uint32_t g) {
-    const auto& k = fv_[g];
-    return glm::cross(node_pos_[k[1]] - node_pos_[k[0]], node_pos_[k[2]] - node_pos_[k[0]]);
-  };
-  if (turnedOverBetween(a, b, c, normal(side0), normal(side1))) return false;
+  if (turnedOverBetween(a, b, c, faceNormalNow(side0), faceNormalNow(side1))) return false;
   turned = true;
   return true;
 }

@@ -224,6 +224,8 @@ class AdaptiveMesh {
   float faceImageArea(uint32_t f) const;
   float faceImageAreaWith(uint32_t f, uint32_t moved, const glm::vec3& p) const;
   bool flipped(uint32_t f) const;
+  /// Face f's normal at its corners' positions (not normalised; zero for a face of no area).
+  glm::vec3 faceNormalNow(uint32_t f) const;
   /// How many of fn0..fn3 of v's split are not active (the forced splits its split needs).
   uint32_t missingNeighbours(uint32_t v) const;
   bool facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* folds) const;

@@ -17,6 +17,13 @@ inline bool facesAlong(const glm::vec3& a, const glm::vec3& b, const glm::vec3& 
   return glm::dot(glm::cross(b - a, c - a), ref) > 0.0f;
 }
 
+/// Whether triangle (a, b, c) is turned over against `before` (its normal before an operation,
+/// any length): 90° or more from it. A zero `before` (a face of no area) has no normal to turn
+/// from, and nothing is turned over.
+inline bool turnedOverFrom(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& before) {
+  return glm::dot(before, before) > 0.0f && !(glm::dot(glm::cross(b - a, c - a), before) > 0.0f);
+}
+
 /// Whether a face that a vertex split creates, (a, b, c), is turned over against the two
 /// faces it opens between, whose normals before the split are `side0` and `side1` (any
 /// length): its normal is 90° or more from the sum of their unit normals. Where the sides
@@ -29,8 +36,7 @@ inline bool turnedOverBetween(const glm::vec3& a, const glm::vec3& b, const glm:
     return len > 0.0f ? n / len : glm::vec3(0.0f);
   };
   const glm::vec3 sum = unit(side0) + unit(side1);
-  if (!(glm::dot(sum, sum) >= 1e-4f)) return false;
-  return !(glm::dot(glm::cross(b - a, c - a), sum) > 0.0f);
+  return glm::dot(sum, sum) >= 1e-4f && turnedOverFrom(a, b, c, sum);
 }
 
 }  // namespace lodline

@@ -643,6 +643,21 @@ ZoomBand fastZoomOutBand(const Model& m) {
   EXPECT_EQ(lod.checkInvariants(), "");
   return z;
 }
+/// Converges `lod` for a still at `cam` as `render` converges it: no geomorphs, steps of 1/30 s
+/// until one makes no split or collapse, at most 300. Returns the steps taken, or -1 when the
+/// view is refused.
+int convergeStill(AdaptiveMesh& lod, const Camera& cam) {
+  DetailParams d;
+  d.geomorphs = false;
+  if (!lod.setView(cam, kW, kH, d).ok()) return -1;
+  int steps = 0;
+  while (steps < 300) {
+    lod.adapt(1.0f / 30);
+    ++steps;
+    if (lod.stats().splits == 0 && lod.stats().collapses == 0) break;
+  }
+  return steps;
+}
 /// The targets for that zoom: ≥ 0.8 in every frame, ≥ 0.9 ten frames after the stop.
 void expectFastZoomKeepsTheBand(const char* name) {
   const ZoomBand z = fastZoomOutBand(model(name));
@@ -760,15 +775,8 @@ TEST(AdaptiveMesh, StillsOfCgalMeshesReachTheBand) {
     if (m.mesh.faces.empty()) continue;
     any = true;
     AdaptiveMesh lod(m.pm);
-    DetailParams d;
-    d.geomorphs = false;
-    ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, kDefaultFramingRadii), kW, kH, d).ok());
-    int steps = 0;
-    while (steps < 300) {
-      lod.adapt(1.0f / 30);
-      ++steps;
-      if (lod.stats().splits == 0 && lod.stats().collapses == 0) break;
-    }
+    const int steps = convergeStill(lod, cameraAt(m.bounds, 35.0f, 20.0f, kDefaultFramingRadii));
+    ASSERT_GE(steps, 0);
     ASSERT_EQ(lod.checkInvariants(), "");
     float band = 0.0f, band_or_limit = 0.0f;
     uint32_t visible = 0;
@@ -827,15 +835,8 @@ TEST(AdaptiveMesh, SplitsWhoseNewFacesDoNotFoldRefineTheBunnysEars) {
   const Model& m = model("bunny00.off");
   if (m.mesh.faces.empty()) GTEST_SKIP() << "bunny00.off not found";
   AdaptiveMesh lod(m.pm);
-  DetailParams d;
-  d.geomorphs = false;
-  ASSERT_TRUE(lod.setView(cameraAt(m.bounds, 35.0f, 20.0f, kDefaultFramingRadii), kW, kH, d).ok());
-  int steps = 0;
-  while (steps < 300) {
-    lod.adapt(1.0f / 30);
-    ++steps;
-    if (lod.stats().splits == 0 && lod.stats().collapses == 0) break;
-  }
+  const int steps = convergeStill(lod, cameraAt(m.bounds, 35.0f, 20.0f, kDefaultFramingRadii));
+  ASSERT_GE(steps, 0);
   ASSERT_LT(steps, 300) << "did not converge";
   ASSERT_EQ(lod.checkInvariants(), "");
   float band = 0.0f;
@@ -863,15 +864,8 @@ TEST(AdaptiveMesh, StillsReachTheBandFromAllRound) {
         for (const float el : {20.0f, -30.0f}) {
           SCOPED_TRACE(::testing::Message() << name << " distance " << dist << " azimuth " << az << " elevation " << el);
           AdaptiveMesh lod(m.pm);
-          DetailParams d;
-          d.geomorphs = false;
-          ASSERT_TRUE(lod.setView(cameraAt(m.bounds, az, el, dist), kW, kH, d).ok());
-          int steps = 0;
-          while (steps < 300) {
-            lod.adapt(1.0f / 30);
-            ++steps;
-            if (lod.stats().splits == 0 && lod.stats().collapses == 0) break;
-          }
+          const int steps = convergeStill(lod, cameraAt(m.bounds, az, el, dist));
+          ASSERT_GE(steps, 0);
           float band = 0.0f, band_or_limit = 0.0f;
           uint32_t visible = 0;
           lod.measureBand(band, visible, &band_or_limit);
