@@ -198,7 +198,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   if (smooth) smoother_.blendView(view_, smoothing, sc_threshold);
   if (lazy) {
     // Dw kr where a suggestive contour can be: at the corners of every face that the kr
-    // zero set crosses and whose corners all pass the n·v gate — the only faces whose test
+    // zero set crosses and with a corner that passes the n·v gate — the only faces whose test
     // extractZeroSets() uses (its per-vertex codes read the others' stale values, unused).
     const MeshAdjacency& adj = shape_.adjacency();
     const size_t nv = mesh_.positions.size();
@@ -211,7 +211,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
         const auto& t = mesh_.faces[f];
         const bool s0 = kr[t[0]] < 0.0f, s1 = kr[t[1]] < 0.0f, s2 = kr[t[2]] < 0.0f;
         if (s0 == s1 && s1 == s2) continue;
-        if (ndotv[t[0]] < gate || ndotv[t[1]] < gate || ndotv[t[2]] < gate) continue;
+        if (ndotv[t[0]] < gate && ndotv[t[1]] < gate && ndotv[t[2]] < gate) continue;
         for (uint32_t v : t) std::atomic_ref<uint8_t>(needed_mark_[v]).store(1, std::memory_order_relaxed);
       }
     });

@@ -41,8 +41,12 @@ inline bool passes(float num, float den) { return (num > 0.0f && den > 0.0f) || 
 namespace {
 
 // What the face pass asks of a corner, per zero set: bit 0 the value is negative, bit 1 the
-// test passes, bit 2 the gate is shut. Zero set k uses bits 3k..3k+2 of a vertex's code.
-constexpr uint8_t kNegative = 1, kPasses = 2, kGated = 4;
+// test passes, bit 2 the corner is shut (ZeroSetInput::shut: no line in a face with such a
+// corner), bit 3 the gate is below its minimum (no line where the gate, interpolated, is: a
+// face with every corner below has none, one with some is cut where the gate crosses).
+// Zero set k uses bits 4k..4k+3 of a vertex's code.
+constexpr uint8_t kNegative = 1, kPasses = 2, kShut = 4, kLow = 8;
+constexpr int kCodeBits = 4;
 
 // Per vertex, the code bits of zero set `k`. Branch-free and specialised on what the input
 // has, so the compiler vectorises it: the signs are as good as random from one vertex to the
@@ -63,7 +67,7 @@ template <bool kTest, bool kDen, bool kGate, int kShift>
     } else {
       c |= kPasses;
     }
-    if constexpr (kGate) c |= gate[v] < gate_min ? kGated : 0;
+    if constexpr (kGate) c |= gate[v] < gate_min ? kLow : 0;
     if constexpr (kShift == 0) {
       code[v] = static_cast<uint8_t>(c);
     } else {
@@ -91,22 +95,22 @@ template <int kShift>
 // and for plain x86-64; comparisons only, so all give the same codes.
 LODLINE_AVX512_CLONES void vertexCodes(const ZeroSetInput& in, int k, size_t begin, size_t end, uint8_t* code) {
   if (k == 0) vertexCodesShifted<0>(in, begin, end, code);
-  else vertexCodesShifted<3>(in, begin, end, code);
+  else vertexCodesShifted<kCodeBits>(in, begin, end, code);
   if (in.shut.size() == in.value.size()) {
-    const uint8_t bit = static_cast<uint8_t>(kGated << (3 * k));
+    const uint8_t bit = static_cast<uint8_t>(kShut << (kCodeBits * k));
     for (size_t v = begin; v < end; ++v)
       if (in.shut[v]) code[v] |= bit;
   }
 }
 
 // The face pass's test (extractZeroSets, pass 2) on the corner codes c0..c2 of a face: per
-// zero set k, bit 3k is set when the sign changes over the face, the test passes at a corner
-// and no corner's gate is shut.
-constexpr int kSignBits = kNegative | (kNegative << 3), kPassBits = kPasses | (kPasses << 3),
-              kGateBits = kGated | (kGated << 3);
+// zero set k, bit 4k is set when the sign changes over the face, the test passes at a corner,
+// no corner is shut and not every corner's gate is below its minimum.
+constexpr int kSignBits = kNegative | (kNegative << kCodeBits), kPassBits = kPasses | (kPasses << kCodeBits),
+              kShutBits = kShut | (kShut << kCodeBits), kLowBits = kLow | (kLow << kCodeBits);
 inline int liveOf(int c0, int c1, int c2) {
   const int all = c0 & c1 & c2, any = c0 | c1 | c2;
-  return (any & ~all & kSignBits) & ((any & kPassBits) >> 1) & (~(any & kGateBits) >> 2);
+  return (any & ~all & kSignBits) & ((any & kPassBits) >> 1) & (~(any & kShutBits) >> 2) & (~(all & kLowBits) >> 3);
 }
 
 // Appends to `cand` the faces of [begin, end) with a line (liveOf != 0; a face marked invalid
@@ -149,7 +153,7 @@ size_t liveFacesScalar(const std::array<uint32_t, 3>* tri, const uint8_t* valid,
   const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   const __m512i byte = _mm512_set1_epi32(0xff);
   const __m512i sign = _mm512_set1_epi32(kSignBits), pass = _mm512_set1_epi32(kPassBits),
-                gate = _mm512_set1_epi32(kGateBits);
+                shut = _mm512_set1_epi32(kShutBits), low = _mm512_set1_epi32(kLowBits);
   const __m512i zero = _mm512_setzero_si512();
   size_t n = 0, f = begin;
   for (; f + 16 <= end; f += 16) {
@@ -166,10 +170,12 @@ size_t liveFacesScalar(const std::array<uint32_t, 3>* tri, const uint8_t* valid,
     const __m512i c2 = _mm512_and_si512(_mm512_mask_i32gather_epi32(zero, ok, x2, code, 1), byte);
     const __m512i all = _mm512_and_si512(_mm512_and_si512(c0, c1), c2);
     const __m512i any = _mm512_or_si512(_mm512_or_si512(c0, c1), c2);
-    // (any & ~all & sign) & ((any & pass) >> 1) & (~(any & gate) >> 2); bits 0 and 3 count.
+    // (any & ~all & sign) & ((any & pass) >> 1) & (~(any & shut) >> 2) & (~(all & low) >> 3);
+    // bits 0 and 4 count.
     __m512i live = _mm512_andnot_si512(all, _mm512_and_si512(any, sign));
     live = _mm512_and_si512(live, _mm512_srli_epi32(_mm512_and_si512(any, pass), 1));
-    live = _mm512_andnot_si512(_mm512_srli_epi32(_mm512_and_si512(any, gate), 2), live);
+    live = _mm512_andnot_si512(_mm512_srli_epi32(_mm512_and_si512(any, shut), 2), live);
+    live = _mm512_andnot_si512(_mm512_srli_epi32(_mm512_and_si512(all, low), 3), live);
     const __mmask16 has = _mm512_test_epi32_mask(live, live);
     _mm512_mask_compressstoreu_epi32(cand + n, has,
                                      _mm512_add_epi32(lane, _mm512_set1_epi32(static_cast<int>(f))));
@@ -194,20 +200,24 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
   // The point itself is formed only once a piece of the face passes the test (point()).
   struct Crossing {
     uint32_t a, b;
-    float s, t, num, den, gain;
+    float s, t, num, den, gain, gate;
   };
+  // Some corner's gate is below its minimum (not all: liveOf()): the pieces where the gate,
+  // interpolated like the test, is below go.
+  const bool clip = (c[0] | c[1] | c[2]) & kLow;
   auto crossingOf = [&](uint32_t a, uint32_t b) {
     if (b < a) std::swap(a, b);  // as MeshAdjacency::edges stores it
     const float va = in.value[a], vb = in.value[b];
     float t = va / (va - vb);
     if (!(t >= 0.0f && t <= 1.0f)) t = 0.5f;  // NaN input
     const float s = 1.0f - t;
-    Crossing x{a, b, s, t, 0.0f, 1.0f, 1.0f};
+    Crossing x{a, b, s, t, 1.0f, 1.0f, 1.0f, 0.0f};
     if (has_test) {
       x.num = s * in.test_num[a] + t * in.test_num[b];
       x.den = has_den ? s * in.test_den[a] + t * in.test_den[b] : 1.0f;
     }
     if (has_gain) x.gain = s * in.gain[a] + t * in.gain[b];
+    if (clip) x.gate = (s * in.gate[a] + t * in.gate[b]) - in.gate_min;
     return x;
   };
   // The lone corner i has the other sign; its two sides i and i-1 cross.
@@ -226,19 +236,22 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
   // draws the edges itself.
   if (e1 == e2 || (in.skip_vertex_pairs && e1 >= edge_count && e2 >= edge_count)) return;
   auto point = [&](const Crossing& x) { return x.s * positions[x.a] + x.t * positions[x.b]; };
-  if (!has_test) {
+  if (!has_test && !clip) {
     pushSegment(dst, type, f, point(x1), e1, 1.0f, point(x2), e2, 1.0f);
     return;
   }
   const float n1 = x1.num, n2 = x2.num;
   const float d1 = x1.den, d2 = x2.den;
-  // Breakpoints where num or den change sign along p1→p2 (linear interpolation).
-  float z[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+  const float q1 = x1.gate, q2 = x2.gate;
+  // Breakpoints where num, den or the gate change sign along p1→p2 (linear interpolation).
+  float z[5] = {0.0f, 0.0f, 0.0f, 0.0f, 1.0f};
   int nz = 1;
   if ((n1 >= 0.0f) != (n2 >= 0.0f)) z[nz++] = n1 / (n1 - n2);
   if ((d1 >= 0.0f) != (d2 >= 0.0f)) z[nz++] = d1 / (d1 - d2);
+  if (clip && (q1 >= 0.0f) != (q2 >= 0.0f)) z[nz++] = q1 / (q1 - q2);
   z[nz++] = 1.0f;
-  if (nz == 4 && z[2] < z[1]) std::swap(z[1], z[2]);
+  for (int a = 2; a + 1 < nz; ++a)  // the (at most three) breakpoints in order
+    for (int b = a; b > 1 && z[b] < z[b - 1]; --b) std::swap(z[b], z[b - 1]);
   glm::vec3 p1, p2;
   bool have_points = false;
   for (int k = 0; k + 1 < nz; ++k) {
@@ -247,6 +260,7 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
     const float zm = 0.5f * (za + zb);
     const float nm = (1.0f - zm) * n1 + zm * n2, dm = (1.0f - zm) * d1 + zm * d2;
     if (!passes(nm, dm)) continue;
+    if (clip && !((1.0f - zm) * q1 + zm * q2 >= 0.0f)) continue;
     const float na = (1.0f - za) * n1 + za * n2, da = (1.0f - za) * d1 + za * d2;
     const float nb = (1.0f - zb) * n1 + zb * n2, db = (1.0f - zb) * d1 + zb * d2;
     if (!have_points) {
@@ -264,7 +278,8 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
       ga = std::clamp((1.0f - za) * g1 + za * g2, 0.0f, 1.0f);
       gb = std::clamp((1.0f - zb) * g1 + zb * g2, 0.0f, 1.0f);
     }
-    pushSegment(dst, type, f, pa, ida, ga * fadeAlpha(na, da, in.fade), pb, idb, gb * fadeAlpha(nb, db, in.fade));
+    const float fa = has_test ? fadeAlpha(na, da, in.fade) : 1.0f, fb = has_test ? fadeAlpha(nb, db, in.fade) : 1.0f;
+    pushSegment(dst, type, f, pa, ida, ga * fa, pb, idb, gb * fb);
   }
 }
 
@@ -321,7 +336,7 @@ void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::
   // pass per zero set over all faces.
   const uint8_t* valid = adj.face_valid.data();
   const std::array<uint32_t, 3>* tri = faces.data();
-  // The faces with a line, and their corners' codes (liveOf: per zero set k, bit 3k).
+  // The faces with a line, and their corners' codes (liveOf: per zero set k, bit 4k).
   size_t (*live_faces)(const std::array<uint32_t, 3>*, const uint8_t*, const uint8_t*, size_t, size_t, uint32_t*,
                        uint32_t*) = liveFacesScalar;
 #ifdef LODLINE_FACE_SCAN_AVX512
@@ -344,9 +359,9 @@ void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::
                   c2 = static_cast<int>(cc >> 16);
         const int live = liveOf(c0, c1, c2);
         for (size_t k = 0; k < count; ++k) {
-          if (!(live & (1 << (3 * k)))) continue;
-          const uint8_t ck[3] = {static_cast<uint8_t>(c0 >> (3 * k)), static_cast<uint8_t>(c1 >> (3 * k)),
-                                 static_cast<uint8_t>(c2 >> (3 * k))};
+          if (!(live & (1 << (kCodeBits * k)))) continue;
+          const uint8_t ck[3] = {static_cast<uint8_t>(c0 >> (kCodeBits * k)), static_cast<uint8_t>(c1 >> (kCodeBits * k)),
+                                 static_cast<uint8_t>(c2 >> (kCodeBits * k))};
           faceSegments(positions, tri[f], adj.face_edges[f], f, ck, *in[k], has_test[k], has_den[k], has_gain[k],
                        type[k], *dst[k], static_cast<uint32_t>(ne), interior[k]);
         }

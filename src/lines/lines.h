@@ -70,9 +70,10 @@ struct LineParams {
   /// lower the churn of the captures measured; `--suggestive-motion-fade START,END`).
   float suggestive_motion_fade_start = 0.0f;
   float suggestive_motion_fade_end = 0.0f;
-  /// Rejection near contours: faces with any vertex with n·v below this get no suggestive
-  /// contour. 0 rejects back-facing and contour-straddling faces; larger values also drop
-  /// suggestive lines within acos(value) of grazing. Default 0.
+  /// Rejection near contours: no suggestive contour where n·v, interpolated along it, is below
+  /// this. 0 keeps them to the front-facing surface, cut where a face straddling the contour
+  /// turns away (rtsc leaves out only the faces entirely turned away); larger values also
+  /// drop suggestive lines within acos(value) of grazing. Default 0.
   float suggestive_min_ndotv = 0.0f;
   bool creases = true;  ///< edges with a dihedral angle above crease_angle_deg. Default on
   /// Angle between the two face normals above which an edge is a crease, degrees. Default 60.
@@ -158,7 +159,7 @@ struct LineSet {
 
 /// Appends one segment (p0 → p1, ids and alphas per endpoint) of kind `type` from face or
 /// edge `source` to `out`.
-inline void pushSegment(LineSet& out, LineKind type, uint32_t source, const glm::vec3& p0, uint32_t id0, float a0,
+[[gnu::always_inline]] inline void pushSegment(LineSet& out, LineKind type, uint32_t source, const glm::vec3& p0, uint32_t id0, float a0,
                         const glm::vec3& p1, uint32_t id1, float a1) {
   out.points.push_back(p0);
   out.points.push_back(p1);
@@ -176,7 +177,11 @@ struct ZeroSetInput {
   std::span<const float> value;     ///< the line is where it changes sign (< 0 vs ≥ 0)
   std::span<const float> test_num;  ///< optional: keep points where num/den > 0
   std::span<const float> test_den;  ///< optional (empty: den = 1)
-  std::span<const float> gate;      ///< optional: skip faces with any vertex gate < gate_min
+  /// Optional: no line where the gate, interpolated along it like the test, is below
+  /// gate_min (a face with every corner below has none; one with some is cut where the
+  /// interpolated gate crosses gate_min, so the line shortens as the gate moves instead of
+  /// leaving a whole face at once).
+  std::span<const float> gate;
   float gate_min = 0.0f;
   /// Optional (vertexCount bytes): skip faces with any vertex non-zero here, as if its gate
   /// were shut.

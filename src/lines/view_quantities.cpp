@@ -31,7 +31,7 @@ inline ViewAt viewAt(const SurfaceFields& s, const ViewSpec& view, const glm::ve
   if (!view.orthographic) {
     const glm::vec3 d = view.eye - s.positions[i];
     const float len = glm::length(d);
-    vdir = len > 0.0f ? d / len : s.normals[i];
+    vdir = len > 0.0f ? d * (1.0f / len) : s.normals[i];
   }
   return {glm::dot(vdir, s.normals[i]), glm::dot(vdir, s.pdir1[i]), glm::dot(vdir, s.pdir2[i])};
 }
@@ -46,11 +46,11 @@ inline void derivativeAt(const SurfaceFields& s, size_t i, const ViewAt& va, flo
   const glm::vec4& c = s.dcurv[i];
   // C(w,w,w) with the unnormalised w = (u, v): sin³θ·C(ŵ,ŵ,ŵ).
   const float cwww = u2 * (u * c[0] + 3.0f * v * c[1]) + v2 * (3.0f * u * c[2] + v * c[3]);
-  const float csc2 = 1.0f / sin2;
+  const float csc = 1.0f / std::sqrt(sin2), csc2 = csc * csc;
   const float tau = (s.k2[i] - s.k1[i]) * u * v * csc2;
   // sinθ·Dw kr = sinθ·C(ŵ,ŵ,ŵ) − 2·τ²·cosθ.
   sin_dwkr = cwww * csc2 - 2.0f * va.ndotv * tau * tau;
-  dwkr = sin_dwkr / std::sqrt(sin2);
+  dwkr = sin_dwkr * csc;
 }
 
 }  // namespace
@@ -76,7 +76,8 @@ struct ViewArrays {
 // The arithmetic of viewAt() and derivativeAt() (computeSuggestiveQuantities() must agree
 // bit for bit), without branches, over blocks of vertices whose vec3 fields are first copied
 // to plain per-component arrays, so that the compiler runs it four vertices at a time: the
-// square roots and divisions are most of the view stage's time.
+// square roots and divisions are most of the view stage's time (one of each per view direction and
+// per radial-curvature derivative: the reciprocals are multiplied, not divided by again).
 template <bool kOrtho, bool kDerivs>
 [[gnu::always_inline]] inline void viewRange(const ViewArrays& a, size_t begin, size_t end) {
   // Whole blocks in local arrays (a short last block padded with harmless values): a fixed
@@ -124,8 +125,8 @@ template <bool kOrtho, bool kDerivs>
       if constexpr (!kOrtho) {
         const float len = std::sqrt(dx[j] * dx[j] + dy[j] * dy[j] + dz[j] * dz[j]);
         const bool far = len > 0.0f;
-        const float l = far ? len : 1.0f;
-        const float qx = dx[j] / l, qy = dy[j] / l, qz = dz[j] / l;
+        const float inv = 1.0f / (far ? len : 1.0f);
+        const float qx = dx[j] * inv, qy = dy[j] * inv, qz = dz[j] * inv;
         vx = far ? qx : nx[j];
         vy = far ? qy : ny[j];
         vz = far ? qz : nz[j];
@@ -141,11 +142,11 @@ template <bool kOrtho, bool kDerivs>
         const bool ok = sin2 > 1e-12f;
         const float s2 = ok ? sin2 : 1.0f;
         const float cwww = u2 * (u * c0[j] + 3.0f * v * c1[j]) + v2 * (3.0f * u * c2[j] + v * c3[j]);
-        const float csc2 = 1.0f / s2;
+        const float csc = 1.0f / std::sqrt(s2), csc2 = csc * csc;
         const float tau = (k2[j] - k1[j]) * u * v * csc2;
         const float sd = cwww * csc2 - 2.0f * ndotv * tau * tau;
         const float sin_dwkr = ok ? sd : 0.0f;
-        const float dw = sin_dwkr / std::sqrt(s2);
+        const float dw = sin_dwkr * csc;
         o_dwkr[j] = ok ? dw : 0.0f;
         o_num[j] = sin_dwkr - thr * ndotv;
       }

@@ -142,7 +142,7 @@ TEST(ViewQuantities, VectorPassEqualsThePerVertexPathBitForBit) {
       glm::vec3 vdir = ortho_dir;
       if (!ortho) {
         const glm::vec3 d = view.eye - f.positions[i];
-        vdir = d / glm::length(d);
+        vdir = d * (1.0f / glm::length(d));
       }
       const float ndotv = glm::dot(vdir, f.normals[i]);
       const float u = glm::dot(vdir, f.pdir1[i]), v = glm::dot(vdir, f.pdir2[i]);
@@ -705,6 +705,48 @@ TEST(ZeroSet, GainScalesTheAlpha) {
     EXPECT_EQ(plain.alpha[i], 1.0f);
     EXPECT_NEAR(faded.alpha[i], 0.5f, 1e-5f);
   }
+}
+
+// A gate below its minimum at some corners of a face cuts the line where the interpolated gate
+// crosses the minimum (suggestive contours end where n·v does on a face straddling the
+// contour), instead of leaving the whole face out: on the grid the line x = 0.05 with the
+// gate z − 0.1 runs from z = 0.1 exactly (no grid row there) to the far side, in one stroke.
+TEST(ZeroSet, AGateCutsTheLineWhereItCrossesItsMinimum) {
+  const TriMesh g = makeGrid(2.0f, 9);
+  MeshAdjacency adj;
+  buildAdjacency(g, adj);
+  std::vector<float> value(g.vertexCount()), num(g.vertexCount(), 1.0f), gate(g.vertexCount());
+  for (size_t v = 0; v < g.vertexCount(); ++v) {
+    value[v] = g.positions[v].x - 0.05f;
+    gate[v] = g.positions[v].z - 0.1f;
+  }
+  ZeroSetInput in;
+  in.value = value;
+  in.test_num = num;
+  in.test_den = gate;  // as the suggestive contours' n·v is both
+  in.gate = gate;
+  LineScratch scratch;
+  LineSet out;
+  extractZeroSet(g.positions, g.faces, adj, in, LineKind::kSuggestive, scratch, out);
+  ASSERT_GT(out.segmentCount(), 0u);
+  float min_z = 1e9f, max_z = -1e9f;
+  for (size_t i = 0; i < out.points.size(); ++i) {
+    EXPECT_NEAR(out.points[i].x, 0.05f, 1e-5f);
+    EXPECT_EQ(out.alpha[i], 1.0f);
+    min_z = std::min(min_z, out.points[i].z);
+    max_z = std::max(max_z, out.points[i].z);
+  }
+  EXPECT_NEAR(min_z, 0.1f, 1e-5f);  // the row below is at 0.111: a dropped face ends there
+  EXPECT_NEAR(max_z, 1.0f, 1e-5f);
+  StrokeSet strokes;
+  ChainScratch cs;
+  chainStrokes(out, strokes, cs);
+  EXPECT_EQ(strokes.strokeCount(), 1u);
+  // With every corner below, nothing: the gate moved past the whole grid.
+  for (float& x : gate) x -= 3.0f;
+  out.clear();
+  extractZeroSet(g.positions, g.faces, adj, in, LineKind::kSuggestive, scratch, out);
+  EXPECT_EQ(out.segmentCount(), 0u);
 }
 
 // The motion fade's speed: |Δkr| / (sin²θ·Dw kr) along ŵ, × cosθ on screen, × px per unit,
