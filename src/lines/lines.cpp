@@ -360,8 +360,9 @@ void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::
         const int live = liveOf(c0, c1, c2);
         for (size_t k = 0; k < count; ++k) {
           if (!(live & (1 << (kCodeBits * k)))) continue;
-          const uint8_t ck[3] = {static_cast<uint8_t>(c0 >> (kCodeBits * k)), static_cast<uint8_t>(c1 >> (kCodeBits * k)),
-                                 static_cast<uint8_t>(c2 >> (kCodeBits * k))};
+          const int shift = kCodeBits * static_cast<int>(k);
+          const uint8_t ck[3] = {static_cast<uint8_t>(c0 >> shift), static_cast<uint8_t>(c1 >> shift),
+                                 static_cast<uint8_t>(c2 >> shift)};
           faceSegments(positions, tri[f], adj.face_edges[f], f, ck, *in[k], has_test[k], has_den[k], has_gain[k],
                        type[k], *dst[k], static_cast<uint32_t>(ne), interior[k]);
         }

@@ -159,8 +159,8 @@ struct LineSet {
 
 /// Appends one segment (p0 → p1, ids and alphas per endpoint) of kind `type` from face or
 /// edge `source` to `out`.
-[[gnu::always_inline]] inline void pushSegment(LineSet& out, LineKind type, uint32_t source, const glm::vec3& p0, uint32_t id0, float a0,
-                        const glm::vec3& p1, uint32_t id1, float a1) {
+[[gnu::always_inline]] inline void pushSegment(LineSet& out, LineKind type, uint32_t source, const glm::vec3& p0,
+                                               uint32_t id0, float a0, const glm::vec3& p1, uint32_t id1, float a1) {
   out.points.push_back(p0);
   out.points.push_back(p1);
   out.alpha.push_back(a0);
@@ -183,8 +183,8 @@ struct ZeroSetInput {
   /// leaving a whole face at once).
   std::span<const float> gate;
   float gate_min = 0.0f;
-  /// Optional (vertexCount bytes): skip faces with any vertex non-zero here, as if its gate
-  /// were shut.
+  /// Optional (vertexCount bytes): skip faces with any vertex non-zero here (the whole face,
+  /// unlike the gate).
   std::span<const uint8_t> shut;
   float fade = 0.0f;  ///< > 0: endpoint alpha = num/(num + fade·den), clamped; 0: alpha 1
   /// Optional: per-vertex factor in [0, 1] on the alpha (interpolated like the test).

@@ -76,8 +76,8 @@ struct ViewArrays {
 // The arithmetic of viewAt() and derivativeAt() (computeSuggestiveQuantities() must agree
 // bit for bit), without branches, over blocks of vertices whose vec3 fields are first copied
 // to plain per-component arrays, so that the compiler runs it four vertices at a time: the
-// square roots and divisions are most of the view stage's time (one of each per view direction and
-// per radial-curvature derivative: the reciprocals are multiplied, not divided by again).
+// square roots and divisions are most of the view stage's time (one of each for the view
+// direction and one of each for the derivative: their reciprocals are multiplied by).
 template <bool kOrtho, bool kDerivs>
 [[gnu::always_inline]] inline void viewRange(const ViewArrays& a, size_t begin, size_t end) {
   // Whole blocks in local arrays (a short last block padded with harmless values): a fixed
