@@ -217,7 +217,10 @@ void faceSegments(std::span<const glm::vec3> positions, const std::array<uint32_
       x.den = has_den ? s * in.test_den[a] + t * in.test_den[b] : 1.0f;
     }
     if (has_gain) x.gain = s * in.gain[a] + t * in.gain[b];
-    if (clip) x.gate = (s * in.gate[a] + t * in.gate[b]) - in.gate_min;
+    // (Each corner's margin first: both above the minimum, or both below, keep their sign
+    // however it rounds, so a face whose edge lies wholly above cuts nothing on it, as the
+    // face beside it, which does not clip, does not.)
+    if (clip) x.gate = s * (in.gate[a] - in.gate_min) + t * (in.gate[b] - in.gate_min);
     return x;
   };
   // The lone corner i has the other sign; its two sides i and i-1 cross.

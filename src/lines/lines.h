@@ -73,7 +73,8 @@ struct LineParams {
   /// Rejection near contours: no suggestive contour where n·v, interpolated along it, is below
   /// this. 0 keeps them to the front-facing surface, cut where a face straddling the contour
   /// turns away (rtsc leaves out only the faces entirely turned away); larger values also
-  /// drop suggestive lines within acos(value) of grazing. Default 0.
+  /// drop suggestive lines within asin(value) of grazing (where the angle between the normal
+  /// and the view exceeds acos(value)). Default 0.
   float suggestive_min_ndotv = 0.0f;
   bool creases = true;  ///< edges with a dihedral angle above crease_angle_deg. Default on
   /// Angle between the two face normals above which an edge is a crease, degrees. Default 60.

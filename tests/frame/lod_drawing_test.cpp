@@ -132,13 +132,14 @@ TEST(LodDrawing, IncrementalStateEqualsAFreshComputeEveryFrame) {
       ASSERT_EQ(std::memcmp(&inc.dcurv()[v], &eager.dcurv()[v], sizeof(glm::vec4)), 0)
           << "frame " << k << ", vertex " << v;
     }
-    // ... and every corner of a front-facing face crossed by the kr zero set has one.
+    // ... and every corner of a face crossed by the kr zero set with a corner facing the viewer
+    // (past the gate: the suggestive contour is cut where n·v crosses it) has one.
     ViewQuantities vq;
     computeViewQuantities(inc.fields(drawn), ViewSpec::fromCamera(camera_at(k)), 0.0f, vq);
     const float gate = lod.drawing().params().suggestive_min_ndotv;
     for (const auto& t : drawn.faces) {
       const bool s0 = vq.kr[t[0]] < 0.0f, s1 = vq.kr[t[1]] < 0.0f, s2 = vq.kr[t[2]] < 0.0f;
-      if ((s0 == s1 && s1 == s2) || vq.ndotv[t[0]] < gate || vq.ndotv[t[1]] < gate || vq.ndotv[t[2]] < gate)
+      if ((s0 == s1 && s1 == s2) || (vq.ndotv[t[0]] < gate && vq.ndotv[t[1]] < gate && vq.ndotv[t[2]] < gate))
         continue;
       for (uint32_t v : t) ASSERT_TRUE(inc.derivativeValid(v)) << "frame " << k << ", vertex " << v;
     }

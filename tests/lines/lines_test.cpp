@@ -710,7 +710,9 @@ TEST(ZeroSet, GainScalesTheAlpha) {
 // A gate below its minimum at some corners of a face cuts the line where the interpolated gate
 // crosses the minimum (suggestive contours end where n·v does on a face straddling the
 // contour), instead of leaving the whole face out: on the grid the line x = 0.05 with the
-// gate z − 0.1 runs from z = 0.1 exactly (no grid row there) to the far side, in one stroke.
+// gate z − 0.1 runs from z = 0.1 exactly (between the grid rows at z = −0.111 and 0.111:
+// dropping the faces with a corner below would end it at 0.111) to the far side, in one
+// stroke. With a test and without one; the gate alone cuts (the test passes everywhere).
 TEST(ZeroSet, AGateCutsTheLineWhereItCrossesItsMinimum) {
   const TriMesh g = makeGrid(2.0f, 9);
   MeshAdjacency adj;
@@ -720,33 +722,40 @@ TEST(ZeroSet, AGateCutsTheLineWhereItCrossesItsMinimum) {
     value[v] = g.positions[v].x - 0.05f;
     gate[v] = g.positions[v].z - 0.1f;
   }
-  ZeroSetInput in;
-  in.value = value;
-  in.test_num = num;
-  in.test_den = gate;  // as the suggestive contours' n·v is both
-  in.gate = gate;
-  LineScratch scratch;
-  LineSet out;
-  extractZeroSet(g.positions, g.faces, adj, in, LineKind::kSuggestive, scratch, out);
-  ASSERT_GT(out.segmentCount(), 0u);
-  float min_z = 1e9f, max_z = -1e9f;
-  for (size_t i = 0; i < out.points.size(); ++i) {
-    EXPECT_NEAR(out.points[i].x, 0.05f, 1e-5f);
-    EXPECT_EQ(out.alpha[i], 1.0f);
-    min_z = std::min(min_z, out.points[i].z);
-    max_z = std::max(max_z, out.points[i].z);
+  for (const bool with_test : {true, false}) {
+    SCOPED_TRACE(with_test ? "with a test" : "without a test");
+    ZeroSetInput in;
+    in.value = value;
+    if (with_test) {
+      in.test_num = num;
+      in.fade = 0.5f;  // alpha num/(num + fade·den) = 1/1.5 with a test; 1 without
+    }
+    in.gate = gate;
+    LineScratch scratch;
+    LineSet out;
+    extractZeroSet(g.positions, g.faces, adj, in, LineKind::kSuggestive, scratch, out);
+    ASSERT_GT(out.segmentCount(), 0u);
+    float min_z = 1e9f, max_z = -1e9f;
+    for (size_t i = 0; i < out.points.size(); ++i) {
+      EXPECT_NEAR(out.points[i].x, 0.05f, 1e-5f);
+      EXPECT_NEAR(out.alpha[i], with_test ? 1.0f / 1.5f : 1.0f, 1e-6f);
+      min_z = std::min(min_z, out.points[i].z);
+      max_z = std::max(max_z, out.points[i].z);
+    }
+    EXPECT_NEAR(min_z, 0.1f, 1e-5f);
+    EXPECT_NEAR(max_z, 1.0f, 1e-5f);
+    StrokeSet strokes;
+    ChainScratch cs;
+    chainStrokes(out, strokes, cs);
+    EXPECT_EQ(strokes.strokeCount(), 1u);
+    // With every corner below, nothing: the gate moved past the whole grid.
+    std::vector<float> low(gate);
+    for (float& x : low) x -= 3.0f;
+    in.gate = low;
+    out.clear();
+    extractZeroSet(g.positions, g.faces, adj, in, LineKind::kSuggestive, scratch, out);
+    EXPECT_EQ(out.segmentCount(), 0u);
   }
-  EXPECT_NEAR(min_z, 0.1f, 1e-5f);  // the row below is at 0.111: a dropped face ends there
-  EXPECT_NEAR(max_z, 1.0f, 1e-5f);
-  StrokeSet strokes;
-  ChainScratch cs;
-  chainStrokes(out, strokes, cs);
-  EXPECT_EQ(strokes.strokeCount(), 1u);
-  // With every corner below, nothing: the gate moved past the whole grid.
-  for (float& x : gate) x -= 3.0f;
-  out.clear();
-  extractZeroSet(g.positions, g.faces, adj, in, LineKind::kSuggestive, scratch, out);
-  EXPECT_EQ(out.segmentCount(), 0u);
 }
 
 // The motion fade's speed: |Δkr| / (sin²θ·Dw kr) along ŵ, × cosθ on screen, × px per unit,
@@ -877,8 +886,8 @@ TEST(ExtractLines, WideFaceScanGivesTheFaceByFaceOutput) {
   buildAdjacency(m, adj);
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  std::vector<float> value(nv), num(nv), den(nv), gate(nv), value2(nv), num2(nv);
-  std::vector<uint8_t> shut(nv);
+  std::vector<float> value(nv), num(nv), den(nv), gate(nv), value2(nv), num2(nv), gate2(nv);
+  std::vector<uint8_t> shut(nv), shut2(nv);
   for (uint32_t v = 0; v < nv; ++v) {
     value[v] = v % 13 == 0 ? 0.0f : u(rng) + 0.3f;
     num[v] = u(rng);
@@ -887,6 +896,8 @@ TEST(ExtractLines, WideFaceScanGivesTheFaceByFaceOutput) {
     value2[v] = u(rng);
     num2[v] = u(rng);
     shut[v] = v % 29 == 0;
+    gate2[v] = u(rng);
+    shut2[v] = v % 31 == 0;
   }
   ZeroSetInput a, b;
   a.value = value;
@@ -895,9 +906,12 @@ TEST(ExtractLines, WideFaceScanGivesTheFaceByFaceOutput) {
   a.gate = gate;
   a.gate_min = -0.8f;
   a.fade = 0.1f;
+  a.shut = shut2;
   b.value = value2;
   b.test_num = num2;
   b.shut = shut;
+  b.gate = gate2;
+  b.gate_min = 0.2f;
   const ZeroSetInput both[2] = {a, b};
   const LineKind types[2] = {LineKind::kContour, LineKind::kSuggestive};
   LineScratch wide, narrow;
