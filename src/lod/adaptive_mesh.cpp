@@ -599,10 +599,6 @@ bool AdaptiveMesh::ecolLegal(uint32_t p) const {
 }
 
 namespace {
-inline bool facingOk(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
-                     const glm::vec3& ref) {
-  return facesAlong(a, b, c, ref);
-}
 inline void relink(std::array<uint32_t, 3>& nb, uint32_t from, uint32_t to) {
   for (uint32_t& x : nb)
     if (x == from) { x = to; return; }
@@ -611,7 +607,7 @@ inline void relink(std::array<uint32_t, 3>& nb, uint32_t from, uint32_t to) {
 
 bool AdaptiveMesh::flipped(uint32_t f) const {
   const auto& c = fv_[f];
-  return !facingOk(node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]], ref_normal_[f]);
+  return !facesAlong(node_pos_[c[0]], node_pos_[c[1]], node_pos_[c[2]], ref_normal_[f]);
 }
 
 // The geometry test of a split or collapse for one of the faces it keeps, with corners q
@@ -619,7 +615,7 @@ bool AdaptiveMesh::flipped(uint32_t f) const {
 // is listed in folded_ and repaired there); a collapse may turn one over where it is then
 // sub-pixel (kFoldAreaPx), and says so in *folds.
 bool AdaptiveMesh::facingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool* folds) const {
-  if (facingOk(q[0], q[1], q[2], ref_normal_[f])) return true;
+  if (facesAlong(q[0], q[1], q[2], ref_normal_[f])) return true;
   if (flipped(f)) return true;
   if (folds == nullptr || !have_view_ || !(triangleImageArea(q[0], q[1], q[2]) < kFoldAreaPx))
     return false;
@@ -650,7 +646,7 @@ glm::vec3 AdaptiveMesh::faceNormalNow(uint32_t f) const {
 }
 
 bool AdaptiveMesh::splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool& turned) const {
-  if (facingOk(q[0], q[1], q[2], ref_normal_[f])) return true;
+  if (facesAlong(q[0], q[1], q[2], ref_normal_[f])) return true;
   if (turnedOverFrom(q[0], q[1], q[2], faceNormalNow(f))) return false;
   turned = true;
   return true;
@@ -668,7 +664,7 @@ bool AdaptiveMesh::splitFacingAllowed(uint32_t f, const glm::vec3 (&q)[3], bool&
 // once it covers a pixel.
 bool AdaptiveMesh::splitNewFaceAllowed(uint32_t f, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
                                        uint32_t side0, uint32_t side1, bool& turned) const {
-  if (facingOk(a, b, c, ref_normal_[f])) return true;
+  if (facesAlong(a, b, c, ref_normal_[f])) return true;
   if (turnedOverBetween(a, b, c, faceNormalNow(side0), faceNormalNow(side1))) return false;
   turned = true;
   return true;
@@ -885,11 +881,7 @@ bool AdaptiveMesh::forceSplit(uint32_t v, bool check, bool morph, float split_ab
   // neighbourhood): undo the forced splits already made, most recent first, so the mesh is
   // unchanged, and retry this vertex only after a few frames.
   for (size_t i = chain_.size(); i-- > 0;) {
-    if (!doCollapse(chain_[i], false)) break;
-    changes_.collapsed.pop_back();
-    --stats_.collapses;
-    --stats_.splits;
-    ops_ -= 2;
+    if (!undoSplit(chain_[i])) break;
     auto it = std::find(changes_.split.rbegin(), changes_.split.rend(), chain_[i]);
     if (it != changes_.split.rend()) changes_.split.erase(std::next(it).base());
   }
@@ -1229,15 +1221,20 @@ bool AdaptiveMesh::advanceCollapse(uint32_t q, int depth) {
   return doCollapse(q, true);
 }
 
+bool AdaptiveMesh::undoSplit(uint32_t x) {
+  if (!doCollapse(x, false)) return false;
+  changes_.collapsed.pop_back();
+  --stats_.collapses;
+  --stats_.splits;
+  ops_ -= 2;
+  return true;
+}
+
 void AdaptiveMesh::undoSplitsSince(size_t mark) {
   while (changes_.split.size() > mark) {
     const uint32_t x = changes_.split.back();
-    if (!doCollapse(x, false)) break;
+    if (!undoSplit(x)) break;
     changes_.split.pop_back();
-    changes_.collapsed.pop_back();
-    --stats_.collapses;
-    --stats_.splits;
-    ops_ -= 2;
     retry_frame_[x] = frame_ + kRetryFrames;
   }
 }

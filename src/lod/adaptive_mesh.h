@@ -245,6 +245,10 @@ class AdaptiveMesh {
   /// listed yet (after a collapse that folded one, or a split that left one so).
   void listFlipped(std::span<const uint32_t> faces);
   void repairFolds();
+  /// Collapses x, the last split made, as if it had not been made (its collapse leaves no
+  /// record in changes_ or the counts; the caller drops x from changes_.split). False when
+  /// the collapse cannot be made.
+  bool undoSplit(uint32_t x);
   /// Collapses the splits recorded in changes_.split from index `mark` on, newest first, as
   /// if they had not been made this frame, and lets each wait kRetryFrames.
   void undoSplitsSince(size_t mark);

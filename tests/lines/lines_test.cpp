@@ -639,17 +639,28 @@ TEST(ZeroSet, CrossingsSharedExactlyAndAllContoursClosed) {
   }
 }
 
+// The zero-set tests' surface: the grid of makeGrid(2, n) (the square [−1, 1]² in x and z, at
+// y = 0) with its adjacency, and per-vertex fields given as functions of the position.
+struct Grid {
+  TriMesh mesh;
+  MeshAdjacency adj;
+  explicit Grid(int n) : mesh(makeGrid(2.0f, n)) { buildAdjacency(mesh, adj); }
+  template <class F>
+  std::vector<float> field(F f) const {
+    std::vector<float> out(mesh.vertexCount());
+    for (size_t v = 0; v < out.size(); ++v) out[v] = f(mesh.positions[v]);
+    return out;
+  }
+};
+
 TEST(ZeroSet, TestSplitsSegmentsInsideFaces) {
   // value = x (line x = 0 across the grid), test num = z: keep only the z > 0 half; the cut
   // point inside a face gets an id ≥ edgeCount.
-  const TriMesh g = makeGrid(2.0f, 7);
-  MeshAdjacency adj;
-  buildAdjacency(g, adj);
-  std::vector<float> value(g.vertexCount()), num(g.vertexCount());
-  for (size_t v = 0; v < g.vertexCount(); ++v) {
-    value[v] = g.positions[v].x - 0.01f;
-    num[v] = g.positions[v].z - 0.05f;
-  }
+  const Grid grid(7);
+  const TriMesh& g = grid.mesh;
+  const MeshAdjacency& adj = grid.adj;
+  const std::vector<float> value = grid.field([](const glm::vec3& p) { return p.x - 0.01f; });
+  const std::vector<float> num = grid.field([](const glm::vec3& p) { return p.z - 0.05f; });
   ZeroSetInput in;
   in.value = value;
   in.test_num = num;
@@ -683,14 +694,12 @@ TEST(ZeroSet, TestSplitsSegmentsInsideFaces) {
 // A per-vertex gain (the suggestive contours' motion fade) scales the alpha, interpolated
 // along the edges like the test: gain = 1 − x on the grid halves the alpha on the line x = ½.
 TEST(ZeroSet, GainScalesTheAlpha) {
-  const TriMesh g = makeGrid(2.0f, 9);
-  MeshAdjacency adj;
-  buildAdjacency(g, adj);
-  std::vector<float> value(g.vertexCount()), num(g.vertexCount(), 1.0f), gain(g.vertexCount());
-  for (size_t v = 0; v < g.vertexCount(); ++v) {
-    value[v] = g.positions[v].x - 0.5f;
-    gain[v] = std::clamp(1.0f - g.positions[v].x, 0.0f, 1.0f);
-  }
+  const Grid grid(9);
+  const TriMesh& g = grid.mesh;
+  const MeshAdjacency& adj = grid.adj;
+  const std::vector<float> value = grid.field([](const glm::vec3& p) { return p.x - 0.5f; });
+  const std::vector<float> num = grid.field([](const glm::vec3&) { return 1.0f; });
+  const std::vector<float> gain = grid.field([](const glm::vec3& p) { return std::clamp(1.0f - p.x, 0.0f, 1.0f); });
   ZeroSetInput in;
   in.value = value;
   in.test_num = num;
@@ -714,14 +723,12 @@ TEST(ZeroSet, GainScalesTheAlpha) {
 // dropping the faces with a corner below would end it at 0.111) to the far side, in one
 // stroke. With a test and without one; the gate alone cuts (the test passes everywhere).
 TEST(ZeroSet, AGateCutsTheLineWhereItCrossesItsMinimum) {
-  const TriMesh g = makeGrid(2.0f, 9);
-  MeshAdjacency adj;
-  buildAdjacency(g, adj);
-  std::vector<float> value(g.vertexCount()), num(g.vertexCount(), 1.0f), gate(g.vertexCount());
-  for (size_t v = 0; v < g.vertexCount(); ++v) {
-    value[v] = g.positions[v].x - 0.05f;
-    gate[v] = g.positions[v].z - 0.1f;
-  }
+  const Grid grid(9);
+  const TriMesh& g = grid.mesh;
+  const MeshAdjacency& adj = grid.adj;
+  const std::vector<float> value = grid.field([](const glm::vec3& p) { return p.x - 0.05f; });
+  const std::vector<float> num = grid.field([](const glm::vec3&) { return 1.0f; });
+  const std::vector<float> gate = grid.field([](const glm::vec3& p) { return p.z - 0.1f; });
   for (const bool with_test : {true, false}) {
     SCOPED_TRACE(with_test ? "with a test" : "without a test");
     ZeroSetInput in;
