@@ -113,21 +113,27 @@ inline int liveOf(int c0, int c1, int c2) {
   return (any & ~all & kSignBits) & ((any & kPassBits) >> 1) & (~(any & kShutBits) >> 2) & (~(all & kLowBits) >> 3);
 }
 
-// Appends to `cand` the faces of [begin, end) with a line (liveOf != 0; a face marked invalid
-// has none and reads no code), in increasing order, and to `codes` their corner codes
-// (c0 | c1 << 8 | c2 << 16); returns how many.
-size_t liveFacesScalar(const std::array<uint32_t, 3>* tri, const uint8_t* valid, const uint8_t* code, size_t begin,
-                       size_t end, uint32_t* cand, uint32_t* codes) {
-  size_t n = 0;
+// Appends to cand[k] the faces of [begin, end) with a line of zero set k (bit kCodeBits·k of
+// liveOf; a face marked invalid has none and reads no code), in increasing order, and to
+// codes[k] their corner codes (c0 | c1 << 8 | c2 << 16); n[k] counts them. One list per zero
+// set, so the segment pass runs one zero set's faces in a row: whether a face has a contour, a
+// suggestive contour or both is as good as random, and a branch on it per face mispredicts.
+void liveFacesScalar(const std::array<uint32_t, 3>* tri, const uint8_t* valid, const uint8_t* code, size_t begin,
+                     size_t end, uint32_t* const* cand, uint32_t* const* codes, size_t* n) {
+  size_t n0 = n[0], n1 = n[1];
   for (size_t f = begin; f < end; ++f) {
     const auto& t = tri[f];
     const bool ok = valid[f];
     const int c0 = ok ? code[t[0]] : 0, c1 = ok ? code[t[1]] : 0, c2 = ok ? code[t[2]] : 0;
-    cand[n] = static_cast<uint32_t>(f);
-    codes[n] = static_cast<uint32_t>(c0 | (c1 << 8) | (c2 << 16));
-    n += liveOf(c0, c1, c2) != 0;
+    const uint32_t packed = static_cast<uint32_t>(c0 | (c1 << 8) | (c2 << 16));
+    const int live = liveOf(c0, c1, c2);
+    cand[0][n0] = cand[1][n1] = static_cast<uint32_t>(f);
+    codes[0][n0] = codes[1][n1] = packed;
+    n0 += live & 1;
+    n1 += (live >> kCodeBits) & 1;
   }
-  return n;
+  n[0] = n0;
+  n[1] = n1;
 }
 
 #ifdef LODLINE_FACE_SCAN_AVX512
@@ -139,9 +145,9 @@ size_t liveFacesScalar(const std::array<uint32_t, 3>* tri, const uint8_t* valid,
 // (GCC 12's AVX-512 headers set off -Wmaybe-uninitialized inside their own intrinsics.)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-[[gnu::target("avx512f")]] size_t liveFacesAvx512(const std::array<uint32_t, 3>* tri, const uint8_t* valid,
-                                                  const uint8_t* code, size_t begin, size_t end, uint32_t* cand,
-                                                  uint32_t* codes) {
+[[gnu::target("avx512f")]] void liveFacesAvx512(const std::array<uint32_t, 3>* tri, const uint8_t* valid,
+                                                const uint8_t* code, size_t begin, size_t end, uint32_t* const* cand,
+                                                uint32_t* const* codes, size_t* n) {
   // Corner j of the faces 0..15 of a block lies at 3·i + j of its 48 indices: lanes from the
   // first two vectors (indices 0..31), then the rest from the third (index − 32).
   const __m512i take0 = _mm512_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0, 0, 0, 0);
@@ -155,7 +161,8 @@ size_t liveFacesScalar(const std::array<uint32_t, 3>* tri, const uint8_t* valid,
   const __m512i sign = _mm512_set1_epi32(kSignBits), pass = _mm512_set1_epi32(kPassBits),
                 shut = _mm512_set1_epi32(kShutBits), low = _mm512_set1_epi32(kLowBits);
   const __m512i zero = _mm512_setzero_si512();
-  size_t n = 0, f = begin;
+  const __m512i bit0 = _mm512_set1_epi32(1), bit1 = _mm512_set1_epi32(1 << kCodeBits);
+  size_t n0 = n[0], n1 = n[1], f = begin;
   for (; f + 16 <= end; f += 16) {
     const uint32_t* t = tri[f].data();
     const __m512i a = _mm512_loadu_si512(t), b = _mm512_loadu_si512(t + 16), c = _mm512_loadu_si512(t + 32);
@@ -176,14 +183,19 @@ size_t liveFacesScalar(const std::array<uint32_t, 3>* tri, const uint8_t* valid,
     live = _mm512_and_si512(live, _mm512_srli_epi32(_mm512_and_si512(any, pass), 1));
     live = _mm512_andnot_si512(_mm512_srli_epi32(_mm512_and_si512(any, shut), 2), live);
     live = _mm512_andnot_si512(_mm512_srli_epi32(_mm512_and_si512(all, low), 3), live);
-    const __mmask16 has = _mm512_test_epi32_mask(live, live);
-    _mm512_mask_compressstoreu_epi32(cand + n, has,
-                                     _mm512_add_epi32(lane, _mm512_set1_epi32(static_cast<int>(f))));
+    const __mmask16 has0 = _mm512_test_epi32_mask(live, bit0), has1 = _mm512_test_epi32_mask(live, bit1);
+    const __m512i faces = _mm512_add_epi32(lane, _mm512_set1_epi32(static_cast<int>(f)));
     const __m512i packed = _mm512_or_si512(c0, _mm512_or_si512(_mm512_slli_epi32(c1, 8), _mm512_slli_epi32(c2, 16)));
-    _mm512_mask_compressstoreu_epi32(codes + n, has, packed);
-    n += static_cast<size_t>(__builtin_popcount(has));
+    _mm512_mask_compressstoreu_epi32(cand[0] + n0, has0, faces);
+    _mm512_mask_compressstoreu_epi32(codes[0] + n0, has0, packed);
+    _mm512_mask_compressstoreu_epi32(cand[1] + n1, has1, faces);
+    _mm512_mask_compressstoreu_epi32(codes[1] + n1, has1, packed);
+    n0 += static_cast<size_t>(__builtin_popcount(has0));
+    n1 += static_cast<size_t>(__builtin_popcount(has1));
   }
-  return n + liveFacesScalar(tri, valid, code, f, end, cand + n, codes + n);
+  n[0] = n0;
+  n[1] = n1;
+  liveFacesScalar(tri, valid, code, f, end, cand, codes, n);
 }
 #pragma GCC diagnostic pop
 #endif
@@ -339,33 +351,36 @@ void extractZeroSets(std::span<const glm::vec3> positions, std::span<const std::
   // pass per zero set over all faces.
   const uint8_t* valid = adj.face_valid.data();
   const std::array<uint32_t, 3>* tri = faces.data();
-  // The faces with a line, and their corners' codes (liveOf: per zero set k, bit 4k).
-  size_t (*live_faces)(const std::array<uint32_t, 3>*, const uint8_t*, const uint8_t*, size_t, size_t, uint32_t*,
-                       uint32_t*) = liveFacesScalar;
+  // The faces with a line, per zero set, and their corners' codes (liveFacesScalar).
+  void (*live_faces)(const std::array<uint32_t, 3>*, const uint8_t*, const uint8_t*, size_t, size_t,
+                     uint32_t* const*, uint32_t* const*, size_t*) = liveFacesScalar;
 #ifdef LODLINE_FACE_SCAN_AVX512
   if (scratch.wide_face_scan && __builtin_cpu_supports("avx512f")) live_faces = liveFacesAvx512;
 #endif
   auto faces_pass = [&](size_t begin, size_t end, LineSet* const* dst, uint32_t* interior) {
     // In chunks: first the faces with a line (few, one well-predicted branch for the rest),
-    // then those, each one's edge record fetched a few faces ahead — the candidates are far
-    // apart, so each would otherwise wait for its own cache miss.
+    // then those, one zero set after the other, each one's edge record fetched a few faces
+    // ahead — the candidates are far apart, so each would otherwise wait for its own cache
+    // miss. Each zero set's segments go to its own set, in face order, as before.
     constexpr size_t kChunk = 512, kAhead = 8;
-    uint32_t cand[kChunk], cand_codes[kChunk];
+    uint32_t cand0[kChunk], cand1[kChunk], codes0[kChunk], codes1[kChunk];
+    uint32_t* const cand[2] = {cand0, cand1};
+    uint32_t* const cand_codes[2] = {codes0, codes1};
     for (size_t base = begin; base < end; base += kChunk) {
       const size_t stop = std::min(end, base + kChunk);
-      const size_t n = live_faces(tri, valid, code, base, stop, cand, cand_codes);
-      for (size_t j = 0; j < n; ++j) {
-        if (j + kAhead < n) __builtin_prefetch(&adj.face_edges[cand[j + kAhead]]);
-        const uint32_t f = cand[j];
-        const uint32_t cc = cand_codes[j];
-        const int c0 = static_cast<int>(cc & 0xff), c1 = static_cast<int>((cc >> 8) & 0xff),
-                  c2 = static_cast<int>(cc >> 16);
-        const int live = liveOf(c0, c1, c2);
-        for (size_t k = 0; k < count; ++k) {
-          if (!(live & (1 << (kCodeBits * k)))) continue;
-          const int shift = kCodeBits * static_cast<int>(k);
-          const uint8_t ck[3] = {static_cast<uint8_t>(c0 >> shift), static_cast<uint8_t>(c1 >> shift),
-                                 static_cast<uint8_t>(c2 >> shift)};
+      size_t n[2] = {0, 0};
+      live_faces(tri, valid, code, base, stop, cand, cand_codes, n);
+      for (size_t k = 0; k < count; ++k) {
+        const int shift = kCodeBits * static_cast<int>(k);
+        const uint32_t* ck_faces = cand[k];
+        const uint32_t* ck_codes = cand_codes[k];
+        for (size_t j = 0; j < n[k]; ++j) {
+          if (j + kAhead < n[k]) __builtin_prefetch(&adj.face_edges[ck_faces[j + kAhead]]);
+          const uint32_t f = ck_faces[j];
+          const uint32_t cc = ck_codes[j];
+          const uint8_t ck[3] = {static_cast<uint8_t>((cc & 0xff) >> shift),
+                                 static_cast<uint8_t>(((cc >> 8) & 0xff) >> shift),
+                                 static_cast<uint8_t>((cc >> 16) >> shift)};
           faceSegments(positions, tri[f], adj.face_edges[f], f, ck, *in[k], has_test[k], has_den[k], has_gain[k],
                        type[k], *dst[k], static_cast<uint32_t>(ne), interior[k]);
         }
