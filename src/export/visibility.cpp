@@ -136,6 +136,38 @@ class RunBuilder {
   uint32_t samples_ = 0;
 };
 
+// One sample of a stroke and what the depth test found there.
+enum SampleState : uint8_t { kOutside, kVisible, kHidden };
+struct Sample {
+  glm::vec2 px;
+  glm::vec3 p;
+  float alpha;
+  bool is_vertex;
+  SampleState state;
+};
+
+// Hides every visible stretch of `samples` that has hidden samples on both sides and spans
+// less than `min_px` pixels.
+void hideBlips(std::vector<Sample>& samples, float min_px) {
+  const size_t n = samples.size();
+  size_t i = 0;
+  while (i < n) {
+    if (samples[i].state != kVisible) {
+      ++i;
+      continue;
+    }
+    size_t j = i + 1;
+    float length = 0.0f;
+    while (j < n && samples[j].state == kVisible) {
+      length += glm::length(samples[j].px - samples[j - 1].px);
+      ++j;
+    }
+    if (i > 0 && samples[i - 1].state == kHidden && j < n && samples[j].state == kHidden && length < min_px)
+      for (size_t k = i; k < j; ++k) samples[k].state = kHidden;
+    i = j;
+  }
+}
+
 }  // namespace
 
 void splitStrokes(const StrokeSet& strokes, const Camera& camera, const DepthImage& depth,
@@ -144,28 +176,22 @@ void splitStrokes(const StrokeSet& strokes, const Camera& camera, const DepthIma
   if (hidden) hidden->clear();
   const PixelProjector proj(camera, depth.width, depth.height);
   const float spacing = std::max(params.sample_spacing_px, 0.05f);
+  std::vector<Sample> samples;
   for (size_t s = 0; s < strokes.strokeCount(); ++s) {
     const uint32_t begin = strokes.offsets[s], end = strokes.offsets[s + 1];
     RunBuilder vis(visible, strokes.kinds[s], static_cast<uint32_t>(s));
     RunBuilder hid(hidden, strokes.kinds[s], static_cast<uint32_t>(s));
+    // The stroke's samples are tested first, then the short visible stretches between hidden
+    // ones hidden (VisibilityParams::min_visible_between_hidden_px), then the runs built.
+    samples.clear();
     float slack = 0.0f;  // of the current segment
     auto add_sample = [&](glm::vec3 p, float alpha, bool is_vertex) {
-      glm::vec2 px;
+      Sample x{glm::vec2(0.0f), p, alpha, is_vertex, kOutside};
       float z = 0.0f;
-      const bool inside = proj.project(p, px, z) && px.x >= 0.0f && px.y >= 0.0f &&
-                          px.x < static_cast<float>(depth.width) && px.y < static_cast<float>(depth.height);
-      if (!inside) {
-        vis.close();
-        hid.close();
-        return;
-      }
-      if (visibleAt(proj, depth, px, z, params, slack)) {
-        hid.close();
-        vis.add(px, p, alpha, is_vertex);
-      } else {
-        vis.close();
-        hid.add(px, p, alpha, is_vertex);
-      }
+      const bool inside = proj.project(p, x.px, z) && x.px.x >= 0.0f && x.px.y >= 0.0f &&
+                          x.px.x < static_cast<float>(depth.width) && x.px.y < static_cast<float>(depth.height);
+      if (inside) x.state = visibleAt(proj, depth, x.px, z, params, slack) ? kVisible : kHidden;
+      samples.push_back(x);
     };
     for (uint32_t i = begin; i + 1 < end; ++i) {
       const glm::vec3 a = strokes.points[i], b = strokes.points[i + 1];
@@ -185,6 +211,19 @@ void splitStrokes(const StrokeSet& strokes, const Camera& camera, const DepthIma
       }
     }
     if (end > begin) add_sample(strokes.points[end - 1], strokes.alpha[end - 1], true);
+    if (params.min_visible_between_hidden_px > 0.0f) hideBlips(samples, params.min_visible_between_hidden_px);
+    for (const Sample& x : samples) {
+      if (x.state == kOutside) {
+        vis.close();
+        hid.close();
+      } else if (x.state == kVisible) {
+        hid.close();
+        vis.add(x.px, x.p, x.alpha, x.is_vertex);
+      } else {
+        vis.close();
+        hid.add(x.px, x.p, x.alpha, x.is_vertex);
+      }
+    }
     vis.close();
     hid.close();
   }

@@ -41,6 +41,12 @@ struct VisibilityParams {
   /// uneven edges (a CAD part's long slivers) half a long edge's length let hidden contour
   /// show through (the turbine's notch in models/machine.json; docs/visibility.md).
   float segment_tolerance_cap = 0.0f;
+  /// A visible stretch of a stroke shorter than this (px), with hidden samples of the same
+  /// stroke on both sides, is hidden. A hidden line that passes within a pixel of the outline
+  /// sees the background in its neighbourhood there, which counts as nothing in front: the
+  /// far contour of the bunny's ear showed as dots of ink along the near one's outline
+  /// (docs/visibility.md). Default 2.5 (under a speck, kSpeckLengthPx); 0: off.
+  float min_visible_between_hidden_px = 2.5f;
 };
 
 /// Runs of strokes in pixels: the visible (or the hidden) parts of a StrokeSet. A run's

@@ -299,7 +299,11 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
   const int W = depth.width, H = depth.height;
   const PixelProjector proj(camera, W, H);
   StrokeRuns& sil = scratch.silhouette;
-  splitStrokes(silhouette, camera, depth, visibility, &sil, nullptr);
+  // Every visible bit of the silhouette, however short: a bit between hidden stretches can
+  // be where the outline turns the corner of an occluder (VisibilityParams).
+  VisibilityParams sil_visibility = visibility;
+  sil_visibility.min_visible_between_hidden_px = 0.0f;
+  splitStrokes(silhouette, camera, depth, sil_visibility, &sil, nullptr);
   std::vector<Sample> samples;
 
   // 1. The outline: visible silhouette samples on a depth discontinuity.

@@ -115,6 +115,47 @@ TEST(Visibility, ASurfaceWithinOneSegmentIsTheLinesOwnNeighbourhood) {
   EXPECT_EQ(none.strokeCount(), 0u);
 }
 
+// A hidden line that passes within a pixel of an outline sees the background in its 3×3
+// neighbourhood there. Its short visible bits between hidden stretches were drawn as dots of
+// ink along the outline (the far contour of the bunny's ear); they are hidden now, while a
+// longer visible stretch, and a short one at the stroke's end, stay.
+TEST(Visibility, ShortVisibleBitsBetweenHiddenStretchesAreHidden) {
+  const Camera cam = testCamera();
+  DepthImage d = flat(100, 100, 1.0f);  // a wall at depth 5 left of x = 50 px, background right
+  const float wall = windowDepth(cam, 5.0f);
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 50; ++x) d.depth[static_cast<size_t>(y) * 100 + x] = wall;
+  // A suggestive line (no slack) at depth 8 running down the wall's edge, at x = 46.5 px
+  // (hidden: its neighbourhood is wall) and now and then at 49.5 px (background beside it).
+  const float z = 8.0f, px_per_unit = 50.0f / std::tan(glm::radians(30.0f)) / z;
+  auto at = [&](float px, float py) { return glm::vec3((px - 50.0f) / px_per_unit, (50.0f - py) / px_per_unit, -z); };
+  StrokeSet s;
+  for (int py = 10; py <= 90; ++py) {
+    const bool blip = py == 20 || py == 21 || py == 30 || py == 31 || py == 40 || py == 41;  // 1 px long
+    const bool stretch = py >= 55 && py <= 65;                                             // 10 px long
+    const bool end = py >= 89;                                                             // at the end
+    s.points.push_back(at(blip || stretch || end ? 49.5f : 46.5f, static_cast<float>(py)));
+    s.alpha.push_back(1);
+  }
+  s.offsets = {0, static_cast<uint32_t>(s.points.size())};
+  s.kinds = {LineKind::kSuggestive};
+  s.closed = {0};
+  VisibilityParams off;
+  off.min_visible_between_hidden_px = 0.0f;
+  StrokeRuns before, after;
+  visibleStrokes(s, cam, d, off, before);
+  visibleStrokes(s, cam, d, {}, after);
+  EXPECT_EQ(before.strokeCount(), 5u);  // three dots, the stretch and the end
+  ASSERT_EQ(after.strokeCount(), 2u);
+  EXPECT_NEAR(after.length_px[0], 10.0f, 1.0f);
+  EXPECT_NEAR(after.points[after.offsets[0]].y, 55.0f, 1.0f);
+  EXPECT_NEAR(after.points[after.offsets[1]].y, 89.0f, 1.0f);
+  // What is hidden goes to the hidden runs: the dots join the hidden stretches around them.
+  StrokeRuns vis, hid;
+  splitStrokes(s, cam, d, {}, &vis, &hid);
+  EXPECT_EQ(hid.strokeCount(), 2u);  // before the stretch and between it and the end
+}
+
 // A long segment among short ones (a CAD part's sliver) gets the slack of the mesh's typical
 // edge, not half its own length: behind a wall 0.2 units in front of it, a 2-unit segment is
 // visible with no cap and hidden with a cap of 0.2 (slack 0.1).
