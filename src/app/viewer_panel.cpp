@@ -167,6 +167,7 @@ void strokeFieldsSection(ViewerSession& s, PanelState& st) {
                                 ImGuiSliderFlags_Logarithmic);
   changed |= ImGui::InputScalar("seed", ImGuiDataType_U32, &f.seed);
   changed |= ImGui::SliderFloat("min length (px)", &f.min_length_px, 0.0f, 64.0f, "%.1f");
+  changed |= ImGui::SliderFloat("smoothing (px)", &f.smoothing_px, 0.0f, 16.0f, "%.1f");
   // The brush: none or a built-in one; a brush read from a file is kept until another is
   // picked.
   const bool from_file = !f.brush_path.empty() && !parseBrushKind(f.brush_path);

@@ -53,6 +53,12 @@ struct StrokeStyle {
   uint32_t seed = 1;
   /// Visible runs shorter than this (px) are not drawn. Default 0: all.
   float min_length_px = 0.0f;
+  /// Standard deviation (px of arc length) of the Gaussian that smooths each visible and
+  /// hidden run in the image before it is drawn, measured and written (corners over 50° and
+  /// the ends stay): on a coarse mesh the zero crossings zig-zag from face to face by a pixel
+  /// or so, and the zig-zag shifts as the mesh adapts (docs/strokes.md, "Smoothing").
+  /// In [0, 16]. Default 3; 0: the runs as found.
+  float smoothing_px = 3.0f;
   /// A greyscale brush (its red channel: 255 = full ink, 0 = none) tiled along the stroke
   /// every `brush_period_px` px of arc length and stretched across its width. Default none.
   std::shared_ptr<const Image> brush;

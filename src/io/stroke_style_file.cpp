@@ -140,6 +140,7 @@ Status readKind(const nlohmann::json& j, const std::filesystem::path& base, cons
         return Error::runtime(where + ".seed: expected an integer in [0, 4294967295]");
       s.seed = static_cast<uint32_t>(v.get<uint64_t>());
     } else if (key == "min_length") st = number(key, v, 0, 1e5f, s.min_length_px);
+    else if (key == "smoothing") st = number(key, v, 0, 16, s.smoothing_px);
     else if (key == "brush_period") st = number(key, v, 4, 1024, s.brush_period_px);
     else if (key == "brush") {
       if (!v.is_string()) return Error::runtime(where + ".brush: expected a PNG path, \"pencil\", \"marker\" or \"none\"");
@@ -338,6 +339,7 @@ nlohmann::json strokeStyleJson(const LineStyles& lines, const std::filesystem::p
     o["jitter_period"] = shortest(s.jitter_period_px);
     o["seed"] = s.seed;
     o["min_length"] = shortest(s.min_length_px);
+    o["smoothing"] = shortest(s.smoothing_px);
     std::string brush = "none";
     if (!s.brush_path.empty())
       brush = parseBrushKind(s.brush_path) ? s.brush_path

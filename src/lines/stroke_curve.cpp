@@ -169,6 +169,84 @@ size_t reachFrom(const std::vector<float>& arc, size_t i, float reach, int dir) 
   return j;
 }
 
+// The corners of the polyline p (arc length `arc`): its two ends and every point where it
+// turns by more than corner_deg over corner_reach_px, the sharpest of a cluster.
+void findCorners(const std::vector<glm::vec2>& p, const std::vector<float>& arc, const StrokeCurveParams& params,
+                 std::vector<size_t>& corners) {
+  const size_t n = p.size();
+  corners.assign(1, 0);
+  const float cos_limit = std::cos(params.corner_deg * kPi / 180.0f);
+  const float reach = std::max(params.corner_reach_px, 1e-3f);
+  float best_cos = 2.0f;
+  size_t best = 0;
+  for (size_t i = 1; i + 1 < n; ++i) {
+    const size_t a = reachFrom(arc, i, reach, -1), b = reachFrom(arc, i, reach, 1);
+    const glm::vec2 d1 = safeNormalize(p[i] - p[a], glm::vec2(1, 0));
+    const glm::vec2 d2 = safeNormalize(p[b] - p[i], d1);
+    const float c = glm::dot(d1, d2);
+    if (c < cos_limit) {
+      if (best == 0 || arc[i] - arc[best] > reach) {
+        if (best != 0) corners.push_back(best);
+        best = i;
+        best_cos = c;
+      } else if (c < best_cos) {
+        best = i;
+        best_cos = c;
+      }
+    }
+  }
+  if (best != 0) corners.push_back(best);
+  corners.push_back(n - 1);
+}
+
+// The section p[c0..c1] resampled at spacing_px of arc length (both ends exact) into
+// sc.samples and smoothed into sc.smooth (m + 1 samples each; returns m).
+int smoothSection(const std::vector<glm::vec2>& p, const std::vector<float>& arc, size_t c0, size_t c1,
+                  const StrokeCurveParams& params, StrokeCurveScratch& sc) {
+  const float len = arc[c1] - arc[c0];
+  const float spacing = std::max(params.spacing_px, 0.05f);
+  // Resample the section at a fixed arc-length spacing, both ends exact.
+  const int m = std::max(1, static_cast<int>(std::ceil(len / spacing)));
+  sc.samples.clear();
+  size_t seg = c0;
+  for (int j = 0; j <= m; ++j) {
+    const float s = arc[c0] + len * static_cast<float>(j) / static_cast<float>(m);
+    while (seg + 1 < c1 && arc[seg + 1] < s) ++seg;
+    const float l = arc[seg + 1] - arc[seg];
+    const float t = l > 0.0f ? std::clamp((s - arc[seg]) / l, 0.0f, 1.0f) : 0.0f;
+    sc.samples.push_back(p[seg] + t * (p[seg + 1] - p[seg]));
+  }
+  sc.samples.front() = p[c0];
+  sc.samples.back() = p[c1];
+  // Gaussian along the arc. Beyond an end the section is continued by its point
+  // reflection through that end (2·end − mirror sample), so the end stays fixed, a straight
+  // or evenly curving end is undisturbed, and the zig-zag is smoothed up to the end.
+  const float sigma = params.smoothing_px / (len / static_cast<float>(m));
+  sc.smooth = sc.samples;
+  if (sigma > 1e-3f && m >= 2) {
+    const int half = std::min(static_cast<int>(std::ceil(3.0f * sigma)), m);
+    sc.params.resize(static_cast<size_t>(half) + 1);  // the Gaussian's weights, reused as scratch
+    for (int o = 0; o <= half; ++o)
+      sc.params[static_cast<size_t>(o)] = std::exp(-0.5f * static_cast<float>(o * o) / (sigma * sigma));
+    auto at = [&](int j) -> glm::vec2 {
+      if (j < 0) return 2.0f * sc.samples.front() - sc.samples[static_cast<size_t>(-j)];
+      if (j > m) return 2.0f * sc.samples.back() - sc.samples[static_cast<size_t>(2 * m - j)];
+      return sc.samples[static_cast<size_t>(j)];
+    };
+    for (int j = 1; j < m; ++j) {
+      glm::vec2 acc(0.0f);
+      float wsum = 0.0f;
+      for (int o = -half; o <= half; ++o) {
+        const float g = sc.params[static_cast<size_t>(o < 0 ? -o : o)];
+        acc += g * at(j + o);
+        wsum += g;
+      }
+      sc.smooth[static_cast<size_t>(j)] = acc / wsum;
+    }
+  }
+  return m;
+}
+
 }  // namespace
 
 bool isStraightSegment(const glm::vec2* p) {
@@ -193,73 +271,14 @@ size_t fitStrokeCurve(std::span<const glm::vec2> polyline, const StrokeCurvePara
   sc.arc.assign(n, 0.0f);
   for (size_t i = 1; i < n; ++i) sc.arc[i] = sc.arc[i - 1] + glm::length(sc.clean[i] - sc.clean[i - 1]);
 
-  // Corners: turns sharper than corner_deg over corner_reach_px, the sharpest of a cluster.
-  sc.corners.assign(1, 0);
-  const float cos_limit = std::cos(params.corner_deg * kPi / 180.0f);
-  const float reach = std::max(params.corner_reach_px, 1e-3f);
-  float best_cos = 2.0f;
-  size_t best = 0;
-  for (size_t i = 1; i + 1 < n; ++i) {
-    const size_t a = reachFrom(sc.arc, i, reach, -1), b = reachFrom(sc.arc, i, reach, 1);
-    const glm::vec2 d1 = safeNormalize(sc.clean[i] - sc.clean[a], glm::vec2(1, 0));
-    const glm::vec2 d2 = safeNormalize(sc.clean[b] - sc.clean[i], d1);
-    const float c = glm::dot(d1, d2);
-    if (c < cos_limit) {
-      if (best == 0 || sc.arc[i] - sc.arc[best] > reach) {
-        if (best != 0) sc.corners.push_back(best);
-        best = i;
-        best_cos = c;
-      } else if (c < best_cos) {
-        best = i;
-        best_cos = c;
-      }
-    }
-  }
-  if (best != 0) sc.corners.push_back(best);
-  sc.corners.push_back(n - 1);
+  findCorners(sc.clean, sc.arc, params, sc.corners);
 
   out.push_back(sc.clean.front());
   size_t segments = 0;
   const float spacing = std::max(params.spacing_px, 0.05f);
   for (size_t k = 0; k + 1 < sc.corners.size(); ++k) {
     const size_t c0 = sc.corners[k], c1 = sc.corners[k + 1];
-    const float len = sc.arc[c1] - sc.arc[c0];
-    // Resample the section at a fixed arc-length spacing, both ends exact.
-    const int m = std::max(1, static_cast<int>(std::ceil(len / spacing)));
-    sc.samples.clear();
-    size_t seg = c0;
-    for (int j = 0; j <= m; ++j) {
-      const float s = sc.arc[c0] + len * static_cast<float>(j) / static_cast<float>(m);
-      while (seg + 1 < c1 && sc.arc[seg + 1] < s) ++seg;
-      const float l = sc.arc[seg + 1] - sc.arc[seg];
-      const float t = l > 0.0f ? std::clamp((s - sc.arc[seg]) / l, 0.0f, 1.0f) : 0.0f;
-      sc.samples.push_back(sc.clean[seg] + t * (sc.clean[seg + 1] - sc.clean[seg]));
-    }
-    sc.samples.front() = sc.clean[c0];
-    sc.samples.back() = sc.clean[c1];
-    // Gaussian along the arc. Beyond an end the section is continued by its point
-    // reflection through that end (2·end − mirror sample), so the end stays fixed, a straight
-    // or evenly curving end is undisturbed, and the zig-zag is smoothed up to the end.
-    const float sigma = params.smoothing_px / (len / static_cast<float>(m));
-    sc.smooth = sc.samples;
-    if (sigma > 1e-3f && m >= 2) {
-      const int half = std::min(static_cast<int>(std::ceil(3.0f * sigma)), m);
-      auto at = [&](int j) -> glm::vec2 {
-        if (j < 0) return 2.0f * sc.samples.front() - sc.samples[static_cast<size_t>(-j)];
-        if (j > m) return 2.0f * sc.samples.back() - sc.samples[static_cast<size_t>(2 * m - j)];
-        return sc.samples[static_cast<size_t>(j)];
-      };
-      for (int j = 1; j < m; ++j) {
-        glm::vec2 acc(0.0f);
-        float wsum = 0.0f;
-        for (int o = -half; o <= half; ++o) {
-          const float g = std::exp(-0.5f * static_cast<float>(o * o) / (sigma * sigma));
-          acc += g * at(j + o);
-          wsum += g;
-        }
-        sc.smooth[static_cast<size_t>(j)] = acc / wsum;
-      }
-    }
+    smoothSection(sc.clean, sc.arc, c0, c1, params, sc);
     // End tangents, second-order one-sided differences over the smoothing scale (a plain
     // chord to a point a few px in would tilt a long arm by a pixel on a gentle arc; a
     // shorter base would follow what is left of the zig-zag).
@@ -279,6 +298,30 @@ size_t fitStrokeCurve(std::span<const glm::vec2> polyline, const StrokeCurvePara
     segments += fitter.fit(0, last, t1, t2);
   }
   return segments;
+}
+
+void smoothPolyline(std::span<glm::vec2> points, const StrokeCurveParams& params, StrokeCurveScratch& sc) {
+  const size_t n = points.size();
+  if (n < 3 || !(params.smoothing_px > 0.0f)) return;
+  for (const glm::vec2& p : points)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return;
+  sc.clean.assign(points.begin(), points.end());
+  sc.arc.assign(n, 0.0f);
+  for (size_t i = 1; i < n; ++i) sc.arc[i] = sc.arc[i - 1] + glm::length(sc.clean[i] - sc.clean[i - 1]);
+  findCorners(sc.clean, sc.arc, params, sc.corners);
+  for (size_t k = 0; k + 1 < sc.corners.size(); ++k) {
+    const size_t c0 = sc.corners[k], c1 = sc.corners[k + 1];
+    const float len = sc.arc[c1] - sc.arc[c0];
+    if (c1 <= c0 + 1 || !(len > 0.0f)) continue;
+    const int m = smoothSection(sc.clean, sc.arc, c0, c1, params, sc);
+    // Each point between the corners onto the smoothed curve at its own arc length.
+    for (size_t i = c0 + 1; i < c1; ++i) {
+      const float x = std::clamp((sc.arc[i] - sc.arc[c0]) / len, 0.0f, 1.0f) * static_cast<float>(m);
+      const int j = std::min(static_cast<int>(x), m - 1);
+      const float t = x - static_cast<float>(j);
+      points[i] = sc.smooth[static_cast<size_t>(j)] + t * (sc.smooth[static_cast<size_t>(j) + 1] - sc.smooth[static_cast<size_t>(j)]);
+    }
+  }
 }
 
 }  // namespace lodline

@@ -53,6 +53,12 @@ struct StrokeCurveScratch {
 size_t fitStrokeCurve(std::span<const glm::vec2> polyline, const StrokeCurveParams& params,
                       std::vector<glm::vec2>& out, StrokeCurveScratch& scratch);
 
+/// Moves each point of `polyline` (pixels) onto fitStrokeCurve()'s smoothed curve at the
+/// point's own arc length: the same Gaussian, corners and ends, without the fitting, so a
+/// polyline drawn point to point loses the zig-zag of its face crossings. The ends and the
+/// corners stay where they are; a polyline with a non-finite point is left as it is.
+void smoothPolyline(std::span<glm::vec2> polyline, const StrokeCurveParams& params, StrokeCurveScratch& scratch);
+
 /// True when the cubic p[0..3] is a straight piece as fitStrokeCurve() writes one (controls
 /// at 1/3 and 2/3 of the chord, within 1e-3 px): vector output may write it as a line.
 bool isStraightSegment(const glm::vec2* p);

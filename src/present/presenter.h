@@ -185,6 +185,7 @@ class ScenePresenter {
   bool sequence_in_motion_ = false;
   ScreenLines screen_lines_;
   ScreenLinesScratch stroke_scratch_;
+  StrokeCurveScratch curve_scratch_;  // smoothRuns()
   std::vector<StrokeParameterizer> parameterizers_;
   bool stroke_coherence_ = true;
   std::vector<StrokeFader> faders_;

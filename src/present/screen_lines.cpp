@@ -49,6 +49,19 @@ void computeBend(const std::vector<glm::vec2>& p, const std::vector<float>& s, f
 
 }  // namespace
 
+void smoothRuns(StrokeRuns& runs, const LineStyles& style, StrokeCurveScratch& scratch) {
+  StrokeCurveParams params;
+  for (size_t r = 0; r < runs.strokeCount(); ++r) {
+    params.smoothing_px = style[runs.kinds[r]].stroke.smoothing_px;
+    const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+    if (!(params.smoothing_px > 0.0f) || e < b + 3) continue;
+    smoothPolyline(std::span<glm::vec2>(runs.points.data() + b, e - b), params, scratch);
+    float length = 0.0f;
+    for (uint32_t i = b + 1; i < e; ++i) length += glm::length(runs.points[i] - runs.points[i - 1]);
+    if (r < runs.length_px.size()) runs.length_px[r] = length;
+  }
+}
+
 bool strokeProfile(const StrokeRuns& runs, size_t r, float width_px, const StrokeStyle& st, const StrokeView& view,
                    std::span<const float> u, ScreenLinesScratch& sc) {
   const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];

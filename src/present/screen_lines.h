@@ -10,6 +10,7 @@
 #include "core/mesh.h"
 #include "core/render_params.h"
 #include "export/visibility.h"
+#include "lines/stroke_curve.h"
 #include "present/segment_grid.h"
 #include "present/stroke_geometry.h"
 
@@ -23,6 +24,14 @@ struct StrokeView {
   glm::vec3 center{0.0f};
   float radius = 1.0f;
 };
+
+/// Smooths each run of `runs` in the image by its kind's StrokeStyle::smoothing_px
+/// (`style.lines`; smoothPolyline(): a Gaussian along the arc length, corners over 50° and
+/// the ends kept) and updates its length_px. The zero crossings of a coarse mesh zig-zag from
+/// face to face by a pixel or so, and the zig-zag changes as the mesh adapts: drawn as found,
+/// the strokes looked shaky close up and popped pixels from frame to frame (docs/strokes.md,
+/// "Smoothing"). Only the pixel positions move; the model-space positions stay.
+void smoothRuns(StrokeRuns& runs, const LineStyles& style, StrokeCurveScratch& scratch);
 
 /// Runs joined where they meet (joinRuns()), and its scratch; reuse between calls.
 struct JoinedRuns {

@@ -285,7 +285,9 @@ TEST_F(Capture, PopFramesShowWhereLinesPopped) {
         tinted += std::abs(int{c[0]} - int{c[1]}) > 24;
       }
     const double popped = cols.at("appeared").at(k) + cols.at("vanished").at(k);
-    if (popped == 0.0) EXPECT_EQ(tinted, 0) << "frame " << k;
+    if (popped == 0.0) {
+      EXPECT_EQ(tinted, 0) << "frame " << k;
+    }
     popped_total += popped;
     tinted_total += tinted;
   }

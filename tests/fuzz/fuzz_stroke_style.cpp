@@ -27,7 +27,7 @@ LODLINE_FUZZ_TARGET(stroke_style) {
     const StrokeStyle& s = l.stroke;
     for (float v : {l.width_px, s.taper_in_px, s.taper_out_px, s.taper_min, s.depth_thickness, s.strength_thickness,
                     s.curvature_thickness, s.depth_opacity, s.strength_opacity, s.curvature_opacity, s.dash_on,
-                    s.dash_off, s.jitter_px, s.jitter_period_px, s.min_length_px, s.brush_period_px})
+                    s.dash_off, s.jitter_px, s.jitter_period_px, s.min_length_px, s.smoothing_px, s.brush_period_px})
       if (!std::isfinite(v)) fuzz::fail("an accepted stroke style has a non-finite field");
     if (!(l.width_px > 0.0f)) fuzz::fail("an accepted stroke style has a width <= 0");
     if (s.brush && (s.brush->width < 4 || s.brush->height != 8 ||

@@ -292,6 +292,41 @@ int darkestHalfOpaque(const StrokeRuns& runs) {
   return darkest;
 }
 
+// smoothRuns() smooths each run by its own kind's style: a zig-zag contour (±1 px every
+// 5 px, as face crossings lie on a coarse mesh) comes out within 0.25 px of straight, with
+// its length updated and its ends kept; a suggestive run whose style says 0 stays as it was.
+TEST(StrokeStyles, RunsAreSmoothedByTheirKindsStyle) {
+  StrokeRuns runs;
+  runs.offsets.push_back(0);
+  for (LineKind kind : {LineKind::kContour, LineKind::kSuggestive}) {
+    float length = 0.0f;
+    for (int i = 0; i <= 24; ++i) {
+      runs.points.push_back({20.0f + 5.0f * static_cast<float>(i), 40.0f + (i % 2 ? 1.0f : -1.0f)});
+      runs.positions.push_back(glm::vec3(static_cast<float>(i), 0.0f, 0.0f));
+      runs.alpha.push_back(1.0f);
+      if (i > 0) length += glm::length(runs.points.back() - runs.points[runs.points.size() - 2]);
+    }
+    runs.offsets.push_back(static_cast<uint32_t>(runs.points.size()));
+    runs.kinds.push_back(kind);
+    runs.strokes.push_back(0);
+    runs.opacity.push_back(1.0f);
+    runs.length_px.push_back(length);
+  }
+  const StrokeRuns before = runs;
+  ObjectStyle style;
+  style.lines[LineKind::kSuggestive].stroke.smoothing_px = 0.0f;
+  StrokeCurveScratch scratch;
+  smoothRuns(runs, style.lines, scratch);
+  EXPECT_EQ(runs.points.front(), before.points.front());
+  EXPECT_EQ(runs.points[24], before.points[24]);
+  for (int i = 3; i <= 21; ++i) EXPECT_NEAR(runs.points[static_cast<size_t>(i)].y, 40.0f, 0.25f) << i;
+  EXPECT_LT(runs.length_px[0], before.length_px[0] - 1.0f);
+  EXPECT_NEAR(runs.length_px[0], 120.0f, 1.0f);  // 129.2 with the zig-zag
+  for (size_t i = 25; i < runs.points.size(); ++i) EXPECT_EQ(runs.points[i], before.points[i]);
+  EXPECT_EQ(runs.length_px[1], before.length_px[1]);
+  EXPECT_EQ(runs.positions, before.positions);
+}
+
 TEST(StrokeStyles, RunsThatMeetAreDrawnAsOneStroke) {
   StrokeRuns runs;
   addRun(runs, {20, 40.5f}, {60, 40.5f});   // 0
