@@ -319,7 +319,12 @@ void smoothPolyline(std::span<glm::vec2> points, const StrokeCurveParams& params
       const float x = std::clamp((sc.arc[i] - sc.arc[c0]) / len, 0.0f, 1.0f) * static_cast<float>(m);
       const int j = std::min(static_cast<int>(x), m - 1);
       const float t = x - static_cast<float>(j);
-      points[i] = sc.smooth[static_cast<size_t>(j)] + t * (sc.smooth[static_cast<size_t>(j) + 1] - sc.smooth[static_cast<size_t>(j)]);
+      const glm::vec2 q = sc.smooth[static_cast<size_t>(j)] +
+                          t * (sc.smooth[static_cast<size_t>(j) + 1] - sc.smooth[static_cast<size_t>(j)]);
+      // At most max_shift_px from where it was (StrokeCurveParams).
+      const glm::vec2 d = q - sc.clean[i];
+      const float dl = glm::length(d);
+      points[i] = params.max_shift_px > 0.0f && dl > params.max_shift_px ? sc.clean[i] + d * (params.max_shift_px / dl) : q;
     }
   }
 }

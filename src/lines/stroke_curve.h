@@ -38,6 +38,11 @@ struct StrokeCurveParams {
   float corner_reach_px = 3.0f;
   /// Arc-length spacing of the resampled curve, px. Default 1.
   float spacing_px = 1.0f;
+  /// smoothPolyline() only: no point moves farther than this, px (0: no limit). The
+  /// zig-zag is about a pixel; a larger move reshapes a small, tight line, and more so as a
+  /// model shrinks in the image: unlimited, the T = 16 zoom-outs churned 1.5–2.1× as much
+  /// (docs/strokes.md, "Smoothing"). Default 0.5.
+  float max_shift_px = 0.5f;
 };
 
 /// Scratch of fitStrokeCurve(); reuse between calls.
@@ -53,10 +58,11 @@ struct StrokeCurveScratch {
 size_t fitStrokeCurve(std::span<const glm::vec2> polyline, const StrokeCurveParams& params,
                       std::vector<glm::vec2>& out, StrokeCurveScratch& scratch);
 
-/// Moves each point of `polyline` (pixels) onto fitStrokeCurve()'s smoothed curve at the
-/// point's own arc length: the same Gaussian, corners and ends, without the fitting, so a
-/// polyline drawn point to point loses the zig-zag of its face crossings. The ends and the
-/// corners stay where they are; a polyline with a non-finite point is left as it is.
+/// Moves each point of `polyline` (pixels) towards fitStrokeCurve()'s smoothed curve at the
+/// point's own arc length, by at most params.max_shift_px: the same Gaussian, corners and
+/// ends, without the fitting, so a polyline drawn point to point loses the zig-zag of its
+/// face crossings. The ends and the corners stay where they are; a polyline with a
+/// non-finite point is left as it is.
 void smoothPolyline(std::span<glm::vec2> polyline, const StrokeCurveParams& params, StrokeCurveScratch& scratch);
 
 /// True when the cubic p[0..3] is a straight piece as fitStrokeCurve() writes one (controls

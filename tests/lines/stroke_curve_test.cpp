@@ -109,7 +109,10 @@ TEST(StrokeCurve, SmoothPolylineTakesOutTheZigZagAndKeepsEndsAndCorners) {
   off.smoothing_px = 0.0f;
   smoothPolyline(poly, off, scratch);
   EXPECT_EQ(poly, before);
-  smoothPolyline(poly, StrokeCurveParams{}, scratch);
+  // Unlimited: the points go onto the smoothed curve.
+  StrokeCurveParams free_params;
+  free_params.max_shift_px = 0.0f;
+  smoothPolyline(poly, free_params, scratch);
   ASSERT_EQ(poly.size(), before.size());
   EXPECT_EQ(poly.front(), before.front());
   EXPECT_EQ(poly.back(), before.back());
@@ -120,6 +123,14 @@ TEST(StrokeCurve, SmoothPolylineTakesOutTheZigZagAndKeepsEndsAndCorners) {
   for (int i = 2; i <= 18; ++i) worst = std::max(worst, std::abs(poly[static_cast<size_t>(i)].y - 50.0f));
   for (int i = 22; i <= 38; ++i) worst = std::max(worst, std::abs(poly[static_cast<size_t>(i)].x - 110.0f));
   EXPECT_LT(worst, 0.2f);
+  // By default no point moves more than half a pixel: the same zig-zag keeps 0.3 px.
+  std::vector<glm::vec2> limited = before;
+  smoothPolyline(limited, StrokeCurveParams{}, scratch);
+  float moved = 0.0f, left = 0.0f;
+  for (size_t i = 0; i < limited.size(); ++i) moved = std::max(moved, glm::length(limited[i] - before[i]));
+  for (int i = 2; i <= 18; ++i) left = std::max(left, std::abs(limited[static_cast<size_t>(i)].y - 50.0f));
+  EXPECT_LE(moved, 0.5f + 1e-5f);
+  EXPECT_NEAR(left, 0.3f, 0.01f);
   // A polyline with a point that is not finite is left alone.
   std::vector<glm::vec2> bad = before;
   bad[5].x = std::nanf("");
