@@ -154,11 +154,10 @@ void ScenePresenter::splitObjectLines() {
                                          outline_scratch_, &outline_history_[i]);
     else
       outline_history_[i].fill.clear();
-    // What is drawn, measured and written: the runs smoothed in the image (StrokeStyle); the
-    // hidden ones only where they are drawn.
+    // What is drawn, measured and written: the runs smoothed in the image (StrokeStyle).
     if (i < styles_.size()) {
       smoothRuns(visible_[i], styles_[i].lines, curve_scratch_);
-      if (styles_[i].hidden.enabled) smoothRuns(hidden_[i], styles_[i].lines, curve_scratch_);
+      smoothRuns(hidden_[i], styles_[i].lines, curve_scratch_);
     }
   }
 }
