@@ -43,11 +43,16 @@ struct SvgStyle {
   bool background = true;             ///< fill the page first. Default true
   std::string background_colour = "#ffffff";  ///< Default white
   int decimals = 2;                   ///< digits after the point in coordinates. Default 2
-  /// Strokes as smooth paths of cubic Béziers (lightly smoothed, corners kept, within
-  /// `curve.tolerance_px` of the smoothed curve: lines/stroke_curve.h), not polylines.
-  /// Default true.
+  /// Strokes as paths of cubic Béziers within `curve.tolerance_px` of the strokes
+  /// (lines/stroke_curve.h), not polylines. Default true.
   bool curves = true;
-  StrokeCurveParams curve;
+  /// The fit. Its smoothing defaults to 0 here: the presenter's runs arrive smoothed as they
+  /// are drawn (present/screen_lines.h, smoothRuns()), so the paths follow the PNG's line.
+  StrokeCurveParams curve = [] {
+    StrokeCurveParams c;
+    c.smoothing_px = 0.0f;
+    return c;
+  }();
 };
 
 /// 2D strokes in pixel coordinates (origin top-left, y down).

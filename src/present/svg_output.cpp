@@ -126,9 +126,6 @@ SvgStyle svgStyleOf(const ObjectStyle& style, const FrameParams& frame) {
   s.hidden_enabled = h.enabled;
   s.hidden = {colourToHex(h.color), h.width_px, h.color.a, "butt", {h.dash_on, h.dash_off}};
   s.hidden_dash = {h.dash_on, h.dash_off};
-  // The presenter's runs come smoothed by their kind's StrokeStyle::smoothing_px, as drawn:
-  // the paths are fitted to them without smoothing again.
-  s.curve.smoothing_px = 0.0f;
   return s;
 }
 
