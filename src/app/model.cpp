@@ -50,6 +50,10 @@ void addDetailOptions(CLI::App& cmd, DetailOptions& o) {
                  "Milliseconds the adaptation may take per frame (view, capture); past it the rest of the mesh "
                  "waits for the next frames, which resume where it stopped (Hoppe 1997 §5). 0 = no budget")
       ->capture_default_str();
+  cmd.add_option("--min-suggestive-length", o.min_suggestive_length,
+                 "Under detail control, suggestive contours shorter on screen than this times sqrt(T) px are not "
+                 "drawn (below the chosen scale); 0 = all")
+      ->capture_default_str();
   cmd.add_option("--smoothing", o.smoothing,
                  "Temporal smoothing of normals, kr and Dw kr over frames (Jeong et al. 2005 §3.3): on or off "
                  "(view and capture; a still render uses the current frame's values)")
@@ -131,6 +135,9 @@ Result<ResolvedDetail> resolveDetailOptions(const DetailOptions& o) {
   if (!(o.adapt_budget_ms >= 0.0f && o.adapt_budget_ms <= 1000.0f))
     return Error::usage("--adapt-budget: must be in [0, 1000] ms");
   p.max_adapt_ms = o.adapt_budget_ms;
+  if (!(o.min_suggestive_length >= 0.0f && o.min_suggestive_length <= 8.0f))
+    return Error::usage("--min-suggestive-length: must be in [0, 8]");
+  p.min_suggestive_length = o.min_suggestive_length;
   if (!(o.detail_map_scale > 0.0f)) return Error::usage("--detail-map-scale: must be > 0");
   if (!o.detail_map.empty()) {
     auto map = readDetailMap(o.detail_map, o.detail_map_scale);

@@ -37,6 +37,7 @@ struct DetailOptions {
   std::string geomorphs = "on";
   float morph_time = DetailParams{}.morph_time;
   float adapt_budget_ms = DetailParams{}.max_adapt_ms;
+  float min_suggestive_length = DetailParams{}.min_suggestive_length;
   std::string cache_dir;
   int max_adapt_frames = 300;
   std::string smoothing = "on";

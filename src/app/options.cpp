@@ -458,6 +458,7 @@ nlohmann::json settingsOf(const FrameParams& frame, const ObjectStyle& style, co
   s["geomorphs"] = d.geomorphs ? "on" : "off";
   s["morph-time"] = exact(d.morph_time);
   s["adapt-budget"] = exact(d.max_adapt_ms);
+  s["min-suggestive-length"] = exact(d.min_suggestive_length);
   s["smoothing"] = detail.smoothing.enabled ? "on" : "off";
   s["smoothing-alpha"] = exact(detail.smoothing.alpha);
   s["smoothing-time"] = exact(detail.smoothing.seconds);

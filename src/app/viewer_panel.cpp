@@ -63,6 +63,7 @@ void detailSection(ViewerSession& s, PanelState& st) {
   ImGui::Checkbox("Geomorphs", &d.geomorphs);
   ImGui::SliderFloat("Morph time (s)", &d.morph_time, 0.05f, 5.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
   ImGui::SliderFloat("Adapt budget (ms, 0 = none)", &d.max_adapt_ms, 0.0f, 50.0f, "%.1f");
+  ImGui::SliderFloat("Shortest suggestive (x sqrt T)", &d.min_suggestive_length, 0.0f, 4.0f, "%.2f");
   ImGui::InputText("Detail map", st.detail_map.data(), st.detail_map.size());
   ImGui::SliderFloat("Map scale", &st.detail_map_scale, 0.25f, 64.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
   if (ImGui::Button("Load map")) {

@@ -350,4 +350,24 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
   timings_.silhouette = sw.lap();
 }
 
+void LineDrawing::dropShortStrokes(LineKind kind, float min_px, const Camera& camera, int width, int height) {
+  if (!(min_px > 0.0f) || width <= 0 || height <= 0) return;
+  if (std::find(strokes_.kinds.begin(), strokes_.kinds.end(), kind) == strokes_.kinds.end()) return;
+  const PixelProjector proj(camera, width, height);
+  keepStrokes(strokes_, [&](size_t s) {
+    if (strokes_.kinds[s] != kind) return true;
+    const uint32_t begin = strokes_.offsets[s], end = strokes_.offsets[s + 1];
+    float length = 0.0f, z = 0.0f;
+    glm::vec2 prev(0.0f), cur(0.0f);
+    bool have_prev = false;
+    for (uint32_t i = begin; i < end && length < min_px; ++i) {
+      const bool ok = proj.project(strokes_.points[i], cur, z);
+      if (ok && have_prev) length += glm::length(cur - prev);
+      prev = cur;
+      have_prev = ok;
+    }
+    return length >= min_px;
+  });
+}
+
 }  // namespace lodline

@@ -73,6 +73,11 @@ class LineDrawing {
   void update(const Camera& camera, const std::array<bool, kLineKindCount>& enabled, float smoothing = 1.0f,
               int image_height = 0, float dt = 0.0f);
 
+  /// Leaves out the strokes of `kind` whose whole length projected into a `width`×`height`
+  /// image of `camera` (visible or not, in the image or not) is under `min_px` pixels (level
+  /// of detail: DetailParams::min_suggestive_length). Call after update().
+  void dropShortStrokes(LineKind kind, float min_px, const Camera& camera, int width, int height);
+
   /// The full-detail mesh is a closed surface seen from outside (isClosedOutward): its
   /// back faces, and those of any progressive-mesh level of it, are never visible from
   /// outside its bounds.

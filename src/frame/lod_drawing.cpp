@@ -1,6 +1,7 @@
 #include "frame/lod_drawing.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "core/mesh_order.h"
@@ -168,11 +169,19 @@ Status LodDrawing::adaptStep(const Camera& camera, int width, int height, const 
   return status;
 }
 
+void LodDrawing::dropStrokesBelowScale(const Camera& camera, int width, int height, const DetailParams& detail) {
+  const AdaptiveMesh* pm = lod();
+  if (!pm || !(detail.min_suggestive_length > 0.0f)) return;
+  const float scale_px = std::sqrt(std::max(pm->stats().target_area, 0.0f));
+  drawing_.dropShortStrokes(LineKind::kSuggestive, detail.min_suggestive_length * scale_px, camera, width, height);
+}
+
 Status LodDrawing::frame(const Camera& camera, int width, int height, const DetailParams& detail, float dt,
                          const std::array<bool, kLineKindCount>& enabled, float smoothing) {
   const WorkerPool::Awake awake(&drawing_.workers());  // the stages' loops come back to back
   if (Status s = adaptStep(camera, width, height, detail, dt); !s) return s;
   drawing_.update(camera, enabled, smoothing, height, dt);
+  dropStrokesBelowScale(camera, width, height, detail);
   return {};
 }
 
@@ -211,6 +220,7 @@ Result<int> LodDrawing::converge(const Camera& camera, int width, int height, co
   }
   mesh_changed_ = changed_any;
   drawing_.update(camera, enabled);
+  dropStrokesBelowScale(camera, width, height, detail);
   return steps;
 }
 

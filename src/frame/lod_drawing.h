@@ -99,6 +99,8 @@ class LodDrawing {
   Status adaptPm(PmLevel& level, const Camera& camera, int width, int height, const DetailParams& detail, float dt);
   void adaptCluster(ClusterLevel& level, const Camera& camera, int width, int height, const DetailParams& detail);
   Status adaptStep(const Camera& camera, int width, int height, const DetailParams& detail, float dt);
+  // DetailParams::min_suggestive_length, after the lines' update (progressive mesh only).
+  void dropStrokesBelowScale(const Camera& camera, int width, int height, const DetailParams& detail);
   LineDrawing drawing_;
   std::variant<FullLevel, PmLevel, ClusterLevel> level_;
   std::vector<std::array<uint32_t, 3>> faces_;

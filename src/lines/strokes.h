@@ -45,6 +45,35 @@ struct ChainScratch {
 /// O(S log S) for S segments; allocation-free after warm-up.
 void chainStrokes(const LineSet& lines, StrokeSet& out, ChainScratch& scratch);
 
+/// Keeps the strokes s for which keep(s) is true, in order, compacting `strokes` in place
+/// (no allocation).
+template <class Keep>
+void keepStrokes(StrokeSet& strokes, Keep&& keep) {
+  const size_t n = strokes.strokeCount();
+  size_t out_stroke = 0;
+  uint32_t out_point = 0;
+  for (size_t s = 0; s < n; ++s) {
+    const uint32_t begin = strokes.offsets[s], end = strokes.offsets[s + 1];
+    if (!keep(s)) continue;
+    if (out_point != begin) {
+      std::copy(strokes.points.begin() + begin, strokes.points.begin() + end, strokes.points.begin() + out_point);
+      std::copy(strokes.alpha.begin() + begin, strokes.alpha.begin() + end, strokes.alpha.begin() + out_point);
+    }
+    strokes.offsets[out_stroke] = out_point;
+    strokes.kinds[out_stroke] = strokes.kinds[s];
+    strokes.closed[out_stroke] = strokes.closed[s];
+    out_point += end - begin;
+    ++out_stroke;
+  }
+  if (out_stroke == n) return;
+  strokes.points.resize(out_point);
+  strokes.alpha.resize(out_point);
+  strokes.kinds.resize(out_stroke);
+  strokes.closed.resize(out_stroke);
+  strokes.offsets.resize(out_stroke + 1);
+  strokes.offsets[out_stroke] = out_point;
+}
+
 /// Strokes shorter than this on screen are "specks" (stats, capture metrics, viewer panel).
 inline constexpr float kSpeckLengthPx = 3.0f;
 

@@ -91,6 +91,13 @@ struct DetailParams {
   /// least an eighth of the active vertices, so all within 8 frames. Checked every 32
   /// vertices; the face areas (step 1 of adapt) and the geomorphs always run in full.
   float max_adapt_ms = 0.0f;
+  /// Suggestive contours whose whole stroke is shorter on screen than this × √T px (T with
+  /// object_factor; the stroke projected whole, visible or not) are not drawn: a zero crossing
+  /// that spans less than a face of the adapted mesh is detail below the chosen scale, and
+  /// such strokes were most of the specks left under detail control
+  /// (docs/temporal-coherence.md, "Suggestive contours below the scale"). Default 0.75 (3 px
+  /// at T = 16, the length of a speck); 0: all are drawn. Full detail draws all.
+  float min_suggestive_length = 0.75f;
 };
 
 /// Cheap per-frame statistics (exposed as "lod" in --stats).

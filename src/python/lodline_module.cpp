@@ -508,7 +508,7 @@ class PyRenderer {
     static const std::set<std::string> kPerFrame = {
         "--view", "--fov", "--size", "--background", "--msaa", "--target-area", "--t-c", "--t-s",
         "--detail-map-scale", "--depth-falloff", "--foveation", "--focus", "--object-factor", "--max-adapt-frames",
-        "--geomorphs", "--morph-time", "--adapt-budget", "--smoothing", "--smoothing-alpha", "--smoothing-time"};
+        "--geomorphs", "--morph-time", "--adapt-budget", "--min-suggestive-length", "--smoothing", "--smoothing-alpha", "--smoothing-time"};
     p.key = identity;
     for (size_t i = path ? 1 : 0; i < o.args.size(); ++i) {
       if (kPerFrame.count(o.args[i]) && i + 1 < o.args.size()) {

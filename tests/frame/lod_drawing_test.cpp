@@ -198,6 +198,81 @@ TEST(LodDrawing, ConvergedDetailStaysPutAtAFixedView) {
   EXPECT_EQ(late_changes, 0u);
 }
 
+// The strokes' whole length on screen, as LineDrawing::dropShortStrokes measures it.
+std::vector<float> strokeLengthsPx(const StrokeSet& strokes, const Camera& cam, int w, int h) {
+  const PixelProjector proj(cam, w, h);
+  std::vector<float> out;
+  measureStrokeLengths(
+      strokes,
+      [&](glm::vec3 p) {
+        glm::vec2 px(0.0f);
+        float z = 0.0f;
+        proj.project(p, px, z);
+        return px;
+      },
+      out);
+  return out;
+}
+
+// Under detail control, suggestive contours shorter on screen than min_suggestive_length·√T
+// are left out, and nothing else: the other strokes and the longer suggestive ones stay.
+TEST(LodDrawing, SuggestiveContoursBelowTheScaleAreLeftOut) {
+  const TriMesh mesh = makeTorusKnot(2, 3, 1.0f, 0.2f, 900, 60, 0.25f);
+  auto pm = buildProgressiveMesh(mesh);
+  ASSERT_TRUE(pm.ok()) << pm.error().message;
+  const auto shared = std::make_shared<const ProgressiveMesh>(std::move(pm.value()));
+  std::array<bool, kLineKindCount> enabled{};
+  enabled[static_cast<int>(LineKind::kContour)] = true;
+  enabled[static_cast<int>(LineKind::kSuggestive)] = true;
+  const int w = 1280, h = 720;
+  DetailParams detail;
+  detail.target_area = 16.0f;
+  const float min_px = detail.min_suggestive_length * 4.0f;  // √16
+  ASSERT_GT(min_px, 0.0f) << "the default leaves every suggestive contour in";
+  LodDrawing all(mesh, shared), kept(mesh, shared);
+  const Camera cam = orbitCamera(all.bounds(), {30.0f, 20.0f, 1.6f}, 35.0f, 16.0f / 9.0f);
+  DetailParams every = detail;
+  every.min_suggestive_length = 0.0f;
+  ASSERT_TRUE(all.converge(cam, w, h, every, 1.0f, 60, enabled).ok());
+  ASSERT_TRUE(kept.converge(cam, w, h, detail, 1.0f, 60, enabled).ok());
+  ASSERT_EQ(all.lod()->activeFaceCount(), kept.lod()->activeFaceCount());
+
+  const StrokeSet& a = all.drawing().strokes();
+  const StrokeSet& k = kept.drawing().strokes();
+  const std::vector<float> la = strokeLengthsPx(a, cam, w, h), lk = strokeLengthsPx(k, cam, w, h);
+  size_t short_suggestive = 0, long_suggestive = 0, others = 0;
+  for (size_t s = 0; s < a.strokeCount(); ++s) {
+    if (a.kinds[s] != LineKind::kSuggestive) ++others;
+    else if (la[s] < min_px) ++short_suggestive;
+    else ++long_suggestive;
+  }
+  ASSERT_GT(short_suggestive, 0u) << "the view must have suggestive contours below the scale";
+  ASSERT_GT(long_suggestive, 0u);
+  size_t k_suggestive = 0, k_others = 0;
+  for (size_t s = 0; s < k.strokeCount(); ++s) {
+    if (k.kinds[s] == LineKind::kSuggestive) {
+      ++k_suggestive;
+      EXPECT_GE(lk[s], min_px) << "stroke " << s;
+    } else {
+      ++k_others;
+    }
+  }
+  EXPECT_EQ(k_suggestive, long_suggestive);
+  EXPECT_EQ(k_others, others);
+  EXPECT_EQ(k.offsets.size(), k.strokeCount() + 1);
+  EXPECT_EQ(k.points.size(), k.offsets.back());
+  EXPECT_EQ(k.alpha.size(), k.points.size());
+
+  // Full detail draws them all, whatever the setting.
+  LodDrawing full_every(mesh), full_long(mesh);
+  DetailParams longest = detail;
+  longest.min_suggestive_length = 8.0f;
+  ASSERT_TRUE(full_every.converge(cam, w, h, every, 1.0f, 60, enabled).ok());
+  ASSERT_TRUE(full_long.converge(cam, w, h, longest, 1.0f, 60, enabled).ok());
+  EXPECT_GT(full_every.drawing().strokes().strokeCount(), 0u);
+  EXPECT_EQ(full_long.drawing().strokes().points, full_every.drawing().strokes().points);
+}
+
 // Back faces may be culled for closed models at full detail and on progressive-mesh levels,
 // never for open models or clustering (whose cells can flip faces).
 TEST(LodDrawing, BackFacesHiddenOnlyForClosedModelsWithoutClustering) {

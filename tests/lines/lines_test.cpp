@@ -943,6 +943,36 @@ namespace {
 // chainStrokes joins two segment ends exactly when they are the only two ends with their
 // (type, point id), and never a segment to itself: checked on random segments with many
 // shared ids (junctions of three and more ends) and degenerate segments.
+TEST(Strokes, KeepStrokesCompactsInPlaceAndKeepsOrder) {
+  StrokeSet s;
+  // Three strokes: 2 points (contour), 3 points closed (suggestive), 2 points (crease).
+  for (int i = 0; i < 7; ++i) {
+    s.points.push_back(glm::vec3(static_cast<float>(i), 0.0f, 0.0f));
+    s.alpha.push_back(0.1f * static_cast<float>(i));
+  }
+  s.offsets = {0, 2, 5, 7};
+  s.kinds = {LineKind::kContour, LineKind::kSuggestive, LineKind::kCrease};
+  s.closed = {0, 1, 0};
+  StrokeSet none = s;
+  keepStrokes(none, [](size_t) { return true; });
+  EXPECT_EQ(none.points, s.points);
+  EXPECT_EQ(none.offsets, s.offsets);
+
+  keepStrokes(s, [](size_t i) { return i != 1; });
+  ASSERT_EQ(s.strokeCount(), 2u);
+  EXPECT_EQ(s.offsets, (std::vector<uint32_t>{0, 2, 4}));
+  EXPECT_EQ(s.kinds[1], LineKind::kCrease);
+  EXPECT_EQ(s.closed[1], 0);
+  ASSERT_EQ(s.points.size(), 4u);
+  EXPECT_EQ(s.points[2].x, 5.0f);
+  EXPECT_FLOAT_EQ(s.alpha[3], 0.6f);
+
+  keepStrokes(s, [](size_t) { return false; });
+  EXPECT_EQ(s.strokeCount(), 0u);
+  EXPECT_TRUE(s.points.empty());
+  EXPECT_EQ(s.offsets, (std::vector<uint32_t>{0}));
+}
+
 TEST(Strokes, JoinExactlyTheEndsThatPairUp) {
   std::mt19937 rng(5);
   for (int round = 0; round < 20; ++round) {
