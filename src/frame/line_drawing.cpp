@@ -353,6 +353,7 @@ void LineDrawing::update(const Camera& camera, const std::array<bool, kLineKindC
 void LineDrawing::dropShortStrokes(LineKind kind, float min_px, const Camera& camera, int width, int height) {
   if (!(min_px > 0.0f) || width <= 0 || height <= 0) return;
   if (std::find(strokes_.kinds.begin(), strokes_.kinds.end(), kind) == strokes_.kinds.end()) return;
+  Stopwatch sw;  // counted with the chaining: both decide which strokes there are
   const PixelProjector proj(camera, width, height);
   keepStrokes(strokes_, [&](size_t s) {
     if (strokes_.kinds[s] != kind) return true;
@@ -368,6 +369,7 @@ void LineDrawing::dropShortStrokes(LineKind kind, float min_px, const Camera& ca
     }
     return length >= min_px;
   });
+  timings_.chain += sw.elapsed();
 }
 
 }  // namespace lodline
