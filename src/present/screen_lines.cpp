@@ -246,6 +246,13 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     const float g = glm::length(gap);
     return g <= params.touch_px || (glm::dot(te, gap / g) >= min_cos && glm::dot(-to, gap / g) >= min_cos);
   };
+  // How near a line of its kind a run's point may lie to lie along it: along_px, or the
+  // kind's stroke width where that is wider (at most 16 px).
+  auto reachOfKind = [&](LineKind kind) {
+    const int k = static_cast<int>(kind);
+    const float w = k >= 0 && k < kLineKindCount ? params.width_px[k] : 0.0f;
+    return std::isfinite(w) ? std::max(params.along_px, std::min(w, 16.0f)) : params.along_px;
+  };
   // Runs lying along longer runs of their kind: every point of theirs, and every 2 px
   // between, within along_px of one of those.
   std::vector<uint8_t>& covered = joined.covered;
@@ -259,7 +266,10 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (const glm::vec2& p : runs.points)
       if (finite(p)) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    float cell_px = std::max(8.0f, params.along_px);
+    float widest = params.along_px;
+    for (float w : params.width_px)
+      if (std::isfinite(w)) widest = std::max(widest, std::min(w, 16.0f));
+    float cell_px = std::max(8.0f, widest);
     int gw = 1, gh = 1;
     if (lo.x <= hi.x) {
       while (true) {
@@ -274,11 +284,13 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     run_of.assign(runs.points.size(), 0);
     for (size_t r = 0; r < nr; ++r)
       for (uint32_t i = runs.offsets[r]; i < runs.offsets[r + 1]; ++i) run_of[i] = static_cast<uint32_t>(r);
-    // Whether `p` lies within along_px of a segment of a longer run of run r's kind.
-    const float reach2 = params.along_px * params.along_px;
+    // Whether `p` lies within the reach (along_px, or the kind's width) of a segment of a
+    // longer run of run r's kind.
+    auto reachOf = [&](size_t r) { return reachOfKind(runs.kinds[r]); };
     auto along = [&](glm::vec2 p, size_t r) {
       bool found = false;
-      joined.grid.forEachNear(p, params.along_px, [&](uint32_t i) {
+      const float reach = reachOf(r), reach2 = reach * reach;
+      joined.grid.forEachNear(p, reach, [&](uint32_t i) {
         const uint32_t q = run_of[i];
         if (found || q == r || runs.kinds[q] != runs.kinds[r] || covered[q] || runs.length_px[q] < runs.length_px[r] ||
             (runs.length_px[q] == runs.length_px[r] && q > r))
@@ -315,7 +327,25 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
   // another run of its kind: first those that touch, then those a gap apart on one line.
   std::vector<int32_t>& link = joined.link;
   link.assign(2 * nr, -1);
-  const float reach = std::max(params.touch_px, params.bridge_px);
+  std::vector<uint8_t>& overlapping = joined.overlapping;
+  overlapping.assign(2 * nr, 0);
+  joined.skipped.assign(2 * nr, 0);
+  const float overlap_px = std::isfinite(params.overlap_px) ? std::clamp(params.overlap_px, 0.0f, 64.0f) : 0.0f;
+  // Whether end o of another run lies behind end e, side by side with it: the two run the same
+  // way, each end at most overlap_px behind the other and within the kind's reach of the
+  // line through the other end, and the run entered at o goes on past e by more than its
+  // reach (so that what is left of it after the points behind e are dropped is a line).
+  auto overlaps = [&](size_t e, size_t o) {
+    const glm::vec2 te = outward(e), to = outward(o);
+    if (glm::dot(te, -to) < min_cos) return false;
+    const glm::vec2 g = endPoint(o) - endPoint(e);
+    const float behind = -glm::dot(te, g), side = std::abs(te.x * g.y - te.y * g.x);
+    const float behind_o = glm::dot(to, g), side_o = std::abs(to.x * g.y - to.y * g.x);
+    const float w = runs.kinds[e / 2] == runs.kinds[o / 2] ? reachOfKind(runs.kinds[e / 2]) : 0.0f;
+    return behind > 0.0f && behind <= overlap_px && side <= w && behind_o > 0.0f && behind_o <= overlap_px &&
+           side_o <= w && runs.length_px[o / 2] > behind + w;
+  };
+  const float reach = std::max({params.touch_px, params.bridge_px, overlap_px});
   const float cell = std::max(reach, 1e-3f);
   auto& bins = joined.bins;
   bins.clear();
@@ -334,15 +364,16 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     bins.emplace_back(key(x, y), static_cast<uint32_t>(end));
   }
   std::sort(bins.begin(), bins.end());
-  for (int pass = 0; pass < 2; ++pass) {
-    const bool bridging = pass == 1;
-    if (bridging && params.bridge_px <= params.touch_px) break;
+  for (int pass = 0; pass < 3; ++pass) {
+    const bool bridging = pass == 1, overlapping_pass = pass == 2;
+    if (bridging && params.bridge_px <= params.touch_px) continue;
+    if (overlapping_pass && !(overlap_px > 0.0f)) continue;
     for (const auto& [k, e] : bins) {
       if (link[e] >= 0) continue;
       const glm::vec2 p = endPoint(e);
       int x, y;
       cellOf(p, x, y);
-      float best = bridging ? params.bridge_px : params.touch_px;
+      float best = overlapping_pass ? overlap_px * 1.5f : bridging ? params.bridge_px : params.touch_px;
       int32_t best_end = -1;
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
@@ -352,12 +383,14 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
             const uint32_t o = it->second;
             if (o / 2 == e / 2 || link[o] >= 0 || runs.kinds[o / 2] != runs.kinds[e / 2]) continue;
             const float d = glm::length(endPoint(o) - p);
-            if (d <= best && (!bridging || continues(e, o))) best = d, best_end = static_cast<int32_t>(o);
+            if (d <= best && (overlapping_pass ? overlaps(e, o) : !bridging || continues(e, o)))
+              best = d, best_end = static_cast<int32_t>(o);
           }
         }
       if (best_end >= 0) {
         link[e] = best_end;
         link[static_cast<size_t>(best_end)] = static_cast<int32_t>(e);
+        overlapping[e] = overlapping[static_cast<size_t>(best_end)] = overlapping_pass;
       }
     }
   }
@@ -367,24 +400,46 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
   auto emit = [&](size_t start_run, size_t entry_end) {
     float length = 0.0f, weighted = 0.0f;
     size_t r = start_run, entry = entry_end;
+    // Entering a run side by side with the one left (JoinParams::overlap_px): its points
+    // behind the end left (along that end's outward direction) are skipped.
+    glm::vec2 left_end(0.0f), left_dir(0.0f);
+    bool trim = false;
     while (true) {
       done[r] = 1;
       const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
       const bool forward = entry % 2 == 0;
-      for (uint32_t k = 0; k < e - b; ++k) {
+      uint32_t first = 0;
+      if (trim)
+        while (first + 1 < e - b && glm::dot(runs.points[forward ? b + first : e - 1 - first] - left_end, left_dir) <= 0.0f)
+          ++first;
+      joined.skipped[entry] = first;
+      for (uint32_t k = first; k < e - b; ++k) {
         const uint32_t i = forward ? b + k : e - 1 - k;
         out.points.push_back(runs.points[i]);
         if (with_pos) out.positions.push_back(runs.positions[i]);
         out.alpha.push_back(runs.alpha[i]);
         if (with_u) out_u.push_back(u[i]);
       }
-      length += runs.length_px[r];
-      weighted += runs.length_px[r] * runs.opacity[r];
+      float run_length = runs.length_px[r];
+      if (trim) {
+        auto at = [&](uint32_t k) { return runs.points[forward ? b + k : e - 1 - k]; };
+        for (uint32_t k = 1; k <= first; ++k) run_length -= glm::length(at(k) - at(k - 1));
+        run_length = std::max(run_length, 0.0f);
+        length += glm::length(at(first) - left_end);  // the piece joining them
+      }
+      length += run_length;
+      weighted += run_length * runs.opacity[r];
       const size_t exit = forward ? 2 * r + 1 : 2 * r;
       if (link[exit] < 0) break;
       const size_t next_entry = static_cast<size_t>(link[exit]);
       if (done[next_entry / 2]) break;  // a cycle closed
-      length += glm::length(endPoint(next_entry) - endPoint(exit));  // the bridge
+      trim = overlapping[exit] != 0;
+      if (trim) {
+        left_end = endPoint(exit);
+        left_dir = outward(exit);
+      } else {
+        length += glm::length(endPoint(next_entry) - endPoint(exit));  // the bridge
+      }
       r = next_entry / 2;
       entry = next_entry;
     }
@@ -404,11 +459,18 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     if (!done[r]) emit(r, 2 * r);
 }
 
+JoinParams joinParamsFor(const LineStyles& style) {
+  JoinParams p;
+  for (int k = 0; k < kLineKindCount; ++k)
+    if (style.kinds[k].enabled) p.width_px[k] = style.kinds[k].width_px;
+  return p;
+}
+
 void buildScreenLines(const StrokeRuns& visible, const StrokeRuns& hidden, const ObjectStyle& style,
                       const StrokeView& view, std::span<const float> visible_u, ScreenLines& out,
                       ScreenLinesScratch& scratch) {
   out.clear();
-  joinRuns(visible, visible_u, JoinParams{}, scratch.joined);
+  joinRuns(visible, visible_u, joinParamsFor(style.lines), scratch.joined);
   const StrokeRuns& runs = scratch.joined.runs;
   const std::span<const float> runs_u = scratch.joined.u;
   for (int k = 0; k < kLineKindCount; ++k) {

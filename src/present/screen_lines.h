@@ -3,6 +3,7 @@
 // (docs/visibility.md, docs/strokes.md).
 #pragma once
 
+#include <array>
 #include <span>
 
 #include "core/camera.h"
@@ -39,6 +40,8 @@ struct JoinedRuns {
   std::vector<float> u;             ///< the parameter per point, when one was given
   std::vector<uint32_t> first_run;  ///< per joined run: the index of its first run in the input
   std::vector<int32_t> link;        ///< per run end (2r start, 2r + 1 end): the end it joins, or -1
+  std::vector<uint8_t> overlapping;  ///< per run end: joined side by side (JoinParams::overlap_px)
+  std::vector<uint32_t> skipped;     ///< per run end: its points left out there (entered side by side)
   std::vector<std::pair<uint64_t, uint32_t>> bins;  ///< run ends by grid cell
   std::vector<uint8_t> done;        ///< per run: already in a chain
   std::vector<uint8_t> covered;     ///< per run: lies along longer runs (JoinParams::along_px)
@@ -84,7 +87,22 @@ struct JoinParams {
   /// short piece of interpolated contour lies along the outline's completing piece). Default
   /// 1.5; 0: every run is drawn.
   float along_px = 1.5f;
+  /// Ends of two runs of a kind that overlap side by side are joined: each end lies at most
+  /// this far behind the other, within the reach below (along_px or the kind's width) of
+  /// the line through it, and the two run the same way (within max_turn_deg). The run
+  /// entered leaves out its points behind the end it is joined to. On a coarse mesh the
+  /// interpolated contour and the outline's completing piece overlap so for a few pixels,
+  /// a doubled knot in the line. Default 8; 0: no such joins.
+  float overlap_px = 8.0f;
+  /// Per kind, the stroke's width (px; 0: not known). A run counts as lying along a longer
+  /// one within max(along_px, its kind's width): two strokes of width w whose centre lines
+  /// are under w apart draw one thicker line, a knot where the shorter one lies (the
+  /// elephant's trunk close up, dashes 1.9 px beside a 2.5-px contour; docs/strokes.md).
+  std::array<float, kLineKindCount> width_px{};
 };
+
+/// JoinParams with each kind's width from `style` (enabled kinds; 0 for the others).
+JoinParams joinParamsFor(const LineStyles& style);
 
 /// Runs of one kind whose ends meet (JoinParams) joined into one run each, into out.runs
 /// (and their parameters into out.u when `u` is given): the visibility test and the

@@ -70,21 +70,29 @@ void appendOutline(const ScreenLinesScratch& sc, StrokeCap cap, std::vector<glm:
 
 void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView& view, std::span<const float> u,
              const std::vector<uint64_t>* ids, LayerStrokes& out, ScreenLinesScratch& sc) {
-  // Constant-width strokes: the runs as they are.
+  // The runs joined where they meet, as the renderers draw them; runs lying along longer
+  // ones of their kind are left out of both paths below, as the renderers leave them out.
+  joinRuns(runs, u, joinParamsFor(style.lines), sc.joined);
+  const std::vector<uint8_t>& covered = sc.joined.covered;
+  const std::vector<uint32_t>& skipped = sc.joined.skipped;
+  // Constant-width strokes: the runs as they are, less the points a side-by-side join
+  // leaves out (JoinParams::overlap_px).
   for (size_t r = 0; r < runs.strokeCount(); ++r) {
     const LineStyle& ls = style.lines[runs.kinds[r]];
-    if (variableWidth(ls.stroke)) continue;
+    if (variableWidth(ls.stroke) || (r < covered.size() && covered[r])) continue;
     if (ls.stroke.min_length_px > 0.0f && runs.length_px[r] < ls.stroke.min_length_px) continue;
-    const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+    uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+    if (2 * r + 1 < skipped.size() && skipped[2 * r] + skipped[2 * r + 1] + 2 <= e - b) {
+      b += skipped[2 * r];
+      e -= skipped[2 * r + 1];
+    }
     out.points.insert(out.points.end(), runs.points.begin() + b, runs.points.begin() + e);
     out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
     out.kinds.push_back(runs.kinds[r]);
     out.opacity.push_back(runs.opacity[r]);
     if (ids) out.ids.push_back((*ids)[r]);
   }
-  // Varying width: the runs joined where they meet, as the renderers draw them, each the
-  // outline of its profile (the id of its first run).
-  joinRuns(runs, u, JoinParams{}, sc.joined);
+  // Varying width: the joined runs, each the outline of its profile (the id of its first run).
   const StrokeRuns& joined = sc.joined.runs;
   const std::vector<float>& joined_u = sc.joined.u;
   const std::vector<uint32_t>& first = sc.joined.first_run;

@@ -399,5 +399,64 @@ TEST(StrokeStyles, RunsLyingAlongALongerOneAreLeftOut) {
   EXPECT_GE(darkestHalfOpaque(two), 126);
 }
 
+
+// Within the kind's stroke width a run lying along a longer one only thickens it (a knot
+// where the shorter lies): with the width given (joinParamsFor) a run 2 px off a 2.5-px
+// line is left out, as one 1 px off always is; one 3 px off is drawn.
+TEST(StrokeStyles, RunsWithinTheStrokeWidthOfALongerOneAreLeftOut) {
+  StrokeRuns runs;
+  addRun(runs, {20, 40.5f}, {100, 40.5f});  // 0: the line
+  addRun(runs, {40, 42.5f}, {44, 42.5f});   // 1: 2 px off
+  addRun(runs, {60, 43.5f}, {80, 43.5f});   // 2: 3 px off
+  JoinedRuns j;
+  joinRuns(runs, {}, JoinParams{}, j);
+  EXPECT_EQ(j.runs.strokeCount(), 3u) << "along_px alone (1.5) keeps the run 2 px off";
+  ObjectStyle style = contourStyle(2.5f);
+  const JoinParams by_width = joinParamsFor(style.lines);
+  EXPECT_EQ(by_width.width_px[static_cast<int>(LineKind::kContour)], 2.5f);
+  joinRuns(runs, {}, by_width, j);
+  ASSERT_EQ(j.runs.strokeCount(), 2u);
+  EXPECT_EQ(j.covered, (std::vector<uint8_t>{0, 1, 0}));
+}
+
+// Two runs of one line that overlap side by side at their ends (the interpolated contour and
+// the outline's completing piece, 1.8 px apart for 5 px) become one stroke, the second
+// entered past the first's end; ends that overlap farther apart, or run opposite ways, stay
+// apart.
+TEST(StrokeStyles, RunsOverlappingSideBySideAreJoinedPastTheOverlap) {
+  StrokeRuns runs;
+  addRun(runs, {20, 40.5f}, {60, 40.5f});      // 0
+  addRun(runs, {55, 42.3f}, {100, 42.3f});     // 1: starts 5 px behind 0's end, 1.8 px aside
+  addRun(runs, {20, 80.5f}, {60, 80.5f});      // 2
+  addRun(runs, {55, 84.5f}, {100, 84.5f});     // 3: 4 px aside: apart
+  addRun(runs, {20, 120.5f}, {60, 120.5f});    // 4
+  addRun(runs, {100, 122.3f}, {55, 122.3f});   // 5: same place as 1, drawn the other way: joined reversed
+  addRun(runs, {20, 160.5f}, {60, 160.5f});    // 6
+  addRun(runs, {55, 158.7f}, {0, 158.7f});     // 7: runs back along 6: not a continuation
+  ObjectStyle style = contourStyle(2.5f);
+  JoinedRuns j;
+  joinRuns(runs, {}, joinParamsFor(style.lines), j);
+  ASSERT_EQ(j.runs.strokeCount(), 6u);
+  // Stroke of runs 0 and 1 (run 0's free start comes first): 0 whole, then 1 from its first
+  // point past x = 60, so x only grows along it.
+  size_t s01 = j.runs.strokeCount();
+  for (size_t s = 0; s < j.runs.strokeCount(); ++s)
+    if (j.first_run[s] == 0) s01 = s;
+  ASSERT_LT(s01, j.runs.strokeCount());
+  const uint32_t b = j.runs.offsets[s01], e = j.runs.offsets[s01 + 1];
+  for (uint32_t i = b + 1; i < e; ++i) EXPECT_GT(j.runs.points[i].x, j.runs.points[i - 1].x) << "doubles back at " << i;
+  EXPECT_EQ(e - b, (runs.offsets[1] - runs.offsets[0]) + (runs.offsets[2] - runs.offsets[1]) - 6);
+  EXPECT_NEAR(j.runs.length_px[s01], 40.0f + 39.0f + glm::length(glm::vec2(61, 42.3f) - glm::vec2(60, 40.5f)), 0.05f);
+  // The points left out are run 1's first six (x = 55..60).
+  EXPECT_EQ(j.skipped[2], 6u);
+  // Run 5 (the same overlap drawn the other way) joins 4 at its end.
+  EXPECT_EQ(j.skipped[11], 6u);
+  EXPECT_EQ(j.skipped[6] + j.skipped[7], 0u);
+  // Without the overlap join, eight strokes.
+  JoinParams none = joinParamsFor(style.lines);
+  none.overlap_px = 0.0f;
+  joinRuns(runs, {}, none, j);
+  EXPECT_EQ(j.runs.strokeCount(), 8u);
+}
 }  // namespace
 }  // namespace lodline
