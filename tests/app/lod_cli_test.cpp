@@ -134,6 +134,8 @@ TEST_F(LodCli, BuildCommandAndErrors) {
   EXPECT_EQ(run(render("-o " + (dir_ / "e.png").string() + " --geomorphs maybe")), 2);
   EXPECT_EQ(run(render("-o " + (dir_ / "e.png").string() + " --adapt-budget -1"), &out), 2);
   EXPECT_NE(out.find("--adapt-budget"), std::string::npos) << out;
+  EXPECT_EQ(run(render("-o " + (dir_ / "e.png").string() + " --min-suggestive-length -0.5"), &out), 2);
+  EXPECT_NE(out.find("--min-suggestive-length"), std::string::npos) << out;
   EXPECT_EQ(run(render("-o " + (dir_ / "e.png").string() + " --detail-map " + (dir_ / "none.png").string()), &out), 1);
   EXPECT_NE(out.find("none.png"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir_ / "e.png"));
