@@ -403,7 +403,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     // Entering a run side by side with the one left (JoinParams::overlap_px): its points
     // behind the end left (along that end's outward direction) are skipped.
     glm::vec2 left_end(0.0f), left_dir(0.0f);
-    bool trim = false;
+    bool trim = false, bent = false;
     while (true) {
       done[r] = 1;
       const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
@@ -413,6 +413,33 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
         while (first + 1 < e - b && glm::dot(runs.points[forward ? b + first : e - 1 - first] - left_end, left_dir) <= 0.0f)
           ++first;
       joined.skipped[entry] = first;
+      if (trim && first > 0) {
+        // The two lines lie side by side, a pixel or two apart: the end of the chain so far
+        // bends over onto the entered run's line along the overlap (a smoothstep over the
+        // distance that run starts behind), so the stroke does not step across at one point.
+        auto at = [&](uint32_t k) { return runs.points[forward ? b + k : e - 1 - k]; };
+        float back = 0.0f;
+        for (uint32_t k = 0; k < first; ++k) back = std::max(back, glm::dot(left_end - at(k), left_dir));
+        const size_t chain_begin = out.offsets.back();
+        for (size_t j = out.points.size(); back > 0.0f && j-- > chain_begin;) {
+          glm::vec2& p = out.points[j];
+          const float d = glm::dot(left_end - p, left_dir);
+          if (d > back) break;
+          glm::vec2 q = p;
+          float best = std::numeric_limits<float>::max();
+          for (uint32_t k = 0; k < first; ++k) {
+            const glm::vec2 a = at(k), ab = at(k + 1) - a;
+            const float l2 = glm::dot(ab, ab);
+            const float t = l2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / l2, 0.0f, 1.0f) : 0.0f;
+            const glm::vec2 c = a + t * ab;
+            const float d2 = glm::dot(c - p, c - p);
+            if (d2 < best) best = d2, q = c;
+          }
+          const float w = 1.0f - std::max(d, 0.0f) / back, smooth = w * w * (3.0f - 2.0f * w);
+          p += smooth * (q - p);
+        }
+        bent = true;
+      }
       for (uint32_t k = first; k < e - b; ++k) {
         const uint32_t i = forward ? b + k : e - 1 - k;
         out.points.push_back(runs.points[i]);
@@ -442,6 +469,11 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       }
       r = next_entry / 2;
       entry = next_entry;
+    }
+    if (bent) {  // the bent stretches changed the length: measured again, bridges included
+      length = 0.0f;
+      for (size_t j = out.offsets.back() + 1; j < out.points.size(); ++j)
+        length += glm::length(out.points[j] - out.points[j - 1]);
     }
     joined.first_run.push_back(static_cast<uint32_t>(start_run));
     out.offsets.push_back(static_cast<uint32_t>(out.points.size()));

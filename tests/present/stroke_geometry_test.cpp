@@ -446,7 +446,20 @@ TEST(StrokeStyles, RunsOverlappingSideBySideAreJoinedPastTheOverlap) {
   const uint32_t b = j.runs.offsets[s01], e = j.runs.offsets[s01 + 1];
   for (uint32_t i = b + 1; i < e; ++i) EXPECT_GT(j.runs.points[i].x, j.runs.points[i - 1].x) << "doubles back at " << i;
   EXPECT_EQ(e - b, (runs.offsets[1] - runs.offsets[0]) + (runs.offsets[2] - runs.offsets[1]) - 6);
-  EXPECT_NEAR(j.runs.length_px[s01], 40.0f + 39.0f + glm::length(glm::vec2(61, 42.3f) - glm::vec2(60, 40.5f)), 0.05f);
+  // The first run's end bends over onto the second's line along the overlap: no step of
+  // 1.8 px at one point, and the length is the joined polyline's.
+  float polyline = 0.0f, max_step = 0.0f;
+  for (uint32_t i = b + 1; i < e; ++i) {
+    polyline += glm::length(j.runs.points[i] - j.runs.points[i - 1]);
+    max_step = std::max(max_step, std::abs(j.runs.points[i].y - j.runs.points[i - 1].y));
+  }
+  EXPECT_LT(max_step, 0.9f);
+  EXPECT_NEAR(j.runs.points[b + 40].y, 42.3f, 0.05f) << "run 0's end lies on run 1's line";
+  EXPECT_EQ(j.runs.points[b].y, 40.5f);
+  EXPECT_EQ(j.runs.points[b + 35].y, 40.5f) << "bent only along the 5-px overlap";
+  EXPECT_NEAR(j.runs.length_px[s01], polyline, 1e-3f);
+  EXPECT_GT(polyline, 80.0f);
+  EXPECT_LT(polyline, 81.0f);
   // The points left out are run 1's first six (x = 55..60).
   EXPECT_EQ(j.skipped[2], 6u);
   // Run 5 (the same overlap drawn the other way) joins 4 at its end.
