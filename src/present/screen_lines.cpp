@@ -253,6 +253,16 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     const float w = k >= 0 && k < kLineKindCount ? params.width_px[k] : 0.0f;
     return std::isfinite(w) ? std::max(params.along_px, std::min(w, 16.0f)) : params.along_px;
   };
+  // How far apart two ends of a kind may be to be bridged: bridge_px, or the kind's stroke
+  // width + 1.5 px where that is more (at most 16 px).
+  auto bridgeOfKind = [&](LineKind kind) {
+    const int k = static_cast<int>(kind);
+    const float w = k >= 0 && k < kLineKindCount ? params.width_px[k] : 0.0f;
+    return params.bridge_px > 0.0f && std::isfinite(w) && w > 0.0f
+               ? std::max(params.bridge_px, std::min(w + 1.5f, 16.0f)) : params.bridge_px;
+  };
+  float widest_bridge = params.bridge_px;
+  for (int k = 0; k < kLineKindCount; ++k) widest_bridge = std::max(widest_bridge, bridgeOfKind(static_cast<LineKind>(k)));
   // Runs lying along longer runs of their kind: every point of theirs, and every 2 px
   // between, within along_px of one of those.
   std::vector<uint8_t>& covered = joined.covered;
@@ -345,7 +355,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     return behind > 0.0f && behind <= overlap_px && side <= w && behind_o > 0.0f && behind_o <= overlap_px &&
            side_o <= w && runs.length_px[o / 2] > behind + w;
   };
-  const float reach = std::max({params.touch_px, params.bridge_px, overlap_px});
+  const float reach = std::max({params.touch_px, widest_bridge, overlap_px});
   const float cell = std::max(reach, 1e-3f);
   auto& bins = joined.bins;
   bins.clear();
@@ -373,7 +383,9 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       const glm::vec2 p = endPoint(e);
       int x, y;
       cellOf(p, x, y);
-      float best = overlapping_pass ? overlap_px * 1.5f : bridging ? params.bridge_px : params.touch_px;
+      float best = overlapping_pass ? overlap_px * 1.5f
+                   : bridging       ? bridgeOfKind(runs.kinds[e / 2])
+                                    : params.touch_px;
       int32_t best_end = -1;
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {

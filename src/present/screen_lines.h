@@ -78,7 +78,10 @@ struct JoinParams {
   /// goes on through the gap: each end's outward direction turns by at most `max_turn_deg`
   /// into the other's inward direction and into the gap, px. Default 3 (the visibility
   /// test and the outline's completion leave gaps of a pixel or two between pieces of one
-  /// line; 0: no bridging).
+  /// line; 0: no bridging). Where the kind's width is known (width_px), gaps up to that
+  /// width + 1.5 px are bridged when that is more: round caps close w px of a gap, so a
+  /// wider one shows as a break in the line (the elephant's trunk close up, gaps of
+  /// 3.5–3.9 px between pieces of a 2.5-px outline; docs/strokes.md).
   float bridge_px = 3.0f;
   /// Default 60°.
   float max_turn_deg = 60.0f;

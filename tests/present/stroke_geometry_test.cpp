@@ -376,6 +376,23 @@ TEST(StrokeStyles, GapsAlongOneLineAreBridged) {
   no_bridge.bridge_px = 0.0f;
   joinRuns(runs, {}, no_bridge, j);
   EXPECT_EQ(j.runs.strokeCount(), 6u);
+  // With the kind's width known (2.5 px), gaps up to 4 px are bridged: the 4.5-px one still
+  // is not. With 4 px width (5.5 px), it is.
+  StrokeRuns gap;
+  addRun(gap, {20, 40.5f}, {60, 40.5f});
+  addRun(gap, {63.8f, 40.5f}, {100, 40.5f});  // 3.8 px on
+  addRun(gap, {20, 140.5f}, {60, 140.5f});
+  addRun(gap, {64.5f, 140.5f}, {100, 140.5f});  // 4.5 px on
+  joinRuns(gap, {}, JoinParams{}, j);
+  EXPECT_EQ(j.runs.strokeCount(), 4u);
+  joinRuns(gap, {}, joinParamsFor(contourStyle(2.5f).lines), j);
+  EXPECT_EQ(j.runs.strokeCount(), 3u);
+  joinRuns(gap, {}, joinParamsFor(contourStyle(4.0f).lines), j);
+  EXPECT_EQ(j.runs.strokeCount(), 2u);
+  no_bridge = joinParamsFor(contourStyle(4.0f).lines);
+  no_bridge.bridge_px = 0.0f;
+  joinRuns(gap, {}, no_bridge, j);
+  EXPECT_EQ(j.runs.strokeCount(), 4u) << "bridge_px 0 turns bridging off whatever the width";
 }
 
 // A short run lying along a longer one of its kind (within along_px) is left out: drawn, a
