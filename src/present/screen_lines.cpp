@@ -503,6 +503,29 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     if (!done[r]) emit(r, 2 * r);
 }
 
+void appendRunAlone(const StrokeRuns& runs, const JoinedRuns& joined, size_t r, std::vector<glm::vec2>& out) {
+  if (r >= runs.strokeCount() || (r < joined.covered.size() && joined.covered[r])) return;
+  uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+  const std::vector<uint32_t>& skipped = joined.skipped;
+  if (2 * r + 1 < skipped.size() && skipped[2 * r] + skipped[2 * r + 1] + 2 <= e - b) {
+    b += skipped[2 * r];
+    e -= skipped[2 * r + 1];
+  }
+  // The other end of a bridge from end `en`, when this run draws it (the lower end index).
+  auto bridgeTo = [&](size_t en) -> const glm::vec2* {
+    if (en >= joined.link.size() || joined.link[en] < 0 ||
+        (en < joined.overlapping.size() && joined.overlapping[en]))
+      return nullptr;
+    const size_t o = static_cast<size_t>(joined.link[en]);
+    if (o < en) return nullptr;
+    const size_t q = o / 2;
+    return &runs.points[o % 2 == 0 ? runs.offsets[q] : runs.offsets[q + 1] - 1];
+  };
+  if (const glm::vec2* p = bridgeTo(2 * r)) out.push_back(*p);
+  out.insert(out.end(), runs.points.begin() + b, runs.points.begin() + e);
+  if (const glm::vec2* p = bridgeTo(2 * r + 1)) out.push_back(*p);
+}
+
 JoinParams joinParamsFor(const LineStyles& style) {
   JoinParams p;
   for (int k = 0; k < kLineKindCount; ++k)

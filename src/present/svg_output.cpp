@@ -74,32 +74,13 @@ void collect(const StrokeRuns& runs, const ObjectStyle& style, const StrokeView&
   // ones of their kind are left out of both paths below, as the renderers leave them out.
   joinRuns(runs, u, joinParamsFor(style.lines), sc.joined);
   const std::vector<uint8_t>& covered = sc.joined.covered;
-  const std::vector<uint32_t>& skipped = sc.joined.skipped;
-  const std::vector<int32_t>& link = sc.joined.link;
-  const std::vector<uint8_t>& overlapping = sc.joined.overlapping;
-  // The point a run's end `en` reaches over to where the renderers bridge it to another run
-  // (an end-to-end join, drawn by the run of the lower end index), or null.
-  auto bridgeTo = [&](size_t en) -> const glm::vec2* {
-    if (en >= link.size() || link[en] < 0 || overlapping[en]) return nullptr;
-    const size_t o = static_cast<size_t>(link[en]);
-    if (o < en) return nullptr;
-    const size_t q = o / 2;
-    return &runs.points[o % 2 == 0 ? runs.offsets[q] : runs.offsets[q + 1] - 1];
-  };
-  // Constant-width strokes: the runs as they are, less the points a side-by-side join
-  // leaves out (JoinParams::overlap_px), each reaching over the gaps the renderers bridge.
+  // Constant-width strokes: each run a path of its own (appendRunAlone: less the points a
+  // side-by-side join leaves out, reaching over the gaps the renderers bridge).
   for (size_t r = 0; r < runs.strokeCount(); ++r) {
     const LineStyle& ls = style.lines[runs.kinds[r]];
     if (variableWidth(ls.stroke) || (r < covered.size() && covered[r])) continue;
     if (ls.stroke.min_length_px > 0.0f && runs.length_px[r] < ls.stroke.min_length_px) continue;
-    uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
-    if (2 * r + 1 < skipped.size() && skipped[2 * r] + skipped[2 * r + 1] + 2 <= e - b) {
-      b += skipped[2 * r];
-      e -= skipped[2 * r + 1];
-    }
-    if (const glm::vec2* p = bridgeTo(2 * r)) out.points.push_back(*p);
-    out.points.insert(out.points.end(), runs.points.begin() + b, runs.points.begin() + e);
-    if (const glm::vec2* p = bridgeTo(2 * r + 1)) out.points.push_back(*p);
+    appendRunAlone(runs, sc.joined, r, out.points);
     out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
     out.kinds.push_back(runs.kinds[r]);
     out.opacity.push_back(runs.opacity[r]);

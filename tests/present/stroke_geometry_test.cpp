@@ -488,5 +488,31 @@ TEST(StrokeStyles, RunsOverlappingSideBySideAreJoinedPastTheOverlap) {
   joinRuns(runs, {}, none, j);
   EXPECT_EQ(j.runs.strokeCount(), 8u);
 }
+
+// Each run written alone (the SVG's constant-width paths) draws what the joined stroke draws:
+// a bridged gap is drawn by the run of the lower end, an overlap join leaves out the entered
+// run's points behind the other's end, a run lying along another is not written.
+TEST(StrokeStyles, RunsWrittenAloneDrawWhatTheJoinedStrokeDraws) {
+  StrokeRuns runs;
+  addRun(runs, {20, 40.5f}, {60, 40.5f});     // 0
+  addRun(runs, {63.8f, 40.5f}, {100, 40.5f});  // 1: 3.8 px on: bridged at a 2.5-px width
+  addRun(runs, {20, 80.5f}, {60, 80.5f});     // 2
+  addRun(runs, {55, 82.3f}, {100, 82.3f});    // 3: overlaps 2's end side by side
+  addRun(runs, {30, 81.5f}, {40, 81.5f});     // 4: lies along 2
+  JoinedRuns j;
+  joinRuns(runs, {}, joinParamsFor(contourStyle(2.5f).lines), j);
+  std::vector<glm::vec2> p0, p1, p3, p4;
+  appendRunAlone(runs, j, 0, p0);
+  appendRunAlone(runs, j, 1, p1);
+  appendRunAlone(runs, j, 3, p3);
+  appendRunAlone(runs, j, 4, p4);
+  ASSERT_EQ(p0.size(), runs.offsets[1] - runs.offsets[0] + 1);
+  EXPECT_EQ(p0.back(), glm::vec2(63.8f, 40.5f)) << "run 0 reaches over the gap to run 1";
+  ASSERT_EQ(p1.size(), runs.offsets[2] - runs.offsets[1]);
+  EXPECT_EQ(p1.front(), glm::vec2(63.8f, 40.5f)) << "the bridge is drawn once";
+  ASSERT_EQ(p3.size(), runs.offsets[4] - runs.offsets[3] - 6);
+  EXPECT_GT(p3.front().x, 60.0f) << "run 3 starts past run 2's end";
+  EXPECT_TRUE(p4.empty());
+}
 }  // namespace
 }  // namespace lodline
