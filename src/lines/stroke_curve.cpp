@@ -225,9 +225,9 @@ int smoothSection(const std::vector<glm::vec2>& p, const std::vector<float>& arc
   sc.smooth = sc.samples;
   if (sigma > 1e-3f && m >= 2) {
     const int half = std::min(static_cast<int>(std::ceil(3.0f * sigma)), m);
-    sc.params.resize(static_cast<size_t>(half) + 1);  // the Gaussian's weights, reused as scratch
+    sc.weights.resize(static_cast<size_t>(half) + 1);
     for (int o = 0; o <= half; ++o)
-      sc.params[static_cast<size_t>(o)] = std::exp(-0.5f * static_cast<float>(o * o) / (sigma * sigma));
+      sc.weights[static_cast<size_t>(o)] = std::exp(-0.5f * static_cast<float>(o * o) / (sigma * sigma));
     auto at = [&](int j) -> glm::vec2 {
       if (j < 0) return 2.0f * sc.samples.front() - sc.samples[static_cast<size_t>(-j)];
       if (j > m) return 2.0f * sc.samples.back() - sc.samples[static_cast<size_t>(2 * m - j)];
@@ -237,7 +237,7 @@ int smoothSection(const std::vector<glm::vec2>& p, const std::vector<float>& arc
       glm::vec2 acc(0.0f);
       float wsum = 0.0f;
       for (int o = -half; o <= half; ++o) {
-        const float g = sc.params[static_cast<size_t>(o < 0 ? -o : o)];
+        const float g = sc.weights[static_cast<size_t>(o < 0 ? -o : o)];
         acc += g * at(j + o);
         wsum += g;
       }

@@ -49,6 +49,7 @@ struct StrokeCurveParams {
 struct StrokeCurveScratch {
   std::vector<glm::vec2> clean, samples, smooth;
   std::vector<float> arc, params;
+  std::vector<float> weights;  ///< the smoothing Gaussian's weights, by offset
   std::vector<size_t> corners;
 };
 

@@ -246,23 +246,20 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     const float g = glm::length(gap);
     return g <= params.touch_px || (glm::dot(te, gap / g) >= min_cos && glm::dot(-to, gap / g) >= min_cos);
   };
-  // How near a line of its kind a run's point may lie to lie along it: along_px, or the
-  // kind's stroke width where that is wider (at most 16 px).
-  auto reachOfKind = [&](LineKind kind) {
-    const int k = static_cast<int>(kind);
-    const float w = k >= 0 && k < kLineKindCount ? params.width_px[k] : 0.0f;
-    return std::isfinite(w) ? std::max(params.along_px, std::min(w, 16.0f)) : params.along_px;
-  };
-  // How far apart two ends of a kind may be to be bridged: bridge_px, or the kind's stroke
-  // width + 1.5 px where that is more (at most 16 px).
-  auto bridgeOfKind = [&](LineKind kind) {
-    const int k = static_cast<int>(kind);
-    const float w = k >= 0 && k < kLineKindCount ? params.width_px[k] : 0.0f;
-    return params.bridge_px > 0.0f && std::isfinite(w) && w > 0.0f
-               ? std::max(params.bridge_px, std::min(w + 1.5f, 16.0f)) : params.bridge_px;
-  };
-  float widest_bridge = params.bridge_px;
-  for (int k = 0; k < kLineKindCount; ++k) widest_bridge = std::max(widest_bridge, bridgeOfKind(static_cast<LineKind>(k)));
+  // Per kind, once: how near a line of its kind a run's point may lie to lie along it
+  // (along_px, or the kind's stroke width where that is wider), and how far apart two ends
+  // may be to be bridged (bridge_px, or the width + 1.5 px where that is more; 0 stays 0).
+  // Widths count up to 16 px.
+  std::array<float, kLineKindCount> reach_of{}, bridge_of{};
+  float widest_reach = params.along_px, widest_bridge = params.bridge_px;
+  for (int k = 0; k < kLineKindCount; ++k) {
+    const float w = std::isfinite(params.width_px[k]) ? std::clamp(params.width_px[k], 0.0f, 16.0f) : 0.0f;
+    reach_of[k] = std::max(params.along_px, w);
+    bridge_of[k] = params.bridge_px > 0.0f && w > 0.0f ? std::max(params.bridge_px, w + 1.5f) : params.bridge_px;
+    widest_reach = std::max(widest_reach, reach_of[k]);
+    widest_bridge = std::max(widest_bridge, bridge_of[k]);
+  }
+  auto kindIndex = [](LineKind kind) { return static_cast<size_t>(kind); };
   // Runs lying along longer runs of their kind: every point of theirs, and every 2 px
   // between, within along_px of one of those.
   std::vector<uint8_t>& covered = joined.covered;
@@ -276,10 +273,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (const glm::vec2& p : runs.points)
       if (finite(p)) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    float widest = params.along_px;
-    for (float w : params.width_px)
-      if (std::isfinite(w)) widest = std::max(widest, std::min(w, 16.0f));
-    float cell_px = std::max(8.0f, widest);
+    float cell_px = std::max(8.0f, widest_reach);
     int gw = 1, gh = 1;
     if (lo.x <= hi.x) {
       while (true) {
@@ -296,10 +290,9 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       for (uint32_t i = runs.offsets[r]; i < runs.offsets[r + 1]; ++i) run_of[i] = static_cast<uint32_t>(r);
     // Whether `p` lies within the reach (along_px, or the kind's width) of a segment of a
     // longer run of run r's kind.
-    auto reachOf = [&](size_t r) { return reachOfKind(runs.kinds[r]); };
     auto along = [&](glm::vec2 p, size_t r) {
       bool found = false;
-      const float reach = reachOf(r), reach2 = reach * reach;
+      const float reach = reach_of[kindIndex(runs.kinds[r])], reach2 = reach * reach;
       joined.grid.forEachNear(p, reach, [&](uint32_t i) {
         const uint32_t q = run_of[i];
         if (found || q == r || runs.kinds[q] != runs.kinds[r] || covered[q] || runs.length_px[q] < runs.length_px[r] ||
@@ -351,7 +344,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     const glm::vec2 g = endPoint(o) - endPoint(e);
     const float behind = -glm::dot(te, g), side = std::abs(te.x * g.y - te.y * g.x);
     const float behind_o = glm::dot(to, g), side_o = std::abs(to.x * g.y - to.y * g.x);
-    const float w = runs.kinds[e / 2] == runs.kinds[o / 2] ? reachOfKind(runs.kinds[e / 2]) : 0.0f;
+    const float w = reach_of[kindIndex(runs.kinds[e / 2])];  // the caller pairs ends of one kind
     return behind > 0.0f && behind <= overlap_px && side <= w && behind_o > 0.0f && behind_o <= overlap_px &&
            side_o <= w && runs.length_px[o / 2] > behind + w;
   };
@@ -384,7 +377,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       int x, y;
       cellOf(p, x, y);
       float best = overlapping_pass ? overlap_px * 1.5f
-                   : bridging       ? bridgeOfKind(runs.kinds[e / 2])
+                   : bridging       ? bridge_of[kindIndex(runs.kinds[e / 2])]
                                     : params.touch_px;
       int32_t best_end = -1;
       for (int dy = -1; dy <= 1; ++dy)
