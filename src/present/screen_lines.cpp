@@ -498,25 +498,32 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
 
 void appendRunAlone(const StrokeRuns& runs, const JoinedRuns& joined, size_t r, std::vector<glm::vec2>& out) {
   if (r >= runs.strokeCount() || (r < joined.covered.size() && joined.covered[r])) return;
-  uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
   const std::vector<uint32_t>& skipped = joined.skipped;
-  if (2 * r + 1 < skipped.size() && skipped[2 * r] + skipped[2 * r + 1] + 2 <= e - b) {
-    b += skipped[2 * r];
-    e -= skipped[2 * r + 1];
-  }
-  // The other end of a bridge from end `en`, when this run draws it (the lower end index).
-  auto bridgeTo = [&](size_t en) -> const glm::vec2* {
-    if (en >= joined.link.size() || joined.link[en] < 0 ||
-        (en < joined.overlapping.size() && joined.overlapping[en]))
-      return nullptr;
+  // Run q's points less those an overlap join left out at its ends.
+  auto kept = [&](size_t q, uint32_t& b, uint32_t& e) {
+    b = runs.offsets[q];
+    e = runs.offsets[q + 1];
+    if (2 * q + 1 < skipped.size() && skipped[2 * q] + skipped[2 * q + 1] + 2 <= e - b) {
+      b += skipped[2 * q];
+      e -= skipped[2 * q + 1];
+    }
+  };
+  // Where the joined stroke goes on from end `en` to another run (a bridged gap, or the
+  // step of an overlap join to the entered run's first kept point): that run's kept end
+  // there, when this run draws the piece between (the lower end index), else null.
+  auto reachTo = [&](size_t en) -> const glm::vec2* {
+    if (en >= joined.link.size() || joined.link[en] < 0) return nullptr;
     const size_t o = static_cast<size_t>(joined.link[en]);
     if (o < en) return nullptr;
-    const size_t q = o / 2;
-    return &runs.points[o % 2 == 0 ? runs.offsets[q] : runs.offsets[q + 1] - 1];
+    uint32_t b = 0, e = 0;
+    kept(o / 2, b, e);
+    return &runs.points[o % 2 == 0 ? b : e - 1];
   };
-  if (const glm::vec2* p = bridgeTo(2 * r)) out.push_back(*p);
+  uint32_t b = 0, e = 0;
+  kept(r, b, e);
+  if (const glm::vec2* p = reachTo(2 * r)) out.push_back(*p);
   out.insert(out.end(), runs.points.begin() + b, runs.points.begin() + e);
-  if (const glm::vec2* p = bridgeTo(2 * r + 1)) out.push_back(*p);
+  if (const glm::vec2* p = reachTo(2 * r + 1)) out.push_back(*p);
 }
 
 JoinParams joinParamsFor(const LineStyles& style) {

@@ -107,8 +107,9 @@ struct JoinParams {
 /// Appends to `out` the points of run r of `runs` as a path of its own that draws what the
 /// joined stroke draws there (the SVG's constant-width paths, which keep one id per run):
 /// without the points an overlap join left out at either end (unbent), and reaching over to
-/// the next run where `joined` (joinRuns() of `runs`) bridges a gap, drawn by the run of the
-/// lower end. Nothing for a run left out as lying along another.
+/// the next run where `joined` (joinRuns() of `runs`) goes on to it (a bridged gap, or the
+/// step of an overlap join), that piece drawn by the run of the lower end. Nothing for a run
+/// left out as lying along another.
 void appendRunAlone(const StrokeRuns& runs, const JoinedRuns& joined, size_t r, std::vector<glm::vec2>& out);
 
 /// JoinParams with each kind's width from `style` (enabled kinds; 0 for the others).

@@ -491,7 +491,8 @@ TEST(StrokeStyles, RunsOverlappingSideBySideAreJoinedPastTheOverlap) {
 
 // Each run written alone (the SVG's constant-width paths) draws what the joined stroke draws:
 // a bridged gap is drawn by the run of the lower end, an overlap join leaves out the entered
-// run's points behind the other's end, a run lying along another is not written.
+// run's points behind the other's end and steps over to the first kept one, a run lying along
+// another is not written.
 TEST(StrokeStyles, RunsWrittenAloneDrawWhatTheJoinedStrokeDraws) {
   StrokeRuns runs;
   addRun(runs, {20, 40.5f}, {60, 40.5f});     // 0
@@ -512,6 +513,10 @@ TEST(StrokeStyles, RunsWrittenAloneDrawWhatTheJoinedStrokeDraws) {
   EXPECT_EQ(p1.front(), glm::vec2(63.8f, 40.5f)) << "the bridge is drawn once";
   ASSERT_EQ(p3.size(), runs.offsets[4] - runs.offsets[3] - 6);
   EXPECT_GT(p3.front().x, 60.0f) << "run 3 starts past run 2's end";
+  std::vector<glm::vec2> p2;
+  appendRunAlone(runs, j, 2, p2);
+  ASSERT_EQ(p2.size(), runs.offsets[3] - runs.offsets[2] + 1);
+  EXPECT_EQ(p2.back(), p3.front()) << "run 2 steps over to where run 3 goes on: no gap between them";
   EXPECT_TRUE(p4.empty());
 }
 }  // namespace
