@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -444,37 +445,36 @@ void extractZeroSet(std::span<const glm::vec3> positions, std::span<const std::a
 namespace {
 
 // Marks each edge in scratch.edge_mark: 1 crease (when `want_creases`), 2 boundary (when
-// `want_boundaries`), 0 otherwise. False when the inputs do not fit the mesh.
+// `want_boundaries`), 0 otherwise, and lists the marked ones in edge order in
+// scratch.marked_edges: a mesh has few, and the passes after this one read the list instead of
+// every edge. False when the inputs do not fit the mesh.
 bool classifyEdges(const TriMesh& mesh, const MeshAdjacency& adj, std::span<const glm::vec3> face_normals,
                    const LineParams& params, bool want_creases, bool want_boundaries, LineScratch& scratch,
                    std::span<const uint8_t> crease_vertices) {
   const bool masked = crease_vertices.size() == mesh.positions.size();
   const size_t ne = adj.edges.size();
+  scratch.marked_edges.clear();
   if (adj.vertex_count != mesh.positions.size() || face_normals.size() != adj.face_count) return false;
   const float cos_limit =
       std::cos(params.crease_angle_deg * std::numbers::pi_v<float> / 180.0f);
-  scratch.edge_mark.assign(ne, 0);  // 1 crease, 2 boundary
-  if (want_creases && params.marked_edges) {
-    for (const EdgeKey& k : mesh.marked_edges) {
-      const uint32_t e = adj.findEdge(k[0], k[1]);
-      if (e != kNoIndex) scratch.edge_mark[e] = 1;
-    }
-  }
+  const bool marked_lines = want_creases && params.marked_edges;
+  scratch.edge_mark.resize(ne);
   auto classify = [&](size_t begin, size_t end) {  // each edge writes only its own mark
     for (size_t e = begin; e < end; ++e) {
       const uint32_t count = adj.edge_face_count[e];
+      uint8_t mark = 0;
       if (count == 1) {
-        scratch.edge_mark[e] = want_boundaries ? 2 : scratch.edge_mark[e];
+        mark = want_boundaries ? 2 : 0;
       } else if (count == 2) {
-        if (!want_creases || scratch.edge_mark[e]) continue;
-        if (masked && (!crease_vertices[adj.edges[e][0]] || !crease_vertices[adj.edges[e][1]])) continue;
-        const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
-        const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
-        if (glm::dot(n1, n1) == 0.0f || glm::dot(n2, n2) == 0.0f) continue;
-        if (glm::dot(n1, n2) < cos_limit) scratch.edge_mark[e] = 1;
-      } else if (count > 2 && want_creases && params.marked_edges) {
-        scratch.edge_mark[e] = 1;
+        if (want_creases && (!masked || (crease_vertices[adj.edges[e][0]] && crease_vertices[adj.edges[e][1]]))) {
+          const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
+          const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
+          if (glm::dot(n1, n1) != 0.0f && glm::dot(n2, n2) != 0.0f && glm::dot(n1, n2) < cos_limit) mark = 1;
+        }
+      } else if (count > 2 && marked_lines) {
+        mark = 1;
       }
+      scratch.edge_mark[e] = mark;
     }
   };
   if (scratch.pool) {
@@ -482,19 +482,37 @@ bool classifyEdges(const TriMesh& mesh, const MeshAdjacency& adj, std::span<cons
   } else {
     classify(0, ne);
   }
+  // Marked edges are creases whatever their angle; on a boundary they stay boundaries when
+  // those are drawn.
+  if (marked_lines) {
+    for (const EdgeKey& k : mesh.marked_edges) {
+      const uint32_t e = adj.findEdge(k[0], k[1]);
+      if (e != kNoIndex) scratch.edge_mark[e] = adj.edge_face_count[e] == 1 && want_boundaries ? 2 : 1;
+    }
+  }
+  size_t e = 0;
+  for (; e + 8 <= ne; e += 8) {  // eight unmarked edges skipped at a time
+    uint64_t word;
+    std::memcpy(&word, &scratch.edge_mark[e], sizeof(word));
+    if (word == 0) continue;
+    for (size_t u = e; u < e + 8; ++u)
+      if (scratch.edge_mark[u]) scratch.marked_edges.push_back(static_cast<uint32_t>(u));
+  }
+  for (; e < ne; ++e)
+    if (scratch.edge_mark[e]) scratch.marked_edges.push_back(static_cast<uint32_t>(e));
   return true;
 }
 
-// Appends the edges scratch.edge_mark marks: creases if params.creases, boundaries if
-// params.boundaries.
+// Appends the edges scratch.edge_mark marks (listed in scratch.marked_edges): creases if
+// params.creases, boundaries if params.boundaries.
 void pushEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj, const LineParams& params, const LineScratch& scratch,
                    LineSet& out) {
-  for (size_t e = 0; e < adj.edges.size(); ++e) {
+  for (const uint32_t e : scratch.marked_edges) {
     const uint8_t m = scratch.edge_mark[e];
-    if (m == 0 || (m == 1 && !params.creases) || (m == 2 && !params.boundaries)) continue;
+    if ((m == 1 && !params.creases) || (m == 2 && !params.boundaries)) continue;
     const uint32_t a = adj.edges[e][0], b = adj.edges[e][1];
-    pushSegment(out, m == 2 ? LineKind::kBoundary : LineKind::kCrease, static_cast<uint32_t>(e),
-                mesh.positions[a], a, 1.0f, mesh.positions[b], b, 1.0f);
+    pushSegment(out, m == 2 ? LineKind::kBoundary : LineKind::kCrease, e, mesh.positions[a], a, 1.0f,
+                mesh.positions[b], b, 1.0f);
   }
 }
 
@@ -515,12 +533,12 @@ std::span<const float> contourValue(const TriMesh& mesh, const MeshAdjacency& ad
                                     LineScratch& scratch) {
   bool copied = false;
   scratch.silhouette_creases.clear();
-  for (size_t e = 0; e < adj.edges.size(); ++e) {
+  for (const uint32_t e : scratch.marked_edges) {
     if (scratch.edge_mark[e] != 1 || adj.edge_face_count[e] != 2) continue;
     const int a = faceFacing(mesh, face_normals, view.view, adj.edge_faces[e][0]);
     const int b = faceFacing(mesh, face_normals, view.view, adj.edge_faces[e][1]);
     if (a == 0 || b == 0 || a == b) continue;
-    scratch.silhouette_creases.push_back(static_cast<uint32_t>(e));
+    scratch.silhouette_creases.push_back(e);
     if (!copied) {
       scratch.contour_value.assign(view.ndotv.begin(), view.ndotv.end());
       copied = true;
@@ -583,19 +601,47 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adj,
 void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adj, std::span<const glm::vec3> face_normals,
                            const ViewSpec& view, LineScratch& scratch, LineSet& out) {
   out.clear();
-  // Each face's facing once, in face order; the edges then read two bytes each.
+  // Each face's facing once, in face order; then each edge reads two bytes and marks itself
+  // (both passes on the pool's threads); then the marked edges, in edge order, eight
+  // unmarked ones skipped at a time (a few hundred of ~100k edges are silhouettes).
   auto& facing = scratch.face_facing;
   facing.resize(mesh.faces.size());
-  for (uint32_t f = 0; f < mesh.faces.size(); ++f)
-    facing[f] = static_cast<int8_t>(faceFacing(mesh, face_normals, view, f));
-  for (size_t e = 0; e < adj.edges.size(); ++e) {
-    if (adj.edge_face_count[e] != 2) continue;
-    const int a = facing[adj.edge_faces[e][0]], b = facing[adj.edge_faces[e][1]];
-    if (a == 0 || b == 0 || a == b) continue;
+  auto faces = [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f)
+      facing[f] = static_cast<int8_t>(faceFacing(mesh, face_normals, view, static_cast<uint32_t>(f)));
+  };
+  const size_t ne = adj.edges.size();
+  auto& mark = scratch.silhouette_edge;
+  mark.resize(ne);
+  auto edges = [&](size_t begin, size_t end) {
+    for (size_t e = begin; e < end; ++e) {
+      const int a = facing[adj.edge_faces[e][0] == kNoIndex ? 0 : adj.edge_faces[e][0]];
+      const int b = facing[adj.edge_faces[e][1] == kNoIndex ? 0 : adj.edge_faces[e][1]];
+      mark[e] = adj.edge_face_count[e] == 2 && a != 0 && b != 0 && a != b;
+    }
+  };
+  if (scratch.pool) {
+    scratch.pool->forRange(mesh.faces.size(), 8192, faces);
+    scratch.pool->forRange(ne, 8192, edges);
+  } else {
+    faces(0, mesh.faces.size());
+    edges(0, ne);
+  }
+  auto push = [&](size_t e) {
     const uint32_t v0 = adj.edges[e][0], v1 = adj.edges[e][1];
     pushSegment(out, LineKind::kContour, static_cast<uint32_t>(e), mesh.positions[v0], v0, 1.0f, mesh.positions[v1],
                 v1, 1.0f);
+  };
+  size_t e = 0;
+  for (; e + 8 <= ne; e += 8) {
+    uint64_t word;
+    std::memcpy(&word, &mark[e], sizeof(word));
+    if (word == 0) continue;
+    for (size_t u = e; u < e + 8; ++u)
+      if (mark[u]) push(u);
   }
+  for (; e < ne; ++e)
+    if (mark[e]) push(e);
 }
 
 void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
@@ -619,7 +665,7 @@ void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,
   std::span<const uint8_t> crease_shut;
   if (off_creases && classified) {
     scratch.crease_vertex.assign(mesh.positions.size(), 0);
-    for (size_t e = 0; e < adj.edges.size(); ++e)
+    for (const uint32_t e : scratch.marked_edges)
       if (scratch.edge_mark[e] == 1) scratch.crease_vertex[adj.edges[e][0]] = scratch.crease_vertex[adj.edges[e][1]] = 1;
     crease_shut = scratch.crease_vertex;
   }

@@ -198,12 +198,14 @@ struct ZeroSetInput {
 /// Scratch buffers of the extractors (per-edge crossings, marks); reuse between calls.
 struct LineScratch {
   std::vector<uint8_t> vertex_code;  // per vertex: value sign, test, gate (extractZeroSet)
-  std::vector<uint8_t> edge_mark;
+  std::vector<uint8_t> edge_mark;           // per edge: 1 crease, 2 boundary, 0 neither
+  std::vector<uint32_t> marked_edges;       // the edges edge_mark marks, in edge order
   std::vector<float> contour_value;         // n·v with silhouette creases' vertices at 0
   std::vector<uint32_t> silhouette_creases;  // their edges
   std::vector<uint8_t> vertex_ends;          // contour ends per vertex (spurs along creases)
   std::vector<uint8_t> crease_vertex;        // vertices on a crease edge (suggestive_off_creases)
   std::vector<int8_t> face_facing;           // per face: 1 front, -1 back, 0 degenerate
+  std::vector<uint8_t> silhouette_edge;      // per edge: 1 on the mesh's silhouette
   uint32_t next_interior_id = 0;
   /// Optional threads (not owned) for the per-edge and per-face passes; the output is the
   /// same.
@@ -252,7 +254,8 @@ void extractEdgeLines(const TriMesh& mesh, const MeshAdjacency& adjacency,
 /// mesh this polygonal outline is where the faces as drawn end, while the interpolated
 /// contour (n·v = 0 on vertex normals) may run inside it (docs/visibility.md).
 /// `face_normals` holds faceCount unit normals (zero: degenerate, skipped). `scratch` holds
-/// each face's facing between the pass over the faces and the one over the edges.
+/// each face's facing and each edge's mark between the passes (on scratch.pool's threads
+/// where set; the output is the same).
 void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adjacency,
                            std::span<const glm::vec3> face_normals, const ViewSpec& view, LineScratch& scratch,
                            LineSet& out);

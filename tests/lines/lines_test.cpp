@@ -880,6 +880,71 @@ TEST(ExtractLines, WorkerThreadsGiveTheSerialOutput) {
   expectSameLines(serial, threaded);
 }
 
+// The edge passes on worker threads (crease and boundary marks, the list of marked edges the
+// later passes read, the mesh silhouette's facing and edges) give exactly the serial output,
+// on a mesh with creases (a five-sided tube turns 72° at each edge), a boundary (some faces
+// removed), marked edges and silhouette creases.
+TEST(ExtractLines, EdgePassesOnWorkerThreadsGiveTheSerialOutput) {
+  TriMesh m = makeTorusKnot(2, 3, 1.0f, 0.2f, 4000, 5, 0.18f);  // 40,000 faces, 60,000 edges
+  m.faces.resize(m.faces.size() - 50);  // an open end: a boundary loop
+  for (uint32_t k = 0; k < 40; ++k) m.marked_edges.push_back({m.faces[k * 97][0], m.faces[k * 97][1]});
+  for (auto& e : m.marked_edges)
+    if (e[0] > e[1]) std::swap(e[0], e[1]);
+  ShapeCache shape;
+  shape.compute(m);
+  ViewSpec view;
+  view.eye = {0.3f, 1.2f, 3.5f};
+  const float fs = computeFeatureSize(shape.k1(), shape.k2(), computeBounds(m.positions).radius);
+  ViewQuantities vq;
+  LineParams params;
+  params.boundaries = true;
+  computeViewQuantities(shape.fields(m), view, params.suggestive_threshold / (fs * fs), vq);
+  LineScratch serial_scratch, threaded_scratch;
+  WorkerPool pool(3);
+  threaded_scratch.pool = &pool;
+  LineSet serial, threaded;
+  extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, serial_scratch, serial);
+  extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, threaded_scratch, threaded);
+  ASSERT_GT(serial.counts[static_cast<int>(LineKind::kCrease)], 1000u);
+  ASSERT_GT(serial.counts[static_cast<int>(LineKind::kBoundary)], 3u);
+  ASSERT_GT(serial.counts[static_cast<int>(LineKind::kContour)], 100u);
+  expectSameLines(serial, threaded);
+  // The marked edges are listed once each, in edge order, and only those.
+  const MeshAdjacency& adj = shape.adjacency();
+  std::vector<uint32_t> marked;
+  for (uint32_t e = 0; e < adj.edges.size(); ++e)
+    if (serial_scratch.edge_mark[e]) marked.push_back(e);
+  EXPECT_EQ(serial_scratch.marked_edges, marked);
+  EXPECT_EQ(threaded_scratch.marked_edges, marked);
+  // A marked edge whose faces meet at under 60° is a crease all the same.
+  size_t flat_marked = 0;
+  for (const EdgeKey& k : m.marked_edges) {
+    const uint32_t e = adj.findEdge(k[0], k[1]);
+    ASSERT_NE(e, kNoIndex);
+    EXPECT_EQ(serial_scratch.edge_mark[e], adj.edge_face_count[e] == 1 ? 2 : 1);
+    const auto& f = adj.edge_faces[e];
+    if (adj.edge_face_count[e] == 2 &&
+        glm::dot(shape.faceNormals()[f[0]], shape.faceNormals()[f[1]]) > 0.9f)
+      ++flat_marked;
+  }
+  EXPECT_GT(flat_marked, 0u);
+  LineSet serial_silhouette, threaded_silhouette;
+  extractMeshSilhouette(m, adj, shape.faceNormals(), view, serial_scratch, serial_silhouette);
+  extractMeshSilhouette(m, adj, shape.faceNormals(), view, threaded_scratch, threaded_silhouette);
+  ASSERT_GT(serial_silhouette.counts[static_cast<int>(LineKind::kContour)], 100u);
+  expectSameLines(serial_silhouette, threaded_silhouette);
+  // Each silhouette edge joins a front face and a back face.
+  for (size_t s = 0; s < serial_silhouette.kinds.size(); ++s) {
+    const uint32_t e = serial_silhouette.sources[s];
+    ASSERT_LT(e, adj.edges.size());
+    const auto& f = adj.edge_faces[e];
+    const auto facing = [&](uint32_t face) {
+      return glm::dot(shape.faceNormals()[face], view.eye - m.positions[m.faces[face][0]]) > 0.0f;
+    };
+    EXPECT_NE(facing(f[0]), facing(f[1])) << "edge " << e;
+  }
+}
+
 // The face pass finds its faces sixteen at a time with AVX-512 where the processor has it
 // (extractZeroSets): the same segments as the face-by-face scan, on random values with exact
 // zeros, tests, gates and shut vertices, over faces whose count is no multiple of 16 and some
