@@ -444,62 +444,105 @@ void extractZeroSet(std::span<const glm::vec3> positions, std::span<const std::a
 
 namespace {
 
-// Marks each edge in scratch.edge_mark: 1 crease (when `want_creases`), 2 boundary (when
+// Marks edges in scratch.edge_mark: 1 crease (when `want_creases`), 2 boundary (when
 // `want_boundaries`), 0 otherwise, and lists the marked ones in edge order in
-// scratch.marked_edges: a mesh has few, and the passes after this one read the list instead of
-// every edge. False when the inputs do not fit the mesh.
+// scratch.marked_edges: a mesh has few, and the passes after this one read the list, not
+// every edge. With `crease_vertices` (an adapted mesh, whose creases join vertices on the
+// full-detail creases) only the edges at those vertices and at boundary vertices are tested,
+// from their lower end, and edge_mark is valid at the listed edges only (0 elsewhere for
+// edges it held before); without, every edge is marked. False when the inputs do not fit the
+// mesh.
 bool classifyEdges(const TriMesh& mesh, const MeshAdjacency& adj, std::span<const glm::vec3> face_normals,
                    const LineParams& params, bool want_creases, bool want_boundaries, LineScratch& scratch,
                    std::span<const uint8_t> crease_vertices) {
   const bool masked = crease_vertices.size() == mesh.positions.size();
   const size_t ne = adj.edges.size();
+  auto& mark = scratch.edge_mark;
+  for (const uint32_t e : scratch.marked_edges)  // the last call's marks, so the rest stays 0
+    if (e < mark.size()) mark[e] = 0;
   scratch.marked_edges.clear();
   if (adj.vertex_count != mesh.positions.size() || face_normals.size() != adj.face_count) return false;
   const float cos_limit =
       std::cos(params.crease_angle_deg * std::numbers::pi_v<float> / 180.0f);
   const bool marked_lines = want_creases && params.marked_edges;
-  scratch.edge_mark.resize(ne);
-  auto classify = [&](size_t begin, size_t end) {  // each edge writes only its own mark
-    for (size_t e = begin; e < end; ++e) {
-      const uint32_t count = adj.edge_face_count[e];
-      uint8_t mark = 0;
-      if (count == 1) {
-        mark = want_boundaries ? 2 : 0;
-      } else if (count == 2) {
-        if (want_creases && (!masked || (crease_vertices[adj.edges[e][0]] && crease_vertices[adj.edges[e][1]]))) {
-          const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
-          const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
-          if (glm::dot(n1, n1) != 0.0f && glm::dot(n2, n2) != 0.0f && glm::dot(n1, n2) < cos_limit) mark = 1;
-        }
-      } else if (count > 2 && marked_lines) {
-        mark = 1;
-      }
-      scratch.edge_mark[e] = mark;
+  mark.resize(ne, 0);
+  auto markOf = [&](size_t e) -> uint8_t {
+    const uint32_t count = adj.edge_face_count[e];
+    if (count == 1) return want_boundaries ? 2 : 0;
+    if (count == 2) {
+      if (!want_creases || (masked && (!crease_vertices[adj.edges[e][0]] || !crease_vertices[adj.edges[e][1]])))
+        return 0;
+      const glm::vec3& n1 = face_normals[adj.edge_faces[e][0]];
+      const glm::vec3& n2 = face_normals[adj.edge_faces[e][1]];
+      return glm::dot(n1, n1) != 0.0f && glm::dot(n2, n2) != 0.0f && glm::dot(n1, n2) < cos_limit ? 1 : 0;
     }
+    return count > 2 && marked_lines ? 1 : 0;
   };
-  if (scratch.pool) {
-    scratch.pool->forRange(ne, 8192, classify);
+  auto& list = scratch.marked_edges;
+  if (masked) {
+    // An edge that can be marked has both ends on a full-detail crease (a crease) or on a
+    // boundary (a boundary or non-manifold edge). Those vertices, eight others skipped at a
+    // time, then the edges of their rings that start at them.
+    const size_t nv = mesh.positions.size();
+    const uint8_t* crease = crease_vertices.data();
+    const uint8_t* open = adj.vertex_on_boundary.size() == nv ? adj.vertex_on_boundary.data() : nullptr;
+    const bool want_open = open && (want_boundaries || marked_lines);
+    auto visit = [&](uint32_t v) {
+      if (!(want_creases && crease[v]) && !(want_open && open[v])) return;
+      const uint32_t begin = adj.vertex_face_begin[v], end = adj.vertex_face_end[v];
+      for (uint32_t i = begin; i < end; ++i) {
+        const auto& fe = adj.face_edges[adj.vertex_faces[i]];
+        const uint8_t c = adj.vertex_face_corners[i];
+        for (const uint32_t e : {fe[c], fe[c == 0 ? 2 : c - 1]}) {  // the two sides at corner c
+          if (e == kNoIndex || adj.edges[e][0] != v || mark[e]) continue;
+          if ((mark[e] = markOf(e))) list.push_back(e);
+        }
+      }
+    };
+    uint32_t v = 0;
+    for (; v + 8 <= nv; v += 8) {
+      uint64_t a = 0, b = 0;
+      if (want_creases) std::memcpy(&a, crease + v, sizeof(a));
+      if (want_open) std::memcpy(&b, open + v, sizeof(b));
+      if ((a | b) == 0) continue;
+      for (uint32_t u = v; u < v + 8; ++u) visit(u);
+    }
+    for (; v < nv; ++v) visit(v);
   } else {
-    classify(0, ne);
+    auto classify = [&](size_t begin, size_t end) {  // each edge writes only its own mark
+      for (size_t e = begin; e < end; ++e) mark[e] = markOf(e);
+    };
+    if (scratch.pool) {
+      scratch.pool->forRange(ne, 8192, classify);
+    } else {
+      classify(0, ne);
+    }
   }
   // Marked edges are creases whatever their angle; on a boundary they stay boundaries when
   // those are drawn.
   if (marked_lines) {
     for (const EdgeKey& k : mesh.marked_edges) {
       const uint32_t e = adj.findEdge(k[0], k[1]);
-      if (e != kNoIndex) scratch.edge_mark[e] = adj.edge_face_count[e] == 1 && want_boundaries ? 2 : 1;
+      if (e == kNoIndex) continue;
+      if (masked && !mark[e]) list.push_back(e);
+      mark[e] = adj.edge_face_count[e] == 1 && want_boundaries ? 2 : 1;
     }
+  }
+  if (masked) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());  // (a marked edge listed twice)
+    return true;
   }
   size_t e = 0;
   for (; e + 8 <= ne; e += 8) {  // eight unmarked edges skipped at a time
     uint64_t word;
-    std::memcpy(&word, &scratch.edge_mark[e], sizeof(word));
+    std::memcpy(&word, &mark[e], sizeof(word));
     if (word == 0) continue;
     for (size_t u = e; u < e + 8; ++u)
-      if (scratch.edge_mark[u]) scratch.marked_edges.push_back(static_cast<uint32_t>(u));
+      if (mark[u]) list.push_back(static_cast<uint32_t>(u));
   }
   for (; e < ne; ++e)
-    if (scratch.edge_mark[e]) scratch.marked_edges.push_back(static_cast<uint32_t>(e));
+    if (mark[e]) list.push_back(static_cast<uint32_t>(e));
   return true;
 }
 

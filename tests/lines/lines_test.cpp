@@ -928,6 +928,33 @@ TEST(ExtractLines, EdgePassesOnWorkerThreadsGiveTheSerialOutput) {
       ++flat_marked;
   }
   EXPECT_GT(flat_marked, 0u);
+  // Under a mask of crease vertices (an adapted mesh) only the edges at masked and boundary
+  // vertices are tested: with every vertex masked, the same lines as without a mask.
+  const std::vector<uint8_t> all(m.positions.size(), 1);
+  LineSet all_masked;
+  extractLines(m, adj, shape.faceNormals(), vq, params, fs, threaded_scratch, all_masked, all);
+  expectSameLines(serial, all_masked);
+  // With a sparse mask: exactly the edges with both ends masked whose faces turn by over 60°,
+  // the boundary and the marked edges.
+  std::vector<uint8_t> some(m.positions.size(), 0);
+  for (size_t v = 0; v < some.size(); v += 3) some[v] = 1;
+  LineSet sparse;
+  extractLines(m, adj, shape.faceNormals(), vq, params, fs, threaded_scratch, sparse, some);
+  std::vector<uint32_t> expected;
+  const float cos60 = std::cos(60.0f * std::numbers::pi_v<float> / 180.0f);
+  for (uint32_t e = 0; e < adj.edges.size(); ++e) {
+    const auto& f = adj.edge_faces[e];
+    const bool crease = adj.edge_face_count[e] == 2 && some[adj.edges[e][0]] && some[adj.edges[e][1]] &&
+                        glm::dot(shape.faceNormals()[f[0]], shape.faceNormals()[f[1]]) < cos60;
+    const bool listed_key = std::find(m.marked_edges.begin(), m.marked_edges.end(), adj.edges[e]) != m.marked_edges.end();
+    if (crease || adj.edge_face_count[e] == 1 || listed_key) expected.push_back(e);
+  }
+  ASSERT_GT(expected.size(), 100u);
+  EXPECT_EQ(threaded_scratch.marked_edges, expected);
+  for (uint32_t e = 0; e < adj.edges.size(); ++e)
+    if (!std::binary_search(expected.begin(), expected.end(), e)) {
+      ASSERT_EQ(threaded_scratch.edge_mark[e], 0) << e;
+    }
   LineSet serial_silhouette, threaded_silhouette;
   extractMeshSilhouette(m, adj, shape.faceNormals(), view, serial_scratch, serial_silhouette);
   extractMeshSilhouette(m, adj, shape.faceNormals(), view, threaded_scratch, threaded_silhouette);
