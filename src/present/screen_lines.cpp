@@ -399,6 +399,37 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       }
     }
   }
+  // A free end that turns back within its last few pixels (a hook: on a coarse mesh the
+  // contour's end, where it goes behind the surface at a cusp, keeps a pixel or two of the
+  // turned branch in front of the depth test) is cut where it turns by over 75°: the number
+  // of points left out there, 0 for none. Only where the hook is within max(hook_px, 1.5 ×
+  // the kind's width) of the end and the run is at least three times that long.
+  const float hook_cos = std::cos(glm::radians(75.0f));
+  auto hookAt = [&](size_t end) -> uint32_t {
+    const size_t r = end / 2;
+    const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1], n = e - b;
+    if (!(params.hook_px > 0.0f) || !std::isfinite(params.hook_px) || n < 4) return 0;
+    const float hook_reach = std::min(std::max(params.hook_px, 1.5f * reach_of[kindIndex(runs.kinds[r])]), 16.0f);
+    if (!(runs.length_px[r] >= 3.0f * hook_reach)) return 0;
+    auto at = [&](uint32_t k) { return runs.points[end % 2 == 0 ? b + k : e - 1 - k]; };
+    float arc = 0.0f, best_cos = hook_cos;
+    uint32_t best = 0;
+    for (uint32_t k = 1; k + 2 < n; ++k) {
+      arc += glm::length(at(k) - at(k - 1));
+      if (!(arc <= hook_reach)) break;
+      const glm::vec2 tail = at(0) - at(k);
+      glm::vec2 body(0.0f);  // towards the end, over about `hook_reach` of the run before point k
+      for (uint32_t j = k + 1; j < n; ++j) {
+        body = at(k) - at(j);
+        if (glm::dot(body, body) >= hook_reach * hook_reach) break;
+      }
+      const float lt = glm::length(tail), lb = glm::length(body);
+      if (!(lt > 0.0f) || !(lb > 0.0f)) continue;
+      const float c = glm::dot(tail, body) / (lt * lb);
+      if (c < best_cos) best_cos = c, best = k;
+    }
+    return best;
+  };
   // Chains: from each run with a free end (then the remaining cycles), run after run.
   std::vector<uint8_t>& done = joined.done;
   done.assign(covered.begin(), covered.end());  // covered runs are left out
@@ -417,7 +448,14 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       if (trim)
         while (first + 1 < e - b && glm::dot(runs.points[forward ? b + first : e - 1 - first] - left_end, left_dir) <= 0.0f)
           ++first;
+      const size_t exit = forward ? 2 * r + 1 : 2 * r;
+      // Hooks at the chain's free ends (hookAt()).
+      const uint32_t hook_in = !trim && link[entry] < 0 ? hookAt(entry) : 0;
+      uint32_t hook_out = link[exit] < 0 ? hookAt(exit) : 0;
+      if (first + hook_in + hook_out + 2 > e - b) hook_out = 0;
+      first += hook_in;
       joined.skipped[entry] = first;
+      joined.skipped[exit] = hook_out;
       if (trim && first > 0) {
         // The two lines lie side by side, a pixel or two apart: the end of the chain so far
         // bends over onto the entered run's line along the overlap (a smoothstep over the
@@ -445,7 +483,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
         }
         bent = true;
       }
-      for (uint32_t k = first; k < e - b; ++k) {
+      for (uint32_t k = first; k < e - b - hook_out; ++k) {
         const uint32_t i = forward ? b + k : e - 1 - k;
         out.points.push_back(runs.points[i]);
         if (with_pos) out.positions.push_back(runs.positions[i]);
@@ -453,15 +491,15 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
         if (with_u) out_u.push_back(u[i]);
       }
       float run_length = runs.length_px[r];
-      if (trim) {
+      {
         auto at = [&](uint32_t k) { return runs.points[forward ? b + k : e - 1 - k]; };
         for (uint32_t k = 1; k <= first; ++k) run_length -= glm::length(at(k) - at(k - 1));
+        for (uint32_t k = e - b - hook_out; k < e - b; ++k) run_length -= glm::length(at(k) - at(k - 1));
         run_length = std::max(run_length, 0.0f);
-        length += glm::length(at(first) - left_end);  // the piece joining them
+        if (trim) length += glm::length(at(first) - left_end);  // the piece joining them
       }
       length += run_length;
       weighted += run_length * runs.opacity[r];
-      const size_t exit = forward ? 2 * r + 1 : 2 * r;
       if (link[exit] < 0) break;
       const size_t next_entry = static_cast<size_t>(link[exit]);
       if (done[next_entry / 2]) break;  // a cycle closed

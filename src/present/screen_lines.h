@@ -41,7 +41,7 @@ struct JoinedRuns {
   std::vector<uint32_t> first_run;  ///< per joined run: the index of its first run in the input
   std::vector<int32_t> link;        ///< per run end (2r start, 2r + 1 end): the end it joins, or -1
   std::vector<uint8_t> overlapping;  ///< per run end: joined side by side (JoinParams::overlap_px)
-  std::vector<uint32_t> skipped;     ///< per run end: its points left out there (entered side by side)
+  std::vector<uint32_t> skipped;     ///< per run end: its points left out there (entered side by side, or a hook)
   std::vector<std::pair<uint64_t, uint32_t>> bins;  ///< run ends by grid cell
   std::vector<uint8_t> done;        ///< per run: already in a chain
   std::vector<uint8_t> covered;     ///< per run: lies along longer runs (JoinParams::along_px)
@@ -97,6 +97,12 @@ struct JoinParams {
   /// interpolated contour and the outline's completing piece overlap so for a few pixels,
   /// a doubled knot in the line. Default 8; 0: no such joins.
   float overlap_px = 8.0f;
+  /// A free end of a joined stroke that turns back by over 75° within max(hook_px, 1.5 ×
+  /// the kind's width) of its end is cut at the turn, when the run is at least three times
+  /// that long: on a coarse mesh a contour's end, where it goes behind the surface at a
+  /// cusp, keeps a pixel or two of the turned branch in front of the depth test, a hook on
+  /// the line (the elephant close up; docs/strokes.md). Default 2.5; 0: ends kept as found.
+  float hook_px = 2.5f;
   /// Per kind, the stroke's width (px; 0: not known). A run counts as lying along a longer
   /// one within max(along_px, its kind's width): two strokes of width w whose centre lines
   /// are under w apart draw one thicker line, a knot where the shorter one lies (the
@@ -106,7 +112,7 @@ struct JoinParams {
 
 /// Appends to `out` the points of run r of `runs` as a path of its own that draws what the
 /// joined stroke draws there (the SVG's constant-width paths, which keep one id per run):
-/// without the points an overlap join left out at either end (unbent), and reaching over to
+/// without the points an overlap join or a hook's cut left out at either end (unbent), and reaching over to
 /// the next run where `joined` (joinRuns() of `runs`) goes on to it (a bridged gap, or the
 /// step of an overlap join), that piece drawn by the run of the lower end. Nothing for a run
 /// left out as lying along another.

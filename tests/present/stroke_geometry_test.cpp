@@ -519,5 +519,88 @@ TEST(StrokeStyles, RunsWrittenAloneDrawWhatTheJoinedStrokeDraws) {
   EXPECT_EQ(p2.back(), p3.front()) << "run 2 steps over to where run 3 goes on: no gap between them";
   EXPECT_TRUE(p4.empty());
 }
+
+// A run through `pts` (its length the polyline's).
+void addPolyline(StrokeRuns& r, const std::vector<glm::vec2>& pts, LineKind kind = LineKind::kContour) {
+  if (r.offsets.empty()) r.offsets.push_back(0);
+  float length = 0.0f;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    r.points.push_back(pts[i]);
+    r.positions.push_back(glm::vec3(pts[i], 0.0f));
+    r.alpha.push_back(1.0f);
+    if (i > 0) length += glm::length(pts[i] - pts[i - 1]);
+  }
+  r.offsets.push_back(static_cast<uint32_t>(r.points.size()));
+  r.kinds.push_back(kind);
+  r.strokes.push_back(static_cast<uint32_t>(r.kinds.size() - 1));
+  r.opacity.push_back(1.0f);
+  r.length_px.push_back(length);
+}
+
+// A straight run from (x0, y) to (x1, y), one point per pixel, then `tail`.
+std::vector<glm::vec2> lineThen(float x0, float x1, float y, std::vector<glm::vec2> tail) {
+  std::vector<glm::vec2> pts;
+  for (float x = x0; x <= x1; x += 1.0f) pts.push_back({x, y});
+  pts.insert(pts.end(), tail.begin(), tail.end());
+  return pts;
+}
+
+// A free end that turns back within a few pixels (a contour's end at a cusp, on a coarse
+// mesh) is cut at the turn, in the joined strokes and in the runs written alone; a bend under
+// 75°, a hook on a short run, and a turn where the stroke goes on into another run are kept.
+TEST(StrokeStyles, HooksAtFreeEndsAreCut) {
+  StrokeRuns runs;
+  addPolyline(runs, lineThen(20, 60, 40.5f, {{59.5f, 39.0f}, {59.0f, 37.6f}}));  // 0: turns back 108°
+  addPolyline(runs, lineThen(20, 60, 60.5f, {{61.0f, 59.5f}, {62.0f, 58.5f}}));  // 1: bends 45°
+  addPolyline(runs, lineThen(20, 28, 80.5f, {{27.5f, 79.0f}, {27.0f, 77.6f}}));  // 2: 8 px long
+  std::vector<glm::vec2> reversed = lineThen(20, 60, 100.5f, {{59.5f, 99.0f}, {59.0f, 97.6f}});
+  std::reverse(reversed.begin(), reversed.end());
+  addPolyline(runs, reversed);                                                    // 3: the hook at its start
+  addPolyline(runs, lineThen(20, 60, 120.5f, {{59.5f, 119.0f}, {59.0f, 117.6f}}));  // 4: turns into run 5
+  addPolyline(runs, {{59.0f, 117.6f}, {58.0f, 114.6f}, {57.0f, 111.6f}, {56.0f, 108.6f}, {55.0f, 105.6f},
+                     {54.0f, 102.6f}});
+  const ObjectStyle style = contourStyle(2.5f);
+  JoinedRuns j;
+  joinRuns(runs, {}, joinParamsFor(style.lines), j);
+  ASSERT_EQ(j.runs.strokeCount(), 5u);  // 4 and 5 joined
+  auto strokeOf = [&](size_t first) {
+    for (size_t s = 0; s < j.runs.strokeCount(); ++s)
+      if (j.first_run[s] == first) return s;
+    return j.runs.strokeCount();
+  };
+  auto pointsOf = [&](size_t s) {
+    return std::vector<glm::vec2>(j.runs.points.begin() + j.runs.offsets[s], j.runs.points.begin() + j.runs.offsets[s + 1]);
+  };
+  const size_t s0 = strokeOf(0), s1 = strokeOf(1), s2 = strokeOf(2), s3 = strokeOf(3);
+  ASSERT_LT(std::max({s0, s1, s2, s3}), j.runs.strokeCount());
+  const auto p0 = pointsOf(s0);
+  EXPECT_EQ(p0.size(), 41u);
+  EXPECT_TRUE(p0.front() == glm::vec2(60.0f, 40.5f) || p0.back() == glm::vec2(60.0f, 40.5f)) << "cut at the turn";
+  EXPECT_NEAR(j.runs.length_px[s0], 40.0f, 1e-3f);
+  EXPECT_EQ(j.skipped[1], 2u);
+  EXPECT_EQ(pointsOf(s1).size(), 43u) << "a 45° bend is kept";
+  EXPECT_EQ(pointsOf(s2).size(), 11u) << "a short run keeps its hook";
+  const auto p3 = pointsOf(s3);
+  EXPECT_EQ(p3.size(), 41u);
+  EXPECT_EQ(j.skipped[6], 2u);
+  EXPECT_EQ(j.skipped[7], 0u);
+  size_t joined_points = 0;
+  for (size_t s = 0; s < j.runs.strokeCount(); ++s)
+    if (s != s0 && s != s1 && s != s2 && s != s3) joined_points = j.runs.offsets[s + 1] - j.runs.offsets[s];
+  EXPECT_EQ(joined_points, 43u + 6u) << "the turn into run 5 is a corner of the stroke, not a hook";
+  // Written alone, the runs draw what the joined strokes draw.
+  std::vector<glm::vec2> a0, a3;
+  appendRunAlone(runs, j, 0, a0);
+  appendRunAlone(runs, j, 3, a3);
+  EXPECT_EQ(a0.size(), 41u);
+  EXPECT_EQ(a0.back(), glm::vec2(60.0f, 40.5f));
+  EXPECT_EQ(a3.size(), 41u);
+  EXPECT_EQ(a3.front(), glm::vec2(60.0f, 100.5f));
+  // hook_px 0: every end as found.
+  JoinParams keep = joinParamsFor(style.lines);
+  keep.hook_px = 0.0f;
+  joinRuns(runs, {}, keep, j);
+  EXPECT_EQ(j.runs.points.size(), runs.points.size());
+}
 }  // namespace
 }  // namespace lodline
