@@ -250,21 +250,26 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
   // (along_px, or the kind's stroke width where that is wider), and how far apart two ends
   // may be to be bridged (bridge_px, or the width + 1.5 px where that is more; 0 stays 0).
   // Widths count up to 16 px.
-  std::array<float, kLineKindCount> reach_of{}, bridge_of{};
+  // Gaps up to the width + 3 px (long_bridge_of) are bridged where the line runs straight on
+  // through them (within 30°) and no other run crosses the gap, which needs the segment grid
+  // below (along_px > 0).
+  std::array<float, kLineKindCount> reach_of{}, bridge_of{}, long_bridge_of{};
   float widest_reach = params.along_px, widest_bridge = params.bridge_px;
+  const bool with_grid = params.along_px > 0.0f && nr > 1;
   for (int k = 0; k < kLineKindCount; ++k) {
     const float w = std::isfinite(params.width_px[k]) ? std::clamp(params.width_px[k], 0.0f, 16.0f) : 0.0f;
     reach_of[k] = std::max(params.along_px, w);
     bridge_of[k] = params.bridge_px > 0.0f && w > 0.0f ? std::max(params.bridge_px, w + 1.5f) : params.bridge_px;
+    long_bridge_of[k] = params.bridge_px > 0.0f && w > 0.0f && with_grid ? std::max(bridge_of[k], w + 3.0f) : bridge_of[k];
     widest_reach = std::max(widest_reach, reach_of[k]);
-    widest_bridge = std::max(widest_bridge, bridge_of[k]);
+    widest_bridge = std::max(widest_bridge, long_bridge_of[k]);
   }
   auto kindIndex = [](LineKind kind) { return static_cast<size_t>(kind); };
   // Runs lying along longer runs of their kind: every point of theirs, and every 2 px
   // between, within along_px of one of those.
   std::vector<uint8_t>& covered = joined.covered;
   covered.assign(nr, 0);
-  if (params.along_px > 0.0f && nr > 1) {
+  if (with_grid) {
     auto finite = [](glm::vec2 p) {
       return std::isfinite(p.x) && std::isfinite(p.y) && std::abs(p.x) < 1e7f && std::abs(p.y) < 1e7f;
     };
@@ -348,6 +353,32 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     return behind > 0.0f && behind <= overlap_px && side <= w && behind_o > 0.0f && behind_o <= overlap_px &&
            side_o <= w && runs.length_px[o / 2] > behind + w;
   };
+  // Whether a segment of a run other than e's and o's crosses the gap between ends e and o
+  // (the grid holds every run's segments when long bridges are allowed).
+  auto gapCrossed = [&](size_t e, size_t o) {
+    const glm::vec2 a = endPoint(e), ab = endPoint(o) - a;
+    bool crossed = false;
+    joined.grid.forEachNear(a + 0.5f * ab, 0.5f * glm::length(ab) + 1.0f, [&](uint32_t i) {
+      const uint32_t q = joined.run_of[i];
+      if (crossed || q == e / 2 || q == o / 2) return;
+      const glm::vec2 c = runs.points[i], cd = runs.points[i + 1] - c;
+      const float den = ab.x * cd.y - ab.y * cd.x;
+      if (!(std::abs(den) > 0.0f)) return;
+      const glm::vec2 ac = c - a;
+      const float t = (ac.x * cd.y - ac.y * cd.x) / den, v = (ac.x * ab.y - ac.y * ab.x) / den;
+      crossed = t >= 0.0f && t <= 1.0f && v >= 0.0f && v <= 1.0f;
+    });
+    return crossed;
+  };
+  const float long_cos = std::cos(glm::radians(30.0f));
+  // A gap longer than bridge_of's: the line runs straight on through it, nothing crosses it.
+  auto continuesFar = [&](size_t e, size_t o) {
+    const glm::vec2 te = outward(e), to = outward(o);
+    const glm::vec2 gap = endPoint(o) - endPoint(e);
+    const float g = glm::length(gap);
+    return g > 0.0f && glm::dot(te, -to) >= long_cos && glm::dot(te, gap / g) >= long_cos &&
+           glm::dot(-to, gap / g) >= long_cos && !gapCrossed(e, o);
+  };
   const float reach = std::max({params.touch_px, widest_bridge, overlap_px});
   const float cell = std::max(reach, 1e-3f);
   auto& bins = joined.bins;
@@ -376,8 +407,9 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       const glm::vec2 p = endPoint(e);
       int x, y;
       cellOf(p, x, y);
+      const size_t kind = kindIndex(runs.kinds[e / 2]);
       float best = overlapping_pass ? overlap_px * 1.5f
-                   : bridging       ? bridge_of[kindIndex(runs.kinds[e / 2])]
+                   : bridging       ? long_bridge_of[kind]
                                     : params.touch_px;
       int32_t best_end = -1;
       for (int dy = -1; dy <= 1; ++dy)
@@ -388,7 +420,8 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
             const uint32_t o = it->second;
             if (o / 2 == e / 2 || link[o] >= 0 || runs.kinds[o / 2] != runs.kinds[e / 2]) continue;
             const float d = glm::length(endPoint(o) - p);
-            if (d <= best && (overlapping_pass ? overlaps(e, o) : !bridging || continues(e, o)))
+            if (d <= best && (overlapping_pass ? overlaps(e, o)
+                              : !bridging      || (continues(e, o) && (d <= bridge_of[kind] || continuesFar(e, o)))))
               best = d, best_end = static_cast<int32_t>(o);
           }
         }
