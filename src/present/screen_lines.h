@@ -81,7 +81,9 @@ struct JoinParams {
   /// line; 0: no bridging). Where the kind's width is known (width_px), gaps up to that
   /// width + 1.5 px are bridged when that is more: round caps close w px of a gap, so a
   /// wider one shows as a break in the line (the elephant's trunk close up, gaps of
-  /// 3.5–3.9 px between pieces of a 2.5-px outline; docs/strokes.md).
+  /// 3.5–3.9 px between pieces of a 2.5-px outline; docs/strokes.md). Gaps up to that width
+  /// + 3 px are bridged too where both ends and the gap agree within 30° and no segment of
+  /// another run crosses the gap (needs along_px > 0, whose grid of segments answers that).
   float bridge_px = 3.0f;
   /// Default 60°.
   float max_turn_deg = 60.0f;
