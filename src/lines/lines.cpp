@@ -444,6 +444,23 @@ void extractZeroSet(std::span<const glm::vec3> positions, std::span<const std::a
 
 namespace {
 
+// Calls f(i) for each i with bytes[i] != 0, in order, eight zero bytes skipped at a time
+// (the marked edges are a few hundred of ~100k).
+template <class F>
+void forEachNonZero(std::span<const uint8_t> bytes, F&& f) {
+  const size_t n = bytes.size();
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    uint64_t word;
+    std::memcpy(&word, bytes.data() + i, sizeof(word));
+    if (word == 0) continue;
+    for (size_t k = i; k < i + 8; ++k)
+      if (bytes[k]) f(static_cast<uint32_t>(k));
+  }
+  for (; i < n; ++i)
+    if (bytes[i]) f(static_cast<uint32_t>(i));
+}
+
 // Marks edges in scratch.edge_mark: 1 crease (when `want_creases`), 2 boundary (when
 // `want_boundaries`), 0 otherwise, and lists the marked ones in edge order in
 // scratch.marked_edges: a mesh has few, and the passes after this one read the list, not
@@ -533,16 +550,7 @@ bool classifyEdges(const TriMesh& mesh, const MeshAdjacency& adj, std::span<cons
     list.erase(std::unique(list.begin(), list.end()), list.end());  // (a marked edge listed twice)
     return true;
   }
-  size_t e = 0;
-  for (; e + 8 <= ne; e += 8) {  // eight unmarked edges skipped at a time
-    uint64_t word;
-    std::memcpy(&word, &mark[e], sizeof(word));
-    if (word == 0) continue;
-    for (size_t u = e; u < e + 8; ++u)
-      if (mark[u]) list.push_back(static_cast<uint32_t>(u));
-  }
-  for (; e < ne; ++e)
-    if (mark[e]) list.push_back(static_cast<uint32_t>(e));
+  forEachNonZero(mark, [&](uint32_t e) { list.push_back(e); });
   return true;
 }
 
@@ -645,8 +653,7 @@ void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adj, std::s
                            const ViewSpec& view, LineScratch& scratch, LineSet& out) {
   out.clear();
   // Each face's facing once, in face order; then each edge reads two bytes and marks itself
-  // (both passes on the pool's threads); then the marked edges, in edge order, eight
-  // unmarked ones skipped at a time (a few hundred of ~100k edges are silhouettes).
+  // (both passes on the pool's threads); then the marked edges, in edge order.
   auto& facing = scratch.face_facing;
   facing.resize(mesh.faces.size());
   auto faces = [&](size_t begin, size_t end) {
@@ -675,16 +682,7 @@ void extractMeshSilhouette(const TriMesh& mesh, const MeshAdjacency& adj, std::s
     pushSegment(out, LineKind::kContour, static_cast<uint32_t>(e), mesh.positions[v0], v0, 1.0f, mesh.positions[v1],
                 v1, 1.0f);
   };
-  size_t e = 0;
-  for (; e + 8 <= ne; e += 8) {
-    uint64_t word;
-    std::memcpy(&word, &mark[e], sizeof(word));
-    if (word == 0) continue;
-    for (size_t u = e; u < e + 8; ++u)
-      if (mark[u]) push(u);
-  }
-  for (; e < ne; ++e)
-    if (mark[e]) push(e);
+  forEachNonZero(mark, push);
 }
 
 void extractLines(const TriMesh& mesh, const MeshAdjacency& adj,

@@ -239,12 +239,14 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
   };
   const float min_cos = std::cos(glm::radians(std::clamp(params.max_turn_deg, 0.0f, 180.0f)));
   // Whether the line goes on from end e through the gap into end o.
-  auto continues = [&](size_t e, size_t o) {
+  // Within `cos_limit`: both directions turn by at most its angle into each other and into
+  // the gap (min_cos, or the stricter one of long bridges).
+  auto continues = [&](size_t e, size_t o, float cos_limit) {
     const glm::vec2 te = outward(e), to = outward(o);
-    if (glm::dot(te, -to) < min_cos) return false;
+    if (glm::dot(te, -to) < cos_limit) return false;
     const glm::vec2 gap = endPoint(o) - endPoint(e);
     const float g = glm::length(gap);
-    return g <= params.touch_px || (glm::dot(te, gap / g) >= min_cos && glm::dot(-to, gap / g) >= min_cos);
+    return g <= params.touch_px || (glm::dot(te, gap / g) >= cos_limit && glm::dot(-to, gap / g) >= cos_limit);
   };
   // Per kind, once: how near a line of its kind a run's point may lie to lie along it
   // (along_px, or the kind's stroke width where that is wider), and how far apart two ends
@@ -370,15 +372,8 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     });
     return crossed;
   };
+  // Gaps longer than bridge_of's: the line runs straight on (within 30°), nothing crosses.
   const float long_cos = std::cos(glm::radians(30.0f));
-  // A gap longer than bridge_of's: the line runs straight on through it, nothing crosses it.
-  auto continuesFar = [&](size_t e, size_t o) {
-    const glm::vec2 te = outward(e), to = outward(o);
-    const glm::vec2 gap = endPoint(o) - endPoint(e);
-    const float g = glm::length(gap);
-    return g > 0.0f && glm::dot(te, -to) >= long_cos && glm::dot(te, gap / g) >= long_cos &&
-           glm::dot(-to, gap / g) >= long_cos && !gapCrossed(e, o);
-  };
   const float reach = std::max({params.touch_px, widest_bridge, overlap_px});
   const float cell = std::max(reach, 1e-3f);
   auto& bins = joined.bins;
@@ -421,7 +416,9 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
             if (o / 2 == e / 2 || link[o] >= 0 || runs.kinds[o / 2] != runs.kinds[e / 2]) continue;
             const float d = glm::length(endPoint(o) - p);
             if (d <= best && (overlapping_pass ? overlaps(e, o)
-                              : !bridging      || (continues(e, o) && (d <= bridge_of[kind] || continuesFar(e, o)))))
+                              : !bridging      || (continues(e, o, min_cos) &&
+                                                    (d <= bridge_of[kind] ||
+                                                     (continues(e, o, long_cos) && !gapCrossed(e, o))))))
               best = d, best_end = static_cast<int32_t>(o);
           }
         }

@@ -859,22 +859,31 @@ void expectSameLines(const LineSet& a, const LineSet& b) {
 
 // The per-edge and per-face passes split over worker threads give exactly the serial output
 // (same segments in the same order, same point ids), for all line kinds together.
+// A mesh's lines extracted twice from one view, on one thread and on three (scratch.pool).
+struct ExtractedTwice {
+  ShapeCache shape;
+  ViewSpec view;
+  float fs = 1.0f;
+  ViewQuantities vq;
+  WorkerPool pool{3};
+  LineScratch serial_scratch, threaded_scratch;
+  LineSet serial, threaded;
+
+  ExtractedTwice(const TriMesh& m, const LineParams& params) {
+    shape.compute(m);
+    view.eye = {0.3f, 1.2f, 3.5f};
+    fs = computeFeatureSize(shape.k1(), shape.k2(), computeBounds(m.positions).radius);
+    computeViewQuantities(shape.fields(m), view, params.suggestive_threshold / (fs * fs), vq);
+    threaded_scratch.pool = &pool;
+    extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, serial_scratch, serial);
+    extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, threaded_scratch, threaded);
+  }
+};
+
 TEST(ExtractLines, WorkerThreadsGiveTheSerialOutput) {
   const TriMesh m = makeTorusKnot(2, 3, 1.0f, 0.2f, 600, 24, 0.18f);  // 28,800 faces
-  ShapeCache shape;
-  shape.compute(m);
-  ViewSpec view;
-  view.eye = {0.3f, 1.2f, 3.5f};
-  const float fs = computeFeatureSize(shape.k1(), shape.k2(), computeBounds(m.positions).radius);
-  ViewQuantities vq;
-  const LineParams params;
-  computeViewQuantities(shape.fields(m), view, params.suggestive_threshold / (fs * fs), vq);
-  LineScratch serial_scratch, threaded_scratch;
-  WorkerPool pool(3);
-  threaded_scratch.pool = &pool;
-  LineSet serial, threaded;
-  extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, serial_scratch, serial);
-  extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, threaded_scratch, threaded);
+  const ExtractedTwice x(m, LineParams{});
+  const LineSet &serial = x.serial, &threaded = x.threaded;
   ASSERT_GT(serial.counts[static_cast<int>(LineKind::kContour)], 100u);
   ASSERT_GT(serial.counts[static_cast<int>(LineKind::kSuggestive)], 100u);
   expectSameLines(serial, threaded);
@@ -890,21 +899,15 @@ TEST(ExtractLines, EdgePassesOnWorkerThreadsGiveTheSerialOutput) {
   for (uint32_t k = 0; k < 40; ++k) m.marked_edges.push_back({m.faces[k * 97][0], m.faces[k * 97][1]});
   for (auto& e : m.marked_edges)
     if (e[0] > e[1]) std::swap(e[0], e[1]);
-  ShapeCache shape;
-  shape.compute(m);
-  ViewSpec view;
-  view.eye = {0.3f, 1.2f, 3.5f};
-  const float fs = computeFeatureSize(shape.k1(), shape.k2(), computeBounds(m.positions).radius);
-  ViewQuantities vq;
   LineParams params;
   params.boundaries = true;
-  computeViewQuantities(shape.fields(m), view, params.suggestive_threshold / (fs * fs), vq);
-  LineScratch serial_scratch, threaded_scratch;
-  WorkerPool pool(3);
-  threaded_scratch.pool = &pool;
-  LineSet serial, threaded;
-  extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, serial_scratch, serial);
-  extractLines(m, shape.adjacency(), shape.faceNormals(), vq, params, fs, threaded_scratch, threaded);
+  ExtractedTwice x(m, params);
+  const ShapeCache& shape = x.shape;
+  const ViewSpec& view = x.view;
+  const ViewQuantities& vq = x.vq;
+  const float fs = x.fs;
+  LineScratch &serial_scratch = x.serial_scratch, &threaded_scratch = x.threaded_scratch;
+  const LineSet &serial = x.serial, &threaded = x.threaded;
   ASSERT_GT(serial.counts[static_cast<int>(LineKind::kCrease)], 1000u);
   ASSERT_GT(serial.counts[static_cast<int>(LineKind::kBoundary)], 3u);
   ASSERT_GT(serial.counts[static_cast<int>(LineKind::kContour)], 100u);
