@@ -227,6 +227,219 @@ EndHit nearestNearEnd(const StrokeRuns& runs, size_t r, bool at_end, float reach
   return hit;
 }
 
+// The point of the polyline points[b, e) nearest to `q`: segment k (points k, k + 1), its
+// parameter t and the distance.
+struct PolylineHit {
+  uint32_t k = 0;
+  float t = 0.0f;
+  float distance = std::numeric_limits<float>::infinity();
+};
+PolylineHit nearestOnPolyline(const std::vector<glm::vec2>& points, uint32_t b, uint32_t e, glm::vec2 q) {
+  PolylineHit hit;
+  for (uint32_t k = b; k + 1 < e; ++k) {
+    const glm::vec2 a = points[k], ab = points[k + 1] - a;
+    const float len2 = glm::dot(ab, ab);
+    const float t = len2 > 0.0f ? std::clamp(glm::dot(q - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+    const float d = glm::length(q - (a + t * ab));
+    if (d < hit.distance) hit = {k, t, d};
+  }
+  return hit;
+}
+
+// A point of a run as the rebuilding below handles it.
+struct RunPoint {
+  glm::vec2 px;
+  glm::vec3 p;
+  float alpha;
+};
+
+// Appends `pts` as a run of `out` with the kind, stroke and opacity of run r of `from`.
+void pushRun(const std::vector<RunPoint>& pts, const StrokeRuns& from, size_t r, StrokeRuns& out) {
+  if (pts.size() < 2) return;
+  if (out.offsets.empty()) out.offsets.push_back(0);
+  float length = 0.0f, alpha = 0.0f;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    alpha += pts[i].alpha;
+    out.points.push_back(pts[i].px);
+    out.positions.push_back(pts[i].p);
+    out.alpha.push_back(pts[i].alpha);
+    if (i > 0) length += glm::length(pts[i].px - pts[i - 1].px);
+  }
+  out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
+  out.kinds.push_back(from.kinds[r]);
+  out.strokes.push_back(from.strokes[r]);
+  out.opacity.push_back(alpha / static_cast<float>(pts.size()));
+  out.length_px.push_back(length);
+}
+
+// stitchToContourEnds()' reach and radius: a piece's grown end and two pixels more, and the
+// contour radius and half a pixel.
+float stitchReach(const OutlineParams& params) { return params.extend_px + 2.0f; }
+float stitchRadius(const OutlineParams& params) { return static_cast<float>(params.contour_radius_px) + 0.5f; }
+
+}  // namespace
+
+void takeOverContourEnds(const StrokeRuns& contours, const StrokeRuns& fill, const OutlineParams& params,
+                         StrokeRuns& contours_out) {
+  const float reach_px = params.overlap_reach_px, radius_px = params.overlap_radius_px;
+  const float min_stretch_px = params.min_drop_px, ramp_px = params.splice_ramp_px;
+  const float stitch_reach_px = stitchReach(params), stitch_radius_px = stitchRadius(params);
+  // Per contour run end (2c: start, 2c + 1: end): the point it is cut back to, if any.
+  struct Cut {
+    PolylineHit at;
+    RunPoint onto{};  // the piece's end, where the cut run now ends
+    bool set = false;
+  };
+  std::vector<Cut> cuts(2 * contours.strokeCount());
+  auto pointAt = [](const StrokeRuns& runs, const PolylineHit& h) {
+    const glm::vec2 a = runs.points[h.k], b = runs.points[h.k + 1];
+    const glm::vec3 pa = runs.positions[h.k], pb = runs.positions[h.k + 1];
+    return RunPoint{a + h.t * (b - a), pa + h.t * (pb - pa),
+                    runs.alpha[h.k] + h.t * (runs.alpha[h.k + 1] - runs.alpha[h.k])};
+  };
+  bool any = false;
+  for (size_t r = 0; r < fill.strokeCount(); ++r) {
+    const uint32_t b = fill.offsets[r], e = fill.offsets[r + 1];
+    if (e - b < 2) continue;
+    float piece_length = 0.0f;
+    for (uint32_t k = b + 1; k < e; ++k) piece_length += glm::length(fill.points[k] - fill.points[k - 1]);
+    for (int side = 0; side < 2; ++side) {
+      const glm::vec2 piece_end = fill.points[side == 1 ? e - 1 : b];
+      // The piece's points within reach of its end, as a polyline [pb, pe).
+      uint32_t pb = b, pe = e;
+      {
+        float walked = 0.0f;
+        if (side == 1) {
+          for (pb = e - 1; pb > b && walked <= reach_px; --pb) walked += glm::length(fill.points[pb] - fill.points[pb - 1]);
+        } else {
+          for (pe = b + 1; pe < e && walked <= reach_px; ++pe) walked += glm::length(fill.points[pe] - fill.points[pe - 1]);
+        }
+      }
+      bool stitched = false;
+      struct Candidate {
+        size_t c;
+        int which;
+        PolylineHit at;
+      } best{0, 0, {}};
+      for (size_t c = 0; c < contours.strokeCount() && !stitched; ++c) {
+        const uint32_t cb = contours.offsets[c], ce = contours.offsets[c + 1];
+        if (contours.kinds[c] != LineKind::kContour || ce - cb < 2) continue;
+        for (int which = 0; which < 2; ++which) {
+          const glm::vec2 contour_end = contours.points[which == 1 ? ce - 1 : cb];
+          if (glm::length(contour_end - piece_end) > reach_px + radius_px) continue;
+          if (nearestNearEnd(fill, r, side == 1, stitch_reach_px, contour_end).distance <= stitch_radius_px) {
+            stitched = true;  // the stitch meets it as it is
+            break;
+          }
+          if (nearestOnPolyline(fill.points, pb, pe, contour_end).distance > radius_px) continue;
+          // The contour's point nearest the piece's end, and the stretch from the contour's
+          // end to it beside the piece all along (its points, and that point).
+          const PolylineHit at = nearestOnPolyline(contours.points, cb, ce, piece_end);
+          if (at.distance > radius_px || !(at.distance < best.at.distance)) continue;
+          const RunPoint cut = pointAt(contours, at);
+          bool beside = nearestOnPolyline(fill.points, pb, pe, cut.px).distance <= radius_px;
+          float stretch = 0.0f;
+          if (which == 0) {
+            for (uint32_t k = cb; k <= at.k && beside; ++k) {
+              beside = nearestOnPolyline(fill.points, pb, pe, contours.points[k]).distance <= radius_px;
+              stretch += glm::length((k < at.k ? contours.points[k + 1] : cut.px) - contours.points[k]);
+            }
+          } else {
+            for (uint32_t k = ce - 1; k > at.k && beside; --k) {
+              beside = nearestOnPolyline(fill.points, pb, pe, contours.points[k]).distance <= radius_px;
+              stretch += glm::length(contours.points[k] - (k - 1 > at.k ? contours.points[k - 1] : cut.px));
+            }
+          }
+          // Beside it and along it: the stretch is no longer than the piece's part that
+          // reaches over it (a contour that turns away and back is not this case).
+          // A stretch shorter than min_stretch_px is left to the joining's gap bridge: bent
+          // over it, the piece would make an S where the two lines meet nearly end to end.
+          // And the piece draws more than the stretch it takes (a piece of a few pixels in a
+          // fold's tangle does not take a contour's end).
+          if (beside && stretch <= reach_px + radius_px && stretch >= min_stretch_px && piece_length >= 2.0f * stretch)
+            best = {c, which, at};
+        }
+      }
+      if (stitched || !(best.at.distance <= radius_px)) continue;
+      Cut& cut = cuts[2 * best.c + best.which];
+      if (cut.set) continue;  // one piece per contour end
+      cut = {best.at, {piece_end, fill.positions[side == 1 ? e - 1 : b], fill.alpha[side == 1 ? e - 1 : b]}, true};
+      any = true;
+    }
+  }
+  contours_out.clear();
+  if (!any) {
+    appendStrokes(contours, contours_out);
+    return;
+  }
+  std::vector<RunPoint> pts;
+  for (size_t c = 0; c < contours.strokeCount(); ++c) {
+    const uint32_t cb = contours.offsets[c], ce = contours.offsets[c + 1];
+    const Cut &head = cuts[2 * c], &tail = cuts[2 * c + 1];
+    if (!head.set && !tail.set) {
+      copyRun(contours, c, contours_out);
+      continue;
+    }
+    // The run from its head's cut (after point head.at.k) to its tail's (up to point
+    // tail.at.k + 1); nothing is left when the two cuts cross.
+    if (head.set && tail.set && (tail.at.k < head.at.k || (tail.at.k == head.at.k && tail.at.t <= head.at.t)))
+      continue;
+    pts.clear();
+    const uint32_t from = head.set ? head.at.k + 1 : cb, to = tail.set ? tail.at.k + 1 : ce;
+    auto add = [&](const RunPoint& q) {  // a cut at a point of the run is that point once
+      if (pts.empty() || glm::length(q.px - pts.back().px) > 1e-4f) pts.push_back(q);
+    };
+    if (head.set) add(pointAt(contours, head.at));
+    for (uint32_t k = from; k < to; ++k) add({contours.points[k], contours.positions[k], contours.alpha[k]});
+    if (tail.set) add(pointAt(contours, tail.at));
+    if (pts.size() < 2) continue;
+    float total = 0.0f;
+    for (size_t k = 1; k < pts.size(); ++k) total += glm::length(pts[k].px - pts[k - 1].px);
+    for (int side = 0; side < 2; ++side) {
+      const Cut& cut = side == 0 ? head : tail;
+      if (!cut.set) continue;
+      if (side == 0) std::reverse(pts.begin(), pts.end());
+      // The run's points over its last max(ramp_px, 8 × the distance) px, and on to its next
+      // point (the bend stays at points where the run already turns: on a straight stretch
+      // its last segment turns by a degree or two), each moved towards the piece's end by a
+      // weight that rises linearly with arc length to 1 at the end; the piece stays on the
+      // outline. A run shorter than twice that bends over its last half (a point inserted).
+      const glm::vec2 d = cut.onto.px - pts.back().px;
+      const glm::vec3 dp = cut.onto.p - pts.back().p;
+      const float want = std::max(ramp_px, 8.0f * glm::length(d)), half = 0.5f * total;
+      size_t k = pts.size() - 1;
+      float walked = 0.0f;
+      while (k > 0 && walked < want) {
+        const float len = glm::length(pts[k].px - pts[k - 1].px);
+        if (walked + len > half) {  // stop inside this segment, at half the run
+          const float t = len > 0.0f ? (half - walked) / len : 0.0f;
+          const RunPoint q{pts[k].px + t * (pts[k - 1].px - pts[k].px), pts[k].p + t * (pts[k - 1].p - pts[k].p),
+                           pts[k].alpha + t * (pts[k - 1].alpha - pts[k].alpha)};
+          pts.insert(pts.begin() + static_cast<std::ptrdiff_t>(k), q);
+          walked = half;
+          break;
+        }
+        walked += len;
+        --k;
+      }
+      // Points k + 1 … end move; point k (at arc `walked` from the end) stays.
+      float arc = 0.0f;
+      for (size_t j = pts.size() - 1; j > k && walked > 0.0f; --j) {
+        const float w = 1.0f - arc / walked;
+        arc += glm::length(pts[j].px - pts[j - 1].px);
+        pts[j].px += w * d;
+        pts[j].p += w * dp;
+      }
+      pts.back().px = cut.onto.px;
+      pts.back().p = cut.onto.p;
+      if (side == 0) std::reverse(pts.begin(), pts.end());
+    }
+    pushRun(pts, contours, c, contours_out);
+  }
+}
+
+namespace {
+
 // Completing pieces were grown along the silhouette over the contour's ends so that the two
 // meet; drawn as they are, each junction would be two overlapping strokes (two caps, a bead
 // where the style is translucent; two tapers, a pinch in the outline). A piece end that
@@ -600,11 +813,16 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
       i = j;
     }
   }
-  // 5. Pieces end where the contour they meet ends, so that the two join into one stroke.
-  stitchToContourEnds(out, fill, params.extend_px + 2.0f, static_cast<float>(params.contour_radius_px) + 0.5f,
-                      scratch.stitched);
-  appendStrokes(scratch.stitched, out);
-  std::swap(visible, out);
+  // 5. Pieces end where the contour they meet ends, so that the two join into one stroke;
+  //    first, a piece's end that runs beside a contour run's end takes that stretch over.
+  StrokeRuns* contours_now = &out;
+  if (params.overlap_radius_px > 0.0f) {
+    takeOverContourEnds(out, fill, params, scratch.taken);
+    contours_now = &scratch.taken;
+  }
+  stitchToContourEnds(*contours_now, fill, stitchReach(params), stitchRadius(params), scratch.stitched);
+  appendStrokes(scratch.stitched, *contours_now);
+  std::swap(visible, *contours_now);
   return scratch.stitched.totalLength() + spliced_px;
 }
 

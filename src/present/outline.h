@@ -79,6 +79,16 @@ struct OutlineParams {
   /// A spliced run moves from the contour onto the silhouette (and back) over this many
   /// pixels at each end of the piece, so it bends there instead of stepping. Default 3.
   float splice_ramp_px = 3.0f;
+  /// A piece's end that runs beside the end of a contour run, this near it (pixels) all
+  /// along for up to overlap_reach_px, takes that stretch over: the contour run is cut back
+  /// to its point nearest the piece's end and bends onto the piece's end, so the two join
+  /// into one stroke instead of drawing a doubled line (takeOverContourEnds(),
+  /// docs/visibility.md, step 5). Ends within 1.5 px are met by the stitch alone. 0 turns
+  /// this off. Default 4 (a 2.5-px line's width and 1.5 px).
+  float overlap_radius_px = 4.0f;
+  /// How far back from a piece's end (pixels of the piece) the contour run's end may lie
+  /// for overlap_radius_px. Default 32.
+  float overlap_reach_px = 32.0f;
   /// Hysteresis between frames (with an OutlineHistory): a piece with a sample within this
   /// many pixels of the previous frame's pieces (projected by this frame's camera, so the
   /// comparison follows the motion) continues one and is kept whatever its length, so a
@@ -101,6 +111,7 @@ struct OutlineHistory {
 /// Scratch of completeOutline(); reuse between calls.
 struct OutlineScratch {
   StrokeRuns silhouette, rebuilt, stitched;
+  StrokeRuns taken;  ///< the runs after step 5's overlaps are taken over
   LineMask outline, contours, fill, previous;
   LineMask skipped;  ///< pieces left out because the contour beside them draws them
   LineMask spliced;  ///< pieces spliced into a contour run
@@ -134,5 +145,18 @@ struct OutlineScratch {
 double completeOutline(const StrokeSet& silhouette, const Camera& camera, const DepthImage& depth,
                        const VisibilityParams& visibility, const OutlineParams& params, StrokeRuns& visible,
                        OutlineScratch& scratch, OutlineHistory* history = nullptr);
+
+/// Step 5's first half (completeOutline() calls it): where a completing piece's end runs
+/// beside the end of a contour run, 1.5 to params.overlap_radius_px px from it all along the
+/// contour's stretch (at least min_drop_px long, at most half the piece's length, within
+/// overlap_reach_px of the piece's end), the two would draw a doubled line. The piece draws
+/// that stretch: the contour run is cut back to its point nearest the piece's end and its
+/// new end bends onto the piece's end (its points over its last max(splice_ramp_px, 8 × their
+/// distance) px and on to its next point, moved by a weight rising linearly to 1), so that
+/// the two join into one stroke and the piece stays on the outline. Ends the stitch meets
+/// within 1.5 px are left as they are. `contours` holds the runs of every kind (only contour
+/// runs are cut); `fill` the pieces, which do not change.
+void takeOverContourEnds(const StrokeRuns& contours, const StrokeRuns& fill, const OutlineParams& params,
+                         StrokeRuns& contours_out);
 
 }  // namespace lodline

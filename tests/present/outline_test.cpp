@@ -5,6 +5,7 @@
 // is drawn at once; when the camera stops, every piece is drawn again.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -365,6 +366,102 @@ TEST(Outline, AContourDashBesideAPieceIsLeftToThePiece) {
   StrokeRuns again = contourRun(0.0f, 0.1f, 0.95f);
   completeOutline(silhouette, squareCamera(), squareDepth(), VisibilityParams{}, off, again, scratch);
   EXPECT_EQ(again.strokeCount(), 2u);
+}
+
+// Pixel runs for takeOverContourEnds(): a polyline of pixels (model positions alongside).
+StrokeRuns pixelRun(std::initializer_list<glm::vec2> pts) {
+  StrokeRuns runs;
+  runs.offsets = {0};
+  float length = 0.0f;
+  for (const glm::vec2 p : pts) {
+    if (!runs.points.empty()) length += glm::length(p - runs.points.back());
+    runs.points.push_back(p);
+    runs.positions.push_back({p.x, p.y, 0.0f});
+    runs.alpha.push_back(1.0f);
+  }
+  runs.offsets.push_back(static_cast<uint32_t>(runs.points.size()));
+  runs.kinds.push_back(LineKind::kContour);
+  runs.strokes.push_back(0);
+  runs.opacity.push_back(1.0f);
+  runs.length_px.push_back(length);
+  return runs;
+}
+
+// Distance from q to the polyline of run r.
+float distanceToRun(const StrokeRuns& runs, size_t r, glm::vec2 q) {
+  float best = std::numeric_limits<float>::infinity();
+  for (uint32_t k = runs.offsets[r]; k + 1 < runs.offsets[r + 1]; ++k) {
+    const glm::vec2 a = runs.points[k], ab = runs.points[k + 1] - a;
+    const float t = std::clamp(glm::dot(q - a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
+    best = std::min(best, glm::length(q - (a + t * ab)));
+  }
+  return best;
+}
+
+// A piece whose end runs beside the start of a contour run, 3 px from it converging to
+// 1.4 px over 20 px (the cow's neck close up: a doubled line), takes that stretch over: the
+// contour is cut where it is nearest the piece's end and bends onto it over its first part
+// only (the piece stays on the outline), and the two join into one stroke with no second
+// line.
+TEST(Outline, APieceEndBesideAContourRunsStartTakesTheStretchOver) {
+  const StrokeRuns piece = pixelRun({{60.0f, 50.0f}, {120.0f, 50.0f}});
+  // The contour: 3 px below the piece at x = 100, 1.4 px at x = 120, on along 51.4 to x = 200.
+  const StrokeRuns contour = pixelRun({{100.0f, 53.0f}, {120.0f, 51.4f}, {200.0f, 51.4f}});
+  OutlineParams params;
+  StrokeRuns out;
+  takeOverContourEnds(contour, piece, params, out);
+  ASSERT_EQ(out.strokeCount(), 1u);
+  const uint32_t n = out.offsets[1];
+  EXPECT_EQ(out.points[0], piece.points[1]);  // it starts at the piece's end
+  // Bent over its first part only: from max(3, 8 × 1.4) px on (to the next point at x = 200,
+  // the stretch being straight), back on the line it was, and no point turns by more than
+  // a few degrees.
+  EXPECT_EQ(out.points[n - 1], contour.points[2]);
+  for (uint32_t k = 0; k < n; ++k) {
+    EXPECT_GE(out.points[k].x, 119.9f);  // nothing of the stretch beside the piece is left
+    EXPECT_GE(out.points[k].y, 50.0f);
+    EXPECT_LE(out.points[k].y, 51.4f);
+  }
+  for (uint32_t k = 1; k + 1 < n; ++k) {
+    const glm::vec2 a = glm::normalize(out.points[k] - out.points[k - 1]);
+    const glm::vec2 b = glm::normalize(out.points[k + 1] - out.points[k]);
+    EXPECT_GT(glm::dot(a, b), std::cos(5.0f * 3.14159265f / 180.0f));
+  }
+  StrokeRuns all = out;
+  appendStrokes(piece, all);
+  JoinedRuns joined;
+  joinRuns(all, {}, JoinParams{}, joined);
+  ASSERT_EQ(joined.runs.strokeCount(), 1u);
+  EXPECT_NEAR(joined.runs.length_px[0], 140.0f, 1.0f);
+  // Every point of the input contour lies within 3 px of the joined stroke: no stretch lost.
+  for (const glm::vec2 q : contour.points) EXPECT_LE(distanceToRun(joined.runs, 0, q), 3.0f);
+}
+
+// What is left as it was: ends the stitch meets (within 1.5 px), a contour that turns away
+// from the piece, a contour farther than overlap_radius_px, a stretch longer than half the
+// piece, and everything with the rule off.
+TEST(Outline, OnlyAContourEndRunningBesideAPieceIsTakenOver) {
+  const StrokeRuns piece = pixelRun({{60.0f, 50.0f}, {120.0f, 50.0f}});
+  auto unchanged = [&](const StrokeRuns& fill, const StrokeRuns& contour, const OutlineParams& params) {
+    StrokeRuns out;
+    takeOverContourEnds(contour, fill, params, out);
+    return out.points == contour.points;
+  };
+  const OutlineParams defaults;
+  // Within 1.5 px of the piece's end: the stitch's.
+  EXPECT_TRUE(unchanged(piece, pixelRun({{118.0f, 51.0f}, {160.0f, 51.0f}}), defaults));
+  // Starts 3 px beside the piece but turns away from it.
+  EXPECT_TRUE(unchanged(piece, pixelRun({{100.0f, 53.0f}, {110.0f, 70.0f}}), defaults));
+  // 5 px beside it all along.
+  EXPECT_TRUE(unchanged(piece, pixelRun({{100.0f, 55.0f}, {120.0f, 54.5f}, {160.0f, 54.5f}}), defaults));
+  // The stretch (20 px) is more than half of a 30-px piece.
+  EXPECT_TRUE(unchanged(pixelRun({{90.0f, 50.0f}, {120.0f, 50.0f}}),
+                        pixelRun({{100.0f, 53.0f}, {120.0f, 51.4f}, {160.0f, 51.4f}}), defaults));
+  OutlineParams off;
+  off.overlap_radius_px = 0.0f;
+  const StrokeRuns contour = pixelRun({{100.0f, 53.0f}, {120.0f, 51.4f}, {160.0f, 51.4f}});
+  EXPECT_FALSE(unchanged(piece, contour, defaults));
+  EXPECT_TRUE(unchanged(piece, contour, off));
 }
 
 }  // namespace
