@@ -445,15 +445,22 @@ namespace {
 // where the style is translucent; two tapers, a pinch in the outline). A piece end that
 // passes within `radius_px` of a contour run's end is cut back to that end instead, so that
 // the two join into one stroke where the strokes are built (joinRuns(), screen_lines.h).
+// A piece end that meets no contour end so, but has one within `gap_px` of it across the
+// outline (every pixel of the gap within 2 px of `outline`), continuing the piece within 60°
+// and not turning the contour back on itself, is carried on to it: at a corner of the
+// outline the contour can end a few pixels short of the silhouette, the piece's growth does
+// not reach it, and the outline broke there (the cow's neck meeting its chest close up).
 void stitchToContourEnds(const StrokeRuns& contours, const StrokeRuns& fill, float reach_px, float radius_px,
-                         StrokeRuns& out) {
+                         float gap_px, const LineMask& outline, StrokeRuns& out) {
   out.clear();
   out.offsets.push_back(0);
-  for (size_t r = 0; r < fill.strokeCount(); ++r) {
+  const size_t n = fill.strokeCount();
+  // Per piece end (2r: start, 2r + 1: end): the contour end it meets (point index into
+  // `contours`) and the piece's point it is cut back to.
+  std::vector<uint32_t> meets(2 * n, UINT32_MAX);
+  std::vector<EndHit> hits(2 * n);
+  for (size_t r = 0; r < n; ++r) {
     const uint32_t b = fill.offsets[r], e = fill.offsets[r + 1];
-    // Per end of the piece: the contour end it meets (point index into `contours`), if any.
-    uint32_t meets[2] = {UINT32_MAX, UINT32_MAX};
-    EndHit hits[2];
     for (int side = 0; side < 2 && e - b >= 2; ++side) {
       // A point within reach_px of arc length from the piece's end lies that close to it.
       const glm::vec2 piece_end = fill.points[side == 1 ? e - 1 : b];
@@ -462,19 +469,72 @@ void stitchToContourEnds(const StrokeRuns& contours, const StrokeRuns& fill, flo
         for (uint32_t end : {contours.offsets[c], contours.offsets[c + 1] - 1}) {
           if (glm::length(contours.points[end] - piece_end) > reach_px + radius_px) continue;
           const EndHit h = nearestNearEnd(fill, r, side == 1, reach_px, contours.points[end]);
-          if (h.distance <= radius_px && h.distance < hits[side].distance) hits[side] = h, meets[side] = end;
+          if (h.distance <= radius_px && h.distance < hits[2 * r + side].distance)
+            hits[2 * r + side] = h, meets[2 * r + side] = end;
         }
       }
     }
+  }
+  // Across a gap: only contour ends no piece meets yet, each once.
+  std::vector<uint32_t> taken(meets);
+  std::sort(taken.begin(), taken.end());
+  // The direction from the point `arc_px` of arc inside a polyline's end to that end.
+  auto outward = [](const std::vector<glm::vec2>& pts, uint32_t b, uint32_t e, bool at_end, float arc_px) {
+    const glm::vec2 end = pts[at_end ? e - 1 : b];
+    glm::vec2 inner = end;
+    float walked = 0.0f;
+    for (uint32_t k = 1; k < e - b && walked < arc_px; ++k) {
+      const glm::vec2 q = pts[at_end ? e - 1 - k : b + k];
+      walked += glm::length(q - inner);
+      inner = q;
+    }
+    const glm::vec2 d = end - inner;
+    const float len = glm::length(d);
+    return len > 0.0f ? d / len : glm::vec2(0.0f);
+  };
+  for (size_t r = 0; r < n && gap_px > 0.0f; ++r) {
+    const uint32_t b = fill.offsets[r], e = fill.offsets[r + 1];
+    for (int side = 0; side < 2 && e - b >= 2; ++side) {
+      if (meets[2 * r + side] != UINT32_MAX) continue;
+      const glm::vec2 piece_end = fill.points[side == 1 ? e - 1 : b];
+      const glm::vec2 piece_dir = outward(fill.points, b, e, side == 1, 3.0f);
+      uint32_t best = UINT32_MAX;
+      float best_d = gap_px;
+      for (size_t c = 0; c < contours.strokeCount(); ++c) {
+        const uint32_t cb = contours.offsets[c], ce = contours.offsets[c + 1];
+        if (contours.kinds[c] != LineKind::kContour || ce - cb < 2) continue;
+        for (uint32_t end : {cb, ce - 1}) {
+          const glm::vec2 gap = contours.points[end] - piece_end;
+          const float d = glm::length(gap);
+          if (!(d > 0.0f) || d > best_d || std::binary_search(taken.begin(), taken.end(), end)) continue;
+          const glm::vec2 g = gap / d;
+          if (glm::dot(piece_dir, g) < 0.5f) continue;  // the piece would turn more than 60°
+          if (glm::dot(outward(contours.points, cb, ce, end == ce - 1, 6.0f), -g) < 0.0f) continue;
+          bool along = true;
+          const int steps = static_cast<int>(std::ceil(d));
+          for (int k = 0; k <= steps && along; ++k)
+            along = near(outline, piece_end + (static_cast<float>(k) / static_cast<float>(steps)) * gap, 2);
+          if (along) best = end, best_d = d;
+        }
+      }
+      if (best == UINT32_MAX) continue;
+      meets[2 * r + side] = best;
+      hits[2 * r + side] = {side == 1 ? e - 1 : b, best_d};
+      taken.insert(std::upper_bound(taken.begin(), taken.end(), best), best);
+    }
+  }
+  for (size_t r = 0; r < n; ++r) {
+    const uint32_t b = fill.offsets[r], e = fill.offsets[r + 1];
+    uint32_t m0 = meets[2 * r], m1 = meets[2 * r + 1];
     // The piece's points between its (possibly new) ends.
     uint32_t first = b, last = e - 1;
-    if (meets[0] != UINT32_MAX) first = hits[0].inner;
-    if (meets[1] != UINT32_MAX) last = hits[1].inner;
+    if (m0 != UINT32_MAX) first = hits[2 * r].inner;
+    if (m1 != UINT32_MAX) last = hits[2 * r + 1].inner;
     // Kept as it is: a piece whose two ends meet the same contour end, or that would lose
     // all its points to one end.
-    const bool both = meets[0] != UINT32_MAX && meets[1] != UINT32_MAX;
-    if ((both && meets[0] == meets[1]) || (!both && first > last)) {
-      first = b, last = e - 1, meets[0] = meets[1] = UINT32_MAX;
+    const bool both = m0 != UINT32_MAX && m1 != UINT32_MAX;
+    if ((both && m0 == m1) || (!both && first > last)) {
+      first = b, last = e - 1, m0 = m1 = UINT32_MAX;
     }
     auto push = [&](glm::vec2 px, glm::vec3 p, float alpha) {
       out.points.push_back(px);
@@ -482,9 +542,9 @@ void stitchToContourEnds(const StrokeRuns& contours, const StrokeRuns& fill, flo
       out.alpha.push_back(alpha);
     };
     const size_t start = out.points.size();
-    if (meets[0] != UINT32_MAX) push(contours.points[meets[0]], contours.positions[meets[0]], fill.alpha[first]);
+    if (m0 != UINT32_MAX) push(contours.points[m0], contours.positions[m0], fill.alpha[first]);
     for (uint32_t i = first; i <= last && i < e; ++i) push(fill.points[i], fill.positions[i], fill.alpha[i]);
-    if (meets[1] != UINT32_MAX) push(contours.points[meets[1]], contours.positions[meets[1]], fill.alpha[last]);
+    if (m1 != UINT32_MAX) push(contours.points[m1], contours.positions[m1], fill.alpha[last]);
     float length = 0.0f;
     for (size_t i = start + 1; i < out.points.size(); ++i) length += glm::length(out.points[i] - out.points[i - 1]);
     out.offsets.push_back(static_cast<uint32_t>(out.points.size()));
@@ -820,7 +880,8 @@ double completeOutline(const StrokeSet& silhouette, const Camera& camera, const 
     takeOverContourEnds(out, fill, params, scratch.taken);
     contours_now = &scratch.taken;
   }
-  stitchToContourEnds(*contours_now, fill, stitchReach(params), stitchRadius(params), scratch.stitched);
+  stitchToContourEnds(*contours_now, fill, stitchReach(params), stitchRadius(params), params.corner_gap_px, scratch.outline,
+                      scratch.stitched);
   appendStrokes(scratch.stitched, *contours_now);
   std::swap(visible, *contours_now);
   return scratch.stitched.totalLength() + spliced_px;

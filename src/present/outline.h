@@ -89,6 +89,13 @@ struct OutlineParams {
   /// How far back from a piece's end (pixels of the piece) the contour run's end may lie
   /// for overlap_radius_px. Default 32.
   float overlap_reach_px = 32.0f;
+  /// A piece's end that meets no contour end within 1.5 px is carried on to a free contour
+  /// end this near it (pixels) when the gap lies along the outline (every pixel of it within
+  /// 2 px of an outline sample), continues the piece within 60° and does not turn the
+  /// contour back on itself: at a corner of the outline the contour can end a few pixels
+  /// short of the silhouette, beyond the piece's growth (docs/visibility.md, step 5). 0 turns
+  /// this off. Default 6 (extend_px and 4).
+  float corner_gap_px = 6.0f;
   /// Hysteresis between frames (with an OutlineHistory): a piece with a sample within this
   /// many pixels of the previous frame's pieces (projected by this frame's camera, so the
   /// comparison follows the motion) continues one and is kept whatever its length, so a

@@ -368,6 +368,74 @@ TEST(Outline, AContourDashBesideAPieceIsLeftToThePiece) {
   EXPECT_EQ(again.strokeCount(), 2u);
 }
 
+// Two silhouette strokes along the square's top edge, [x0, x1] and [x2, x3] (model units),
+// with the edge between them not part of the silhouette (hidden, or turning elsewhere).
+StrokeSet topEdgeInTwo(float x0, float x1, float x2, float x3) {
+  StrokeSet s = topEdge(x0, x1);
+  const StrokeSet t = topEdge(x2, x3);
+  for (size_t i = 0; i < t.points.size(); ++i) {
+    s.points.push_back(t.points[i]);
+    s.alpha.push_back(1.0f);
+  }
+  s.offsets.push_back(static_cast<uint32_t>(s.points.size()));
+  s.kinds.push_back(LineKind::kContour);
+  s.closed.push_back(0);
+  return s;
+}
+
+// A contour that ends a few pixels short of where a completing piece starts, the gap lying
+// along the outline (the cow's neck meeting its chest close up): the piece is carried on to
+// the contour's end, so the outline does not break there. Not across a gap that leaves the
+// outline, nor with the rule off.
+TEST(Outline, APieceIsCarriedAcrossAShortGapAlongTheOutlineToTheContoursEnd) {
+  // The contour draws the top edge from px x 60 to 120, 0.6 px inside it.
+  auto contour = [] { return contourRun(-0.8f, 0.4f, 0.978f); };
+  auto complete = [&](const StrokeSet& sil, const OutlineParams& params, glm::vec2& piece_start) {
+    StrokeRuns visible = contour();
+    OutlineScratch scratch;
+    completeOutline(sil, squareCamera(), squareDepth(), VisibilityParams{}, params, visible, scratch);
+    EXPECT_EQ(visible.strokeCount(), 2u);
+    piece_start = visible.strokeCount() == 2 ? visible.points[visible.offsets[1]] : glm::vec2(0.0f);
+    return visible.points[visible.offsets[1] - 1];  // the contour's end
+  };
+  // The silhouette along the contour to px 121, then from px 124.5 to 140: the second is
+  // the piece; it starts 4.5 px from the contour's end, beyond the stitch's 1.5.
+  const StrokeSet sil = topEdgeInTwo(-0.8f, 0.42f, 0.49f, 0.8f);
+  glm::vec2 start;
+  const glm::vec2 contour_end = complete(sil, OutlineParams{}, start);
+  EXPECT_EQ(start, contour_end);
+  // With the rule off, the piece starts where its silhouette does.
+  OutlineParams off;
+  off.corner_gap_px = 0.0f;
+  complete(sil, off, start);
+  EXPECT_NEAR(start.x, 124.5f, 0.6f);
+  // A piece down the square's right edge, from 2 px below its top corner: the contour's end
+  // (px 146, 0.6 px inside the top edge) is 3.6 px away along the outline, but the gap turns
+  // the piece by 75°, and nothing is carried across it.
+  StrokeSet corner = topEdge(-0.8f, 0.92f);
+  StrokeSet down;
+  down.offsets = {0};
+  for (int i = 0; i <= 8; ++i) {
+    down.points.push_back({0.99f, 0.96f - 0.1f * static_cast<float>(i), 0.0f});
+    down.alpha.push_back(1.0f);
+  }
+  down.offsets.push_back(static_cast<uint32_t>(down.points.size()));
+  down.kinds.push_back(LineKind::kContour);
+  down.closed.push_back(0);
+  for (size_t i = 0; i < down.points.size(); ++i) {
+    corner.points.push_back(down.points[i]);
+    corner.alpha.push_back(1.0f);
+  }
+  corner.offsets.push_back(static_cast<uint32_t>(corner.points.size()));
+  corner.kinds.push_back(LineKind::kContour);
+  corner.closed.push_back(0);
+  StrokeRuns visible = contourRun(-0.8f, 0.92f, 0.978f);
+  OutlineScratch scratch;
+  completeOutline(corner, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{}, visible, scratch);
+  ASSERT_EQ(visible.strokeCount(), 2u);
+  EXPECT_NEAR(visible.points[visible.offsets[1]].y, 52.0f, 0.6f);  // the piece's start, as it was
+}
+
 // Pixel runs for takeOverContourEnds(): a polyline of pixels (model positions alongside).
 StrokeRuns pixelRun(std::initializer_list<glm::vec2> pts) {
   StrokeRuns runs;
