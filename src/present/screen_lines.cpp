@@ -255,12 +255,18 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
   // Gaps up to the width + 3 px (long_bridge_of) are bridged where the line runs straight on
   // through them (within 30°) and no other run crosses the gap, which needs the segment grid
   // below (along_px > 0).
-  std::array<float, kLineKindCount> reach_of{}, bridge_of{}, long_bridge_of{};
+  // A run no longer than four widths (dash_len_of) lies along a line within the width +
+  // burr_px (dash_reach_of) of runs at least three times its length.
+  std::array<float, kLineKindCount> reach_of{}, bridge_of{}, long_bridge_of{}, dash_len_of{}, dash_reach_of{};
   float widest_reach = params.along_px, widest_bridge = params.bridge_px;
   const bool with_grid = params.along_px > 0.0f && nr > 1;
+  const float burr = std::isfinite(params.burr_px) ? std::clamp(params.burr_px, 0.0f, 16.0f) : 0.0f;
   for (int k = 0; k < kLineKindCount; ++k) {
     const float w = std::isfinite(params.width_px[k]) ? std::clamp(params.width_px[k], 0.0f, 16.0f) : 0.0f;
     reach_of[k] = std::max(params.along_px, w);
+    dash_len_of[k] = burr > 0.0f ? 4.0f * w : 0.0f;
+    dash_reach_of[k] = std::max(reach_of[k], w + burr);
+    widest_reach = std::max(widest_reach, dash_len_of[k] > 0.0f ? dash_reach_of[k] : 0.0f);
     bridge_of[k] = params.bridge_px > 0.0f && w > 0.0f ? std::max(params.bridge_px, w + 1.5f) : params.bridge_px;
     long_bridge_of[k] = params.bridge_px > 0.0f && w > 0.0f && with_grid ? std::max(bridge_of[k], w + 3.0f) : bridge_of[k];
     widest_reach = std::max(widest_reach, reach_of[k]);
@@ -313,6 +319,46 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       });
       return found;
     };
+    // Whether `p` lies within `reach` of a segment of run q.
+    auto nearRun = [&](glm::vec2 p, uint32_t q, float reach) {
+      bool found = false;
+      joined.grid.forEachNear(p, reach, [&](uint32_t i) {
+        if (found || run_of[i] != q) return;
+        const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
+        const float l2 = glm::dot(ab, ab);
+        const float t = l2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / l2, 0.0f, 1.0f) : 0.0f;
+        const glm::vec2 d = p - (a + t * ab);
+        found = glm::dot(d, d) <= reach * reach;
+      });
+      return found;
+    };
+    // Whether `pred` holds at every point of run r and every 2 px between.
+    auto allAlong = [&](uint32_t r, auto&& pred) {
+      const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+      bool all = pred(runs.points[b]);
+      for (uint32_t i = b; all && i + 1 < e; ++i) {
+        const glm::vec2 p = runs.points[i], q = runs.points[i + 1];
+        if (!finite(q)) return false;
+        const int steps = std::clamp(static_cast<int>(std::ceil(glm::length(q - p) / 2.0f)), 1, 4096);
+        for (int k = 1; all && k <= steps; ++k) all = pred(p + (q - p) * (static_cast<float>(k) / steps));
+      }
+      return all;
+    };
+    // Whether an end of another run of run r's kind lies within `radius` of `p`.
+    auto meetsAnEnd = [&](glm::vec2 p, size_t r, float radius) {
+      bool found = false;
+      const float radius2 = radius * radius;
+      joined.grid.forEachNear(p, radius, [&](uint32_t i) {
+        const uint32_t q = run_of[i];
+        if (found || q == r || runs.kinds[q] != runs.kinds[r]) return;
+        for (const uint32_t end : {runs.offsets[q], runs.offsets[q + 1] - 1})
+          if (end == i || end == i + 1) {
+            const glm::vec2 d = runs.points[end] - p;
+            found = found || glm::dot(d, d) <= radius2;
+          }
+      });
+      return found;
+    };
     // Shortest first: of two runs along each other, the shorter goes.
     std::vector<uint32_t>& order = joined.order;
     order.resize(nr);
@@ -323,14 +369,27 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     for (const uint32_t r : order) {
       const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
       if (e - b < 1 || !finite(runs.points[b])) continue;
-      bool all = along(runs.points[b], r);
-      for (uint32_t i = b; all && i + 1 < e; ++i) {
-        const glm::vec2 p = runs.points[i], q = runs.points[i + 1];
-        if (!finite(q)) { all = false; break; }
-        const int steps = std::clamp(static_cast<int>(std::ceil(glm::length(q - p) / 2.0f)), 1, 4096);
-        for (int k = 1; all && k <= steps; ++k) all = along(p + (q - p) * (static_cast<float>(k) / steps), r);
-      }
-      covered[r] = all;
+      covered[r] = allAlong(r, [&](glm::vec2 p) { return along(p, r); });
+      // A dash (a run of at most four widths) beside one run at least three times its length,
+      // within the width + burr_px of it all along, is a burr on that line, unless both its
+      // ends lie within a bridge's reach of other runs' ends (then it links them: a corner
+      // of the line, a piece between two gaps).
+      const size_t kind = kindIndex(runs.kinds[r]);
+      if (covered[r] || !(runs.length_px[r] <= dash_len_of[kind]) ||
+          (meetsAnEnd(runs.points[b], r, long_bridge_of[kind]) && meetsAnEnd(runs.points[e - 1], r, long_bridge_of[kind])))
+        continue;
+      const float reach = dash_reach_of[kind];
+      uint32_t tried[8];
+      int n_tried = 0;
+      joined.grid.forEachNear(runs.points[b], reach, [&](uint32_t i) {
+        const uint32_t q = run_of[i];
+        if (covered[r] || q == r || runs.kinds[q] != runs.kinds[r] || covered[q] ||
+            runs.length_px[q] < 3.0f * runs.length_px[r] || n_tried == 8 ||
+            std::find(tried, tried + n_tried, q) != tried + n_tried)
+          return;
+        tried[n_tried++] = q;
+        covered[r] = allAlong(r, [&](glm::vec2 p) { return nearRun(p, q, reach); });
+      });
     }
   }
   // Ends binned by cells of the farthest join; each end links to the nearest free end of

@@ -92,6 +92,12 @@ struct JoinParams {
   /// short piece of interpolated contour lies along the outline's completing piece). Default
   /// 1.5; 0: every run is drawn.
   float along_px = 1.5f;
+  /// A run no longer than four times its kind's width (0 where the width is not known) lies
+  /// along a line, and is not drawn, within that width + burr_px of runs at least three times
+  /// its length all along: close up on a coarse mesh, dashes of 4–10 px of contour stood
+  /// 1.5–4.5 px beside the outline, burrs and ticks on the line (docs/strokes.md). Default 2;
+  /// 0: off.
+  float burr_px = 2.0f;
   /// Ends of two runs of a kind that overlap side by side are joined: each end lies at most
   /// this far behind the other, within the reach below (along_px or the kind's width) of
   /// the line through it, and the two run the same way (within max_turn_deg). The run

@@ -471,6 +471,29 @@ TEST(StrokeStyles, RunsWithinTheStrokeWidthOfALongerOneAreLeftOut) {
   EXPECT_EQ(j.covered, (std::vector<uint8_t>{0, 1, 0}));
 }
 
+// A dash (at most four widths long) standing beside a longer line within the width + 2 px
+// all along is a burr on it and is left out (close up on a coarse mesh, 4–10 px of contour
+// 1.5–4.5 px beside the outline); one farther off, a longer run, and a dash whose two ends
+// meet other runs' ends (it links them) are drawn, as is every run with burr_px 0.
+TEST(StrokeStyles, ShortDashesBesideALongerRunAreLeftOut) {
+  StrokeRuns runs;
+  addRun(runs, {20, 40.5f}, {100, 40.5f});  // 0: the line
+  addRun(runs, {40, 44.5f}, {48, 44.5f});   // 1: an 8-px dash 4 px off: a burr
+  addRun(runs, {60, 45.5f}, {68, 45.5f});   // 2: 5 px off: drawn
+  addRun(runs, {70, 44.5f}, {84, 44.5f});   // 3: 14 px long: drawn
+  addRun(runs, {30, 36.5f}, {36, 36.5f});   // 4: 4 px off, linking the ends of 5 and 6
+  addRun(runs, {28, 10.0f}, {28, 34.0f});   // 5
+  addRun(runs, {38, 34.0f}, {38, 10.0f});   // 6
+  const JoinParams by_width = joinParamsFor(contourStyle(2.5f).lines);
+  JoinedRuns j;
+  joinRuns(runs, {}, by_width, j);
+  EXPECT_EQ(j.covered, (std::vector<uint8_t>{0, 1, 0, 0, 0, 0, 0}));
+  JoinParams off = by_width;
+  off.burr_px = 0.0f;
+  joinRuns(runs, {}, off, j);
+  EXPECT_EQ(j.covered, (std::vector<uint8_t>(7, 0)));
+}
+
 // Two runs of one line that overlap side by side at their ends (the interpolated contour and
 // the outline's completing piece, 1.8 px apart for 5 px) become one stroke, the second
 // entered past the first's end; ends that overlap farther apart, or run opposite ways, stay
