@@ -433,6 +433,24 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
   };
   // Gaps longer than bridge_of's: the line runs straight on (within 30°), nothing crosses.
   const float long_cos = std::cos(glm::radians(30.0f));
+  // Ends that meet side by side: the two runs go the same way within 15°, and end o lies
+  // beside end e (more than touch_px and at most the kind's reach across the line, at most
+  // touch_px behind it and no farther ahead than across). Two pieces of one line offset by
+  // a pixel or two (the outline's completing piece and the contour, on a coarse mesh):
+  // bridged straight, the stroke stepped across; they are joined with the chain's end bent
+  // over onto the entered run's line (JoinParams::step_px).
+  std::vector<uint8_t> side_step(2 * nr, 0);
+  const float step_cos = std::cos(glm::radians(15.0f));
+  auto sideStep = [&](size_t e, size_t o) {
+    if (!(params.step_px > 0.0f)) return false;
+    const glm::vec2 te = outward(e), to = outward(o);
+    if (glm::dot(te, -to) < step_cos) return false;
+    const glm::vec2 g = endPoint(o) - endPoint(e);
+    const float ahead = glm::dot(te, g), across = std::abs(te.x * g.y - te.y * g.x);
+    return across > params.touch_px && across <= reach_of[kindIndex(runs.kinds[e / 2])] && ahead >= -params.touch_px &&
+           ahead <= across && runs.length_px[o / 2] >= 4.0f * params.step_px &&
+           runs.length_px[e / 2] >= 4.0f * params.step_px;
+  };
   const float reach = std::max({params.touch_px, widest_bridge, overlap_px});
   const float cell = std::max(reach, 1e-3f);
   auto& bins = joined.bins;
@@ -477,7 +495,8 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
             if (d <= best && (overlapping_pass ? overlaps(e, o)
                               : !bridging      || (continues(e, o, min_cos) &&
                                                     (d <= bridge_of[kind] ||
-                                                     (continues(e, o, long_cos) && !gapCrossed(e, o))))))
+                                                     (continues(e, o, long_cos) && !gapCrossed(e, o)))) ||
+                                                   sideStep(e, o)))
               best = d, best_end = static_cast<int32_t>(o);
           }
         }
@@ -485,6 +504,9 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
         link[e] = best_end;
         link[static_cast<size_t>(best_end)] = static_cast<int32_t>(e);
         overlapping[e] = overlapping[static_cast<size_t>(best_end)] = overlapping_pass;
+        const bool step = bridging && !continues(e, static_cast<size_t>(best_end), min_cos) &&
+                          sideStep(e, static_cast<size_t>(best_end));
+        side_step[e] = side_step[static_cast<size_t>(best_end)] = step;
       }
     }
   }
@@ -528,11 +550,31 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     // Entering a run side by side with the one left (JoinParams::overlap_px): its points
     // behind the end left (along that end's outward direction) are skipped.
     glm::vec2 left_end(0.0f), left_dir(0.0f);
-    bool trim = false, bent = false;
+    bool trim = false, bent = false, step = false;
     while (true) {
       done[r] = 1;
       const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
       const bool forward = entry % 2 == 0;
+      if (step) {
+        // Entered side by side (sideStep()): the chain's last step_px and more (four times
+        // the offset) bend over onto the entered run's line, the weight rising linearly
+        // with arc length to 1 at the chain's end, so the stroke does not step across.
+        const glm::vec2 a = endPoint(entry), dir = -outward(entry);
+        const size_t chain_begin = out.offsets.back();
+        const glm::vec2 last = out.points.back();
+        const float offset = std::abs(dir.x * (last.y - a.y) - dir.y * (last.x - a.x));
+        const float span = std::max(params.step_px, 4.0f * offset);
+        float arc = 0.0f;
+        for (size_t j = out.points.size(); j-- > chain_begin;) {
+          if (j + 1 < out.points.size()) arc += glm::length(out.points[j + 1] - out.points[j]);
+          if (arc >= span) break;
+          glm::vec2& p = out.points[j];
+          const glm::vec2 q = a + glm::dot(p - a, dir) * dir;  // p's foot on the entered line
+          if (glm::length(q - p) > offset + params.touch_px) break;  // the lines part: a corner
+          p += (1.0f - arc / span) * (q - p);
+        }
+        bent = true;
+      }
       uint32_t first = 0;
       if (trim)
         while (first + 1 < e - b && glm::dot(runs.points[forward ? b + first : e - 1 - first] - left_end, left_dir) <= 0.0f)
@@ -593,6 +635,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       const size_t next_entry = static_cast<size_t>(link[exit]);
       if (done[next_entry / 2]) break;  // a cycle closed
       trim = overlapping[exit] != 0;
+      step = side_step[exit] != 0;
       if (trim) {
         left_end = endPoint(exit);
         left_dir = outward(exit);

@@ -105,6 +105,14 @@ struct JoinParams {
   /// interpolated contour and the outline's completing piece overlap so for a few pixels,
   /// a doubled knot in the line. Default 8; 0: no such joins.
   float overlap_px = 8.0f;
+  /// Ends of two runs of a kind that meet side by side (the two going the same way within
+  /// 15°, one end beside the other, more than touch_px and at most the kind's reach across,
+  /// neither behind the other by more than touch_px) are joined, the chain's end bending over
+  /// onto the entered run's line over its last max(step_px, 4 × the offset) px: bridged
+  /// straight, the stroke stepped across (the cow's back close up, pieces 1.7 px apart).
+  /// Both runs must be at least four times this long (a shorter one's direction says little
+  /// about its line). Default 3; 0: no such joins.
+  float step_px = 3.0f;
   /// A free end of a joined stroke that turns back by over 75° within max(hook_px, 1.5 ×
   /// the kind's width) of its end is cut at the turn, when the run is at least three times
   /// that long: on a coarse mesh a contour's end, where it goes behind the surface at a

@@ -494,6 +494,39 @@ TEST(StrokeStyles, ShortDashesBesideALongerRunAreLeftOut) {
   EXPECT_EQ(j.covered, (std::vector<uint8_t>(7, 0)));
 }
 
+// Two pieces of one line that meet end to end but 1.7 px apart across it (the outline's
+// completing piece and the contour on the cow's back close up) are joined, the first bending
+// over onto the second's line over its last few pixels, not stepping across at one point;
+// pieces meeting at a 30° corner, or with step_px 0, are not joined so.
+TEST(StrokeStyles, PiecesMeetingSideBySideAreJoinedWithoutAStep) {
+  StrokeRuns runs;
+  addRun(runs, {20, 40.5f}, {60, 40.5f});
+  addRun(runs, {60.2f, 42.2f}, {100, 42.2f});
+  const JoinParams by_width = joinParamsFor(contourStyle(2.5f).lines);
+  JoinedRuns j;
+  joinRuns(runs, {}, by_width, j);
+  ASSERT_EQ(j.runs.strokeCount(), 1u);
+  // The stroke moves across by 1.7 px over more than 3 px of its length: no segment of it
+  // turns by more than 35° (the straight step was 90°), and it starts and ends on the lines.
+  const uint32_t n = j.runs.offsets[1];
+  EXPECT_EQ(j.runs.points[0], glm::vec2(20, 40.5f));
+  EXPECT_EQ(j.runs.points[n - 1], glm::vec2(100, 42.2f));
+  for (uint32_t k = 1; k < n; ++k) {
+    const glm::vec2 d = j.runs.points[k] - j.runs.points[k - 1];
+    if (glm::length(d) > 1e-4f) EXPECT_LT(std::abs(d.y), std::tan(35.0f * 3.14159265f / 180.0f) * d.x + 1e-4f) << k;
+  }
+  JoinParams off = by_width;
+  off.step_px = 0.0f;
+  joinRuns(runs, {}, off, j);
+  EXPECT_EQ(j.runs.strokeCount(), 2u);
+  // A 30° corner with the same offset: not a side step.
+  StrokeRuns corner;
+  addRun(corner, {20, 40.5f}, {60, 40.5f});
+  addRun(corner, {60.2f, 42.2f}, {60.2f + 40.0f * 0.866f, 42.2f + 40.0f * 0.5f});
+  joinRuns(corner, {}, by_width, j);
+  EXPECT_EQ(j.runs.strokeCount(), 2u);
+}
+
 // Two runs of one line that overlap side by side at their ends (the interpolated contour and
 // the outline's completing piece, 1.8 px apart for 5 px) become one stroke, the second
 // entered past the first's end; ends that overlap farther apart, or run opposite ways, stay
