@@ -565,10 +565,12 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
         const float offset = std::abs(dir.x * (last.y - a.y) - dir.y * (last.x - a.x));
         const float span = std::max(params.step_px, 4.0f * offset);
         float arc = 0.0f;
+        glm::vec2 after = last;  // the point after p as it was, before it moved
         for (size_t j = out.points.size(); j-- > chain_begin;) {
-          if (j + 1 < out.points.size()) arc += glm::length(out.points[j + 1] - out.points[j]);
+          arc += glm::length(after - out.points[j]);
           if (arc >= span) break;
           glm::vec2& p = out.points[j];
+          after = p;
           const glm::vec2 q = a + glm::dot(p - a, dir) * dir;  // p's foot on the entered line
           if (glm::length(q - p) > offset + params.touch_px) break;  // the lines part: a corner
           p += (1.0f - arc / span) * (q - p);
