@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "present/segment_grid.h"
+
 namespace lodline {
 namespace {
 
@@ -136,8 +138,7 @@ void blendSplice(const Splice& sp, const std::vector<Sample>& run, float ramp_px
     float best = glm::length(q.px - c.px);
     for (size_t i = lo; i < hi; ++i) {
       const glm::vec2 a = run[i].px, ab = run[i + 1].px - a;
-      const float len2 = glm::dot(ab, ab);
-      const float t = len2 > 0.0f ? std::clamp(glm::dot(q.px - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+      const float t = nearestOnSegment(q.px, a, ab);
       const float d = glm::length(q.px - (a + t * ab));
       if (d < best) {
         best = d;
@@ -217,10 +218,9 @@ EndHit nearestNearEnd(const StrokeRuns& runs, size_t r, bool at_end, float reach
   for (uint32_t k = 0; k + 1 < e - b && walked <= reach_px; ++k) {
     const uint32_t outer = at_end ? e - 1 - k : b + k, inner = at_end ? outer - 1 : outer + 1;
     const glm::vec2 a = runs.points[outer], ab = runs.points[inner] - a;
-    const float len2 = glm::dot(ab, ab);
-    const float t = len2 > 0.0f ? std::clamp(glm::dot(target - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+    const float t = nearestOnSegment(target, a, ab);
     const float d = glm::length(target - (a + t * ab));
-    const float len = std::sqrt(len2);
+    const float len = std::sqrt(glm::dot(ab, ab));
     if (d < hit.distance && walked + t * len <= reach_px) hit = {inner, d};  // only near the end
     walked += len;
   }
@@ -238,8 +238,7 @@ PolylineHit nearestOnPolyline(const std::vector<glm::vec2>& points, uint32_t b, 
   PolylineHit hit;
   for (uint32_t k = b; k + 1 < e; ++k) {
     const glm::vec2 a = points[k], ab = points[k + 1] - a;
-    const float len2 = glm::dot(ab, ab);
-    const float t = len2 > 0.0f ? std::clamp(glm::dot(q - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+    const float t = nearestOnSegment(q, a, ab);
     const float d = glm::length(q - (a + t * ab));
     if (d < hit.distance) hit = {k, t, d};
   }

@@ -301,6 +301,12 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     run_of.assign(runs.points.size(), 0);
     for (size_t r = 0; r < nr; ++r)
       for (uint32_t i = runs.offsets[r]; i < runs.offsets[r + 1]; ++i) run_of[i] = static_cast<uint32_t>(r);
+    // Whether `p` lies within √reach2 of segment i (points i and i + 1).
+    auto segmentWithin = [&](glm::vec2 p, uint32_t i, float reach2) {
+      const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
+      const glm::vec2 d = p - (a + nearestOnSegment(p, a, ab) * ab);
+      return glm::dot(d, d) <= reach2;
+    };
     // Whether `p` lies within the reach (along_px, or the kind's width) of a segment of a
     // longer run of run r's kind.
     auto along = [&](glm::vec2 p, size_t r) {
@@ -311,11 +317,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
         if (found || q == r || runs.kinds[q] != runs.kinds[r] || covered[q] || runs.length_px[q] < runs.length_px[r] ||
             (runs.length_px[q] == runs.length_px[r] && q > r))
           return;
-        const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
-        const float l2 = glm::dot(ab, ab);
-        const float t = l2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / l2, 0.0f, 1.0f) : 0.0f;
-        const glm::vec2 d = p - (a + t * ab);
-        found = glm::dot(d, d) <= reach2;
+        found = segmentWithin(p, i, reach2);
       });
       return found;
     };
@@ -323,12 +325,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     auto nearRun = [&](glm::vec2 p, uint32_t q, float reach) {
       bool found = false;
       joined.grid.forEachNear(p, reach, [&](uint32_t i) {
-        if (found || run_of[i] != q) return;
-        const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
-        const float l2 = glm::dot(ab, ab);
-        const float t = l2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / l2, 0.0f, 1.0f) : 0.0f;
-        const glm::vec2 d = p - (a + t * ab);
-        found = glm::dot(d, d) <= reach * reach;
+        if (!found && run_of[i] == q) found = segmentWithin(p, i, reach * reach);
       });
       return found;
     };
@@ -439,7 +436,8 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
   // a pixel or two (the outline's completing piece and the contour, on a coarse mesh):
   // bridged straight, the stroke stepped across; they are joined with the chain's end bent
   // over onto the entered run's line (JoinParams::step_px).
-  std::vector<uint8_t> side_step(2 * nr, 0);
+  std::vector<uint8_t>& side_step = joined.side_step;
+  side_step.assign(2 * nr, 0);
   const float step_cos = std::cos(glm::radians(15.0f));
   auto sideStep = [&](size_t e, size_t o) {
     if (!(params.step_px > 0.0f)) return false;
@@ -484,6 +482,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
                    : bridging       ? long_bridge_of[kind]
                                     : params.touch_px;
       int32_t best_end = -1;
+      bool best_step = false;  // joined side by side (sideStep()), not along the line
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const uint64_t kk = key(x + dx, y + dy);
@@ -492,21 +491,23 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
             const uint32_t o = it->second;
             if (o / 2 == e / 2 || link[o] >= 0 || runs.kinds[o / 2] != runs.kinds[e / 2]) continue;
             const float d = glm::length(endPoint(o) - p);
-            if (d <= best && (overlapping_pass ? overlaps(e, o)
-                              : !bridging      || (continues(e, o, min_cos) &&
-                                                    (d <= bridge_of[kind] ||
-                                                     (continues(e, o, long_cos) && !gapCrossed(e, o)))) ||
-                                                   sideStep(e, o)))
-              best = d, best_end = static_cast<int32_t>(o);
+            if (!(d <= best)) continue;
+            if (overlapping_pass || !bridging) {
+              if (!overlapping_pass || overlaps(e, o)) best = d, best_end = static_cast<int32_t>(o), best_step = false;
+              continue;
+            }
+            const bool on_line = continues(e, o, min_cos);
+            const bool bridged =
+                on_line && (d <= bridge_of[kind] || (continues(e, o, long_cos) && !gapCrossed(e, o)));
+            const bool stepped = !bridged && sideStep(e, o);
+            if (bridged || stepped) best = d, best_end = static_cast<int32_t>(o), best_step = stepped && !on_line;
           }
         }
       if (best_end >= 0) {
         link[e] = best_end;
         link[static_cast<size_t>(best_end)] = static_cast<int32_t>(e);
         overlapping[e] = overlapping[static_cast<size_t>(best_end)] = overlapping_pass;
-        const bool step = bridging && !continues(e, static_cast<size_t>(best_end), min_cos) &&
-                          sideStep(e, static_cast<size_t>(best_end));
-        side_step[e] = side_step[static_cast<size_t>(best_end)] = step;
+        side_step[e] = side_step[static_cast<size_t>(best_end)] = best_step;
       }
     }
   }
@@ -605,8 +606,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
           float best = std::numeric_limits<float>::max();
           for (uint32_t k = 0; k < first; ++k) {
             const glm::vec2 a = at(k), ab = at(k + 1) - a;
-            const float l2 = glm::dot(ab, ab);
-            const float t = l2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / l2, 0.0f, 1.0f) : 0.0f;
+            const float t = nearestOnSegment(p, a, ab);
             const glm::vec2 c = a + t * ab;
             const float d2 = glm::dot(c - p, c - p);
             if (d2 < best) best = d2, q = c;

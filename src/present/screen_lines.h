@@ -41,6 +41,7 @@ struct JoinedRuns {
   std::vector<uint32_t> first_run;  ///< per joined run: the index of its first run in the input
   std::vector<int32_t> link;        ///< per run end (2r start, 2r + 1 end): the end it joins, or -1
   std::vector<uint8_t> overlapping;  ///< per run end: joined side by side (JoinParams::overlap_px)
+  std::vector<uint8_t> side_step;    ///< per run end: joined beside the other's end (JoinParams::step_px)
   std::vector<uint32_t> skipped;     ///< per run end: its points left out there (entered side by side, or a hook)
   std::vector<std::pair<uint64_t, uint32_t>> bins;  ///< run ends by grid cell
   std::vector<uint8_t> done;        ///< per run: already in a chain

@@ -11,11 +11,20 @@
 #include <vector>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
 #include "export/visibility.h"
 
 namespace lodline {
+
+/// The parameter in [0, 1] of the point of the segment from `a` along `ab` nearest to `p` (0
+/// where the segment has no length): the closest-point query of every per-segment test on
+/// runs of pixels.
+inline float nearestOnSegment(glm::vec2 p, glm::vec2 a, glm::vec2 ab) {
+  const float len2 = glm::dot(ab, ab);
+  return len2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+}
 
 class SegmentGrid {
  public:

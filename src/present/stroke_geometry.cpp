@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "present/segment_grid.h"
+
 namespace lodline {
 namespace {
 
@@ -15,8 +17,7 @@ bool finite(glm::vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 // (so 0.05 of opacity weighs like the 0.25 px tolerance).
 float chordError(const StrokeGeometryScratch& s, bool with_u, uint32_t i, uint32_t a, uint32_t b) {
   const glm::vec2 p = s.points[i], pa = s.points[a], ab = s.points[b] - pa;
-  const float len2 = glm::dot(ab, ab);
-  const float t = len2 > 0.0f ? std::clamp(glm::dot(p - pa, ab) / len2, 0.0f, 1.0f) : 0.0f;
+  const float t = nearestOnSegment(p, pa, ab);
   const float d = glm::length(p - (pa + t * ab));
   const float dw = std::abs(s.width[i] - (s.width[a] + t * (s.width[b] - s.width[a])));
   const float da = std::abs(s.alpha[i] - (s.alpha[a] + t * (s.alpha[b] - s.alpha[a])));

@@ -118,8 +118,7 @@ void StrokeParameterizer::update(StrokeRuns& runs, const Camera& camera, int wid
         const uint32_t r = point_run_[i];
         if (runs.kinds[r] != prev_kinds_[j]) return;
         const glm::vec2 a = runs.points[i], ab = runs.points[i + 1] - a;
-        const float len2 = glm::dot(ab, ab);
-        const float t = len2 > 0.0f ? std::clamp(glm::dot(px - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+        const float t = nearestOnSegment(px, a, ab);
         const float d = glm::length(px - (a + t * ab));
         if (d > params.match_px) return;
         // And on the surface: the run's own point there must be the sample's, within

@@ -368,20 +368,21 @@ TEST(Outline, AContourDashBesideAPieceIsLeftToThePiece) {
   EXPECT_EQ(again.strokeCount(), 2u);
 }
 
+// `to` with the strokes of `from` appended.
+StrokeSet withStrokes(StrokeSet to, const StrokeSet& from) {
+  for (size_t k = 0; k < from.strokeCount(); ++k) {
+    to.points.insert(to.points.end(), from.points.begin() + from.offsets[k], from.points.begin() + from.offsets[k + 1]);
+    to.alpha.insert(to.alpha.end(), from.alpha.begin() + from.offsets[k], from.alpha.begin() + from.offsets[k + 1]);
+    to.offsets.push_back(static_cast<uint32_t>(to.points.size()));
+    to.kinds.push_back(from.kinds[k]);
+    to.closed.push_back(from.closed[k]);
+  }
+  return to;
+}
+
 // Two silhouette strokes along the square's top edge, [x0, x1] and [x2, x3] (model units),
 // with the edge between them not part of the silhouette (hidden, or turning elsewhere).
-StrokeSet topEdgeInTwo(float x0, float x1, float x2, float x3) {
-  StrokeSet s = topEdge(x0, x1);
-  const StrokeSet t = topEdge(x2, x3);
-  for (size_t i = 0; i < t.points.size(); ++i) {
-    s.points.push_back(t.points[i]);
-    s.alpha.push_back(1.0f);
-  }
-  s.offsets.push_back(static_cast<uint32_t>(s.points.size()));
-  s.kinds.push_back(LineKind::kContour);
-  s.closed.push_back(0);
-  return s;
-}
+StrokeSet topEdgeInTwo(float x0, float x1, float x2, float x3) { return withStrokes(topEdge(x0, x1), topEdge(x2, x3)); }
 
 // A contour that ends a few pixels short of where a completing piece starts, the gap lying
 // along the outline (the cow's neck meeting its chest close up): the piece is carried on to
@@ -412,23 +413,9 @@ TEST(Outline, APieceIsCarriedAcrossAShortGapAlongTheOutlineToTheContoursEnd) {
   // A piece down the square's right edge, from 2 px below its top corner: the contour's end
   // (px 146, 0.6 px inside the top edge) is 3.6 px away along the outline, but the gap turns
   // the piece by 75°, and nothing is carried across it.
-  StrokeSet corner = topEdge(-0.8f, 0.92f);
-  StrokeSet down;
-  down.offsets = {0};
-  for (int i = 0; i <= 8; ++i) {
-    down.points.push_back({0.99f, 0.96f - 0.1f * static_cast<float>(i), 0.0f});
-    down.alpha.push_back(1.0f);
-  }
-  down.offsets.push_back(static_cast<uint32_t>(down.points.size()));
-  down.kinds.push_back(LineKind::kContour);
-  down.closed.push_back(0);
-  for (size_t i = 0; i < down.points.size(); ++i) {
-    corner.points.push_back(down.points[i]);
-    corner.alpha.push_back(1.0f);
-  }
-  corner.offsets.push_back(static_cast<uint32_t>(corner.points.size()));
-  corner.kinds.push_back(LineKind::kContour);
-  corner.closed.push_back(0);
+  StrokeSet down = topEdge(0.0f, 0.8f);  // turned down the right edge, from y 0.96 to 0.16
+  for (size_t i = 0; i < down.points.size(); ++i) down.points[i] = {0.99f, 0.96f - 0.1f * static_cast<float>(i), 0.0f};
+  const StrokeSet corner = withStrokes(topEdge(-0.8f, 0.92f), down);
   StrokeRuns visible = contourRun(-0.8f, 0.92f, 0.978f);
   OutlineScratch scratch;
   completeOutline(corner, squareCamera(), squareDepth(), VisibilityParams{}, OutlineParams{}, visible, scratch);

@@ -513,7 +513,9 @@ TEST(StrokeStyles, PiecesMeetingSideBySideAreJoinedWithoutAStep) {
   EXPECT_EQ(j.runs.points[n - 1], glm::vec2(100, 42.2f));
   for (uint32_t k = 1; k < n; ++k) {
     const glm::vec2 d = j.runs.points[k] - j.runs.points[k - 1];
-    if (glm::length(d) > 1e-4f) EXPECT_LT(std::abs(d.y), std::tan(35.0f * 3.14159265f / 180.0f) * d.x + 1e-4f) << k;
+    if (glm::length(d) > 1e-4f) {
+      EXPECT_LT(std::abs(d.y), std::tan(35.0f * 3.14159265f / 180.0f) * d.x + 1e-4f) << k;
+    }
   }
   JoinParams off = by_width;
   off.step_px = 0.0f;
