@@ -255,18 +255,17 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
   // Gaps up to the width + 3 px (long_bridge_of) are bridged where the line runs straight on
   // through them (within 30°) and no other run crosses the gap, which needs the segment grid
   // below (along_px > 0).
-  // A run no longer than four widths (dash_len_of) lies along a line within the width +
-  // burr_px (dash_reach_of) of runs at least three times its length.
-  std::array<float, kLineKindCount> reach_of{}, bridge_of{}, long_bridge_of{}, dash_len_of{}, dash_reach_of{};
+  // A run lies along a line within the width + burr_px (beside_reach_of; 0: off) of one run
+  // at least three times its length.
+  std::array<float, kLineKindCount> reach_of{}, bridge_of{}, long_bridge_of{}, beside_reach_of{};
   float widest_reach = params.along_px, widest_bridge = params.bridge_px;
   const bool with_grid = params.along_px > 0.0f && nr > 1;
   const float burr = std::isfinite(params.burr_px) ? std::clamp(params.burr_px, 0.0f, 16.0f) : 0.0f;
   for (int k = 0; k < kLineKindCount; ++k) {
     const float w = std::isfinite(params.width_px[k]) ? std::clamp(params.width_px[k], 0.0f, 16.0f) : 0.0f;
     reach_of[k] = std::max(params.along_px, w);
-    dash_len_of[k] = burr > 0.0f ? 4.0f * w : 0.0f;
-    dash_reach_of[k] = std::max(reach_of[k], w + burr);
-    widest_reach = std::max(widest_reach, dash_len_of[k] > 0.0f ? dash_reach_of[k] : 0.0f);
+    beside_reach_of[k] = burr > 0.0f && w > 0.0f ? std::max(reach_of[k], w + burr) : 0.0f;
+    widest_reach = std::max(widest_reach, beside_reach_of[k]);
     bridge_of[k] = params.bridge_px > 0.0f && w > 0.0f ? std::max(params.bridge_px, w + 1.5f) : params.bridge_px;
     long_bridge_of[k] = params.bridge_px > 0.0f && w > 0.0f && with_grid ? std::max(bridge_of[k], w + 3.0f) : bridge_of[k];
     widest_reach = std::max(widest_reach, reach_of[k]);
@@ -347,7 +346,7 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       const float radius2 = radius * radius;
       joined.grid.forEachNear(p, radius, [&](uint32_t i) {
         const uint32_t q = run_of[i];
-        if (found || q == r || runs.kinds[q] != runs.kinds[r]) return;
+        if (found || q == r || runs.kinds[q] != runs.kinds[r] || covered[q]) return;
         for (const uint32_t end : {runs.offsets[q], runs.offsets[q + 1] - 1})
           if (end == i || end == i + 1) {
             const glm::vec2 d = runs.points[end] - p;
@@ -363,31 +362,62 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
       return runs.length_px[a] != runs.length_px[b] ? runs.length_px[a] < runs.length_px[b] : a > b;
     });
-    for (const uint32_t r : order) {
-      const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
-      if (e - b < 1 || !finite(runs.points[b])) continue;
-      covered[r] = allAlong(r, [&](glm::vec2 p) { return along(p, r); });
-      // A dash (a run of at most four widths) beside one run at least three times its length,
-      // within the width + burr_px of it all along, is a burr on that line, unless both its
-      // ends lie within a bridge's reach of other runs' ends (then it links them: a corner
-      // of the line, a piece between two gaps).
-      const size_t kind = kindIndex(runs.kinds[r]);
-      if (covered[r] || !(runs.length_px[r] <= dash_len_of[kind]) ||
-          (meetsAnEnd(runs.points[b], r, long_bridge_of[kind]) && meetsAnEnd(runs.points[e - 1], r, long_bridge_of[kind])))
-        continue;
-      const float reach = dash_reach_of[kind];
+    // Whether run r lies within the width + burr_px of one run of its kind at least three
+    // times its length all along.
+    auto besideOneLonger = [&](uint32_t r, size_t kind) {
+      const float reach = beside_reach_of[kind];
       uint32_t tried[8];
       int n_tried = 0;
-      joined.grid.forEachNear(runs.points[b], reach, [&](uint32_t i) {
+      bool beside = false;
+      joined.grid.forEachNear(runs.points[runs.offsets[r]], reach, [&](uint32_t i) {
         const uint32_t q = run_of[i];
-        if (covered[r] || q == r || runs.kinds[q] != runs.kinds[r] || covered[q] ||
+        if (beside || q == r || runs.kinds[q] != runs.kinds[r] || covered[q] ||
             runs.length_px[q] < 3.0f * runs.length_px[r] || n_tried == 8 ||
             std::find(tried, tried + n_tried, q) != tried + n_tried)
           return;
         tried[n_tried++] = q;
-        covered[r] = allAlong(r, [&](glm::vec2 p) { return nearRun(p, q, reach); });
+        // The last and the middle point first: most candidates part from r there.
+        const uint32_t last = runs.offsets[r + 1] - 1, mid = (runs.offsets[r] + last) / 2;
+        beside = nearRun(runs.points[last], q, reach) && nearRun(runs.points[mid], q, reach) &&
+                 allAlong(r, [&](glm::vec2 p) { return nearRun(p, q, reach); });
       });
+      return beside;
+    };
+    // Whether both ends of run r lie within a long bridge's reach of ends of other runs of its
+    // kind that are drawn (not left out so far).
+    auto linksTwoEnds = [&](uint32_t r, size_t kind) {
+      return meetsAnEnd(runs.points[runs.offsets[r]], r, long_bridge_of[kind]) &&
+             meetsAnEnd(runs.points[runs.offsets[r + 1] - 1], r, long_bridge_of[kind]);
+    };
+    // A run beside one run at least three times its length, within the width + burr_px of it
+    // all along, only doubles that line: close up on a coarse mesh, dashes of 4–10 px of
+    // contour stood 1.5–4.5 px beside the outline (burrs and ticks on the line), and longer
+    // branches of the contour ran beside it (lenses: the cow's back, the armadillo's
+    // shoulder). It is left out unless both its ends link other runs' ends (a corner of the
+    // line, a piece between two gaps, a stretch of the outline between two pieces).
+    std::vector<uint32_t>& linking = joined.linking;
+    linking.clear();
+    bool any_beside = false;
+    for (const uint32_t r : order) {
+      const uint32_t b = runs.offsets[r], e = runs.offsets[r + 1];
+      if (e - b < 1 || !finite(runs.points[b])) continue;
+      covered[r] = allAlong(r, [&](glm::vec2 p) { return along(p, r); });
+      const size_t kind = kindIndex(runs.kinds[r]);
+      if (covered[r] || !(beside_reach_of[kind] > 0.0f) || !besideOneLonger(r, kind)) continue;
+      if (linksTwoEnds(r, kind)) {
+        linking.push_back(r);
+      } else {
+        covered[r] = 1;
+        any_beside = true;
+      }
     }
+    // A run kept for linking an end of a run that was left out after it (a longer one): looked
+    // at again.
+    if (any_beside)
+      for (const uint32_t r : linking) {
+        const size_t kind = kindIndex(runs.kinds[r]);
+        covered[r] = !linksTwoEnds(r, kind) && besideOneLonger(r, kind);
+      }
   }
   // Ends binned by cells of the farthest join; each end links to the nearest free end of
   // another run of its kind: first those that touch, then those a gap apart on one line.

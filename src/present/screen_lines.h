@@ -49,6 +49,7 @@ struct JoinedRuns {
   SegmentGrid grid;                 ///< the runs' segments (runs lying along others)
   std::vector<uint32_t> run_of;     ///< per point: its run
   std::vector<uint32_t> order;      ///< runs, shortest first
+  std::vector<uint32_t> linking;    ///< runs beside a longer one, kept for linking two ends
 };
 
 /// Scratch of buildScreenLines(); reuse between calls.
@@ -93,11 +94,12 @@ struct JoinParams {
   /// short piece of interpolated contour lies along the outline's completing piece). Default
   /// 1.5; 0: every run is drawn.
   float along_px = 1.5f;
-  /// A run no longer than four times its kind's width (0 where the width is not known) lies
-  /// along a line, and is not drawn, within that width + burr_px of runs at least three times
-  /// its length all along: close up on a coarse mesh, dashes of 4–10 px of contour stood
-  /// 1.5–4.5 px beside the outline, burrs and ticks on the line (docs/strokes.md). Default 2;
-  /// 0: off.
+  /// A run lying beside one run of its kind at least three times its length, within its
+  /// kind's width + burr_px of it all along, is not drawn, unless both its ends lie within a
+  /// bridge's reach (the width + 3 px) of other runs' ends, which it then links: close up
+  /// on a coarse mesh, dashes of 4–10 px of contour stood 1.5–4.5 px beside the outline,
+  /// burrs and ticks on the line, and longer branches of the contour ran beside it, a
+  /// doubled line or a lens (docs/strokes.md). Needs the kind's width. Default 2; 0: off.
   float burr_px = 2.0f;
   /// Ends of two runs of a kind that overlap side by side are joined: each end lies at most
   /// this far behind the other, within the reach below (along_px or the kind's width) of

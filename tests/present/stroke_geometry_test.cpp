@@ -454,7 +454,8 @@ TEST(StrokeStyles, RunsLyingAlongALongerOneAreLeftOut) {
 
 // Within the kind's stroke width a run lying along a longer one only thickens it (a knot
 // where the shorter lies): with the width given (joinParamsFor) a run 2 px off a 2.5-px
-// line is left out, as one 1 px off always is; one 3 px off is drawn.
+// line is left out, as one 1 px off always is; one 3 px off is drawn by that rule (it is
+// left out as lying beside a line three times its length, burr_px, unless that is off).
 TEST(StrokeStyles, RunsWithinTheStrokeWidthOfALongerOneAreLeftOut) {
   StrokeRuns runs;
   addRun(runs, {20, 40.5f}, {100, 40.5f});  // 0: the line
@@ -464,34 +465,60 @@ TEST(StrokeStyles, RunsWithinTheStrokeWidthOfALongerOneAreLeftOut) {
   joinRuns(runs, {}, JoinParams{}, j);
   EXPECT_EQ(j.runs.strokeCount(), 3u) << "along_px alone (1.5) keeps the run 2 px off";
   ObjectStyle style = contourStyle(2.5f);
-  const JoinParams by_width = joinParamsFor(style.lines);
+  JoinParams by_width = joinParamsFor(style.lines);
   EXPECT_EQ(by_width.width_px[static_cast<int>(LineKind::kContour)], 2.5f);
+  by_width.burr_px = 0.0f;
   joinRuns(runs, {}, by_width, j);
   ASSERT_EQ(j.runs.strokeCount(), 2u);
   EXPECT_EQ(j.covered, (std::vector<uint8_t>{0, 1, 0}));
+  joinRuns(runs, {}, joinParamsFor(style.lines), j);
+  EXPECT_EQ(j.covered, (std::vector<uint8_t>{0, 1, 1}));
 }
 
-// A dash (at most four widths long) standing beside a longer line within the width + 2 px
-// all along is a burr on it and is left out (close up on a coarse mesh, 4–10 px of contour
-// 1.5–4.5 px beside the outline); one farther off, a longer run, and a dash whose two ends
-// meet other runs' ends (it links them) are drawn, as is every run with burr_px 0.
+// A dash standing beside a longer line within the width + 2 px all along is a burr on it and
+// is left out (close up on a coarse mesh, 4–10 px of contour 1.5–4.5 px beside the outline),
+// as is a longer run beside a line three times its length; one farther off, one beside a
+// line less than three times its length, and a dash whose two ends meet other runs' ends (it
+// links them) are drawn, as is every run with burr_px 0.
 TEST(StrokeStyles, ShortDashesBesideALongerRunAreLeftOut) {
   StrokeRuns runs;
   addRun(runs, {20, 40.5f}, {100, 40.5f});  // 0: the line
   addRun(runs, {40, 44.5f}, {48, 44.5f});   // 1: an 8-px dash 4 px off: a burr
   addRun(runs, {60, 45.5f}, {68, 45.5f});   // 2: 5 px off: drawn
-  addRun(runs, {70, 44.5f}, {84, 44.5f});   // 3: 14 px long: drawn
+  addRun(runs, {70, 44.5f}, {84, 44.5f});   // 3: 14 px long, 4 px off: left out too
   addRun(runs, {30, 36.5f}, {36, 36.5f});   // 4: 4 px off, linking the ends of 5 and 6
   addRun(runs, {28, 10.0f}, {28, 34.0f});   // 5
   addRun(runs, {38, 34.0f}, {38, 10.0f});   // 6
+  addRun(runs, {70, 36.5f}, {100, 36.5f});  // 7: 30 px, 4 px off an 80-px line: drawn
   const JoinParams by_width = joinParamsFor(contourStyle(2.5f).lines);
   JoinedRuns j;
   joinRuns(runs, {}, by_width, j);
-  EXPECT_EQ(j.covered, (std::vector<uint8_t>{0, 1, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(j.covered, (std::vector<uint8_t>{0, 1, 0, 1, 0, 0, 0, 0}));
   JoinParams off = by_width;
   off.burr_px = 0.0f;
   joinRuns(runs, {}, off, j);
-  EXPECT_EQ(j.covered, (std::vector<uint8_t>(7, 0)));
+  EXPECT_EQ(j.covered, (std::vector<uint8_t>(8, 0)));
+}
+
+// On a coarse mesh the contour can run twice along the outline, a branch 1–4 px inside it for
+// tens of pixels (a lens on the cow's back close up). The branch lies beside a line three
+// times its length and is left out; so is the 5-px piece that linked the branch's end to the
+// line's end, once the branch it linked is gone (the two ends it met, one is left out).
+TEST(StrokeStyles, ABranchRunningBesideTheLineIsLeftOutWithWhatLinkedIt) {
+  StrokeRuns runs;
+  addRun(runs, {20, 40.5f}, {150, 40.5f});   // 0: the line, 130 px
+  addRun(runs, {150, 40.5f}, {250, 40.5f});  // 1: its continuation
+  addRun(runs, {100, 41.5f}, {140, 44.0f});  // 2: a 40-px branch beside 0, parting to 3.5 px
+  addRun(runs, {141, 44.2f}, {146, 43.5f});  // 3: from 2's end to near 0's end
+  const JoinParams by_width = joinParamsFor(contourStyle(2.5f).lines);
+  JoinedRuns j;
+  joinRuns(runs, {}, by_width, j);
+  EXPECT_EQ(j.covered, (std::vector<uint8_t>{0, 0, 1, 1}));
+  EXPECT_EQ(j.runs.strokeCount(), 1u);  // 0 and 1 joined
+  JoinParams off = by_width;
+  off.burr_px = 0.0f;
+  joinRuns(runs, {}, off, j);
+  EXPECT_EQ(j.covered, (std::vector<uint8_t>(4, 0)));
 }
 
 // Two pieces of one line that meet end to end but 1.7 px apart across it (the outline's
