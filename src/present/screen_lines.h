@@ -28,9 +28,12 @@ struct StrokeView {
 
 /// Smooths each run of `runs` in the image by its kind's StrokeStyle::smoothing_px
 /// (`style.lines`; smoothPolyline(): a Gaussian along the arc length, corners over 50° and
-/// the ends kept) and updates its length_px. The zero crossings of a coarse mesh zig-zag from
-/// face to face by a pixel or so, and the zig-zag changes as the mesh adapts: drawn as found,
-/// the strokes looked shaky close up and popped pixels from frame to frame (docs/strokes.md,
+/// the ends kept) and updates its length_px. First, where a run turns back over itself
+/// (within 3/4 of its kind's width) by at least that width and comes out ahead of the turn
+/// within four widths, the excursion is straightened: a fold of a coarse mesh's zero set,
+/// drawn as a knot in the line. The zero crossings of a coarse mesh zig-zag from face to
+/// face by a pixel or so, and the zig-zag changes as the mesh adapts: drawn as found, the
+/// strokes looked shaky close up and popped pixels from frame to frame (docs/strokes.md,
 /// "Smoothing"). Only the pixel positions move; the model-space positions stay.
 void smoothRuns(StrokeRuns& runs, const LineStyles& style, StrokeCurveScratch& scratch);
 

@@ -327,6 +327,60 @@ TEST(StrokeStyles, RunsAreSmoothedByTheirKindsStyle) {
   EXPECT_EQ(runs.positions, before.positions);
 }
 
+// A run that doubles back over itself for a few pixels and comes out ahead again (a fold of
+// a coarse mesh's zero set: a knot in the drawn line) is straightened: its points go on
+// leftwards without a back-step, and the points away from the fold stay. A hairpin (the
+// line does not come out ahead), a zig-zag whose way back lies beside the way out (fingers)
+// and a back-step shallower than the width (smoothing's business) are left as they were.
+TEST(StrokeStyles, AFoldBackOverTheLineIsStraightened) {
+  auto path = [](std::initializer_list<glm::vec2> corners) {
+    StrokeRuns r;
+    r.offsets.push_back(0);
+    const std::vector<glm::vec2> c(corners);
+    for (size_t k = 0; k + 1 < c.size(); ++k) {
+      const int n = std::max(1, static_cast<int>(glm::length(c[k + 1] - c[k])));
+      for (int i = k == 0 ? 0 : 1; i <= n; ++i) {
+        const glm::vec2 p = c[k] + (c[k + 1] - c[k]) * (static_cast<float>(i) / static_cast<float>(n));
+        r.points.push_back(p);
+        r.positions.push_back(glm::vec3(p, 0.0f));
+        r.alpha.push_back(1.0f);
+      }
+    }
+    r.offsets.push_back(static_cast<uint32_t>(r.points.size()));
+    r.kinds.push_back(LineKind::kContour);
+    r.strokes.push_back(0);
+    r.opacity.push_back(1.0f);
+    r.length_px.push_back(0.0f);
+    return r;
+  };
+  ObjectStyle style = contourStyle(2.5f);
+  StrokeCurveScratch scratch;
+  // Left to x = 60, back 6 px 1 px below the line, then on to the left.
+  StrokeRuns fold = path({{100, 40}, {60, 40}, {66, 41}, {20, 41}});
+  smoothRuns(fold, style.lines, scratch);
+  for (size_t i = 1; i < fold.points.size(); ++i)
+    EXPECT_LE(fold.points[i].x, fold.points[i - 1].x + 0.01f) << i;
+  EXPECT_EQ(fold.points.front(), glm::vec2(100, 40));
+  EXPECT_EQ(fold.points.back(), glm::vec2(20, 41));
+  auto backSteps = [](const StrokeRuns& r) {
+    float most = 0.0f;
+    for (size_t i = 1; i < r.points.size(); ++i) most = std::max(most, r.points[i].x - r.points[i - 1].x);
+    return most;
+  };
+  // A hairpin: back to the right for good, 1 px below.
+  StrokeRuns hairpin = path({{100, 40}, {60, 40}, {100, 41}});
+  smoothRuns(hairpin, style.lines, scratch);
+  EXPECT_GT(backSteps(hairpin), 0.5f);
+  // Fingers: back 6 px along a line 5 px below, then on.
+  StrokeRuns fingers = path({{100, 40}, {60, 40}, {66, 45}, {20, 45}});
+  smoothRuns(fingers, style.lines, scratch);
+  EXPECT_GT(backSteps(fingers), 0.5f);
+  // Back 2 px only (under the 2.5-px width).
+  StrokeRuns shallow = path({{100, 40}, {60, 40}, {62, 41}, {20, 41}});
+  smoothRuns(shallow, style.lines, scratch);
+  EXPECT_GT(backSteps(shallow), 0.2f);
+}
+
 TEST(StrokeStyles, RunsThatMeetAreDrawnAsOneStroke) {
   StrokeRuns runs;
   addRun(runs, {20, 40.5f}, {60, 40.5f});   // 0
