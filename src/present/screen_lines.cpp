@@ -363,15 +363,25 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
     };
     // Whether `p` lies within the reach (along_px, or the kind's width) of a segment of a
     // longer run of run r's kind.
+    // A run of another kind lies along a contour within the wider of the two kinds' reach,
+    // whatever their lengths: the outline is the line drawn there (docs/strokes.md).
+    const size_t contour = kindIndex(LineKind::kContour);
+    const bool contours_drawn = params.width_px[contour] > 0.0f;
     auto along = [&](glm::vec2 p, size_t r) {
       bool found = false;
-      const float reach = reach_of[kindIndex(runs.kinds[r])], reach2 = reach * reach;
-      joined.grid.forEachNear(p, reach, [&](uint32_t i) {
+      const size_t kind = kindIndex(runs.kinds[r]);
+      const float reach = reach_of[kind], reach2 = reach * reach;
+      const bool over_contours = contours_drawn && kind != contour;
+      const float cross = over_contours ? std::max(reach, reach_of[contour]) : reach, cross2 = cross * cross;
+      joined.grid.forEachNear(p, cross, [&](uint32_t i) {
         const uint32_t q = run_of[i];
-        if (found || q == r || runs.kinds[q] != runs.kinds[r] || covered[q] || runs.length_px[q] < runs.length_px[r] ||
-            (runs.length_px[q] == runs.length_px[r] && q > r))
-          return;
-        found = segmentWithin(p, i, reach2);
+        if (found || q == r || covered[q]) return;
+        if (runs.kinds[q] == runs.kinds[r]) {
+          if (runs.length_px[q] < runs.length_px[r] || (runs.length_px[q] == runs.length_px[r] && q > r)) return;
+          found = segmentWithin(p, i, reach2);
+        } else if (over_contours && runs.kinds[q] == LineKind::kContour) {
+          found = segmentWithin(p, i, cross2);
+        }
       });
       return found;
     };

@@ -94,8 +94,11 @@ struct JoinParams {
   float max_turn_deg = 60.0f;
   /// A run lying within this many pixels of longer runs of its kind all along is not drawn:
   /// it would only thicken that line, or darken it where translucent (on coarse meshes a
-  /// short piece of interpolated contour lies along the outline's completing piece). Default
-  /// 1.5; 0: every run is drawn.
+  /// short piece of interpolated contour lies along the outline's completing piece). A run of
+  /// another kind lying so along contours (within the wider of its and the contour's reach,
+  /// whatever the lengths; where contours are drawn, their width known) is not drawn either:
+  /// a crease that is also the silhouette, a suggestive contour beside the outline; the
+  /// outline is drawn there once, in the contour's style. Default 1.5; 0: every run is drawn.
   float along_px = 1.5f;
   /// A run lying beside one run of its kind at least three times its length, within its
   /// kind's width + burr_px of it all along, is not drawn, unless both its ends lie within a

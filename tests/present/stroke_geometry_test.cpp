@@ -529,6 +529,31 @@ TEST(StrokeStyles, RunsWithinTheStrokeWidthOfALongerOneAreLeftOut) {
   EXPECT_EQ(j.covered, (std::vector<uint8_t>{0, 1, 1}));
 }
 
+// A line of another kind lying along a contour within the stroke width (a crease that is
+// also the silhouette, drawn over the outline in the crease's colour) is left out, whatever
+// the lengths: the outline is drawn once, as a contour. A contour along a crease, a crease
+// farther off, and a crease where contours are not drawn, are drawn.
+TEST(StrokeStyles, OtherKindsAlongAContourAreLeftToIt) {
+  StrokeRuns runs;
+  addRun(runs, {20, 40.5f}, {60, 40.5f});                       // 0: the contour, in two runs
+  addRun(runs, {25, 41.5f}, {95, 41.5f}, LineKind::kCrease);    // 1: 1 px off, longer than each: left out
+  addRun(runs, {20, 44.5f}, {60, 44.5f}, LineKind::kCrease);    // 2: 4 px off: drawn
+  addRun(runs, {20, 80.5f}, {100, 80.5f}, LineKind::kCrease);   // 3: a crease
+  addRun(runs, {30, 81.5f}, {50, 81.5f});                       // 4: a contour along it: drawn
+  addRun(runs, {60.5f, 40.5f}, {100, 40.5f});                   // 5: the contour's second run
+  ObjectStyle style = contourStyle(2.5f);
+  style.lines[LineKind::kCrease].enabled = true;
+  style.lines[LineKind::kCrease].width_px = 1.5f;
+  JoinParams params = joinParamsFor(style.lines);
+  params.burr_px = 0.0f;  // (the burr rule is per kind; off here to test this one alone)
+  JoinedRuns j;
+  joinRuns(runs, {}, params, j);
+  EXPECT_EQ(j.covered, (std::vector<uint8_t>{0, 1, 0, 0, 0, 0}));
+  style.lines[LineKind::kContour].enabled = false;  // contours not drawn: the crease stays
+  joinRuns(runs, {}, joinParamsFor(style.lines), j);
+  EXPECT_EQ(j.covered[1], 0);
+}
+
 // A dash standing beside a longer line within the width + 2 px all along is a burr on it and
 // is left out (close up on a coarse mesh, 4–10 px of contour 1.5–4.5 px beside the outline),
 // as is a longer run beside a line three times its length; one farther off, one beside a
