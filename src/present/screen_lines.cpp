@@ -362,9 +362,9 @@ void joinRuns(const StrokeRuns& runs, std::span<const float> u, const JoinParams
       return glm::dot(d, d) <= reach2;
     };
     // Whether `p` lies within the reach (along_px, or the kind's width) of a segment of a
-    // longer run of run r's kind.
-    // A run of another kind lies along a contour within the wider of the two kinds' reach,
-    // whatever their lengths: the outline is the line drawn there (docs/strokes.md).
+    // longer run of run r's kind, or, for a run of another kind, within the wider of its and
+    // the contour's reach of a contour, whatever their lengths: the outline is the line drawn
+    // there (docs/strokes.md, "Other kinds on the outline").
     const size_t contour = kindIndex(LineKind::kContour);
     const bool contours_drawn = params.width_px[contour] > 0.0f;
     auto along = [&](glm::vec2 p, size_t r) {
